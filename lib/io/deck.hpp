@@ -1,0 +1,173 @@
+#pragma once
+// The deck as plain typed structs: what io::read_deck produces from YAML
+// (shared/spec/deck.md, format 1) and what analysis/ turns into a scene.
+// Nothing below io/ sees YAML or key strings; only io/, analysis/ and app/
+// include this header.
+//
+// Defaults live here, in the member initializers, and agree with the tables of
+// deck.md. Enumerator spellings equal the deck spellings. Values are validated
+// by the reader: a Deck that exists is well-formed (cross-references resolve,
+// knot vectors are open, weights positive, ...).
+
+#include "core/error.hpp"
+#include "core/side.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace iga::io {
+
+enum class PlaneMode { strain, stress };
+enum class Kinematics { small, finite };
+enum class MaterialModel { linear_elastic, saint_venant_kirchhoff, neo_hookean };
+enum class Formulation { two_half_pass, single_pass };
+enum class ShapeType { half_disc, quarter_disc, rectangle };
+enum class LoadKind { traction, force, pressure, gravity };
+enum class ReferenceType { hertz_cylinder_plane, hertz_two_cylinders };
+
+struct Analysis {
+    int dimension = 2;                        ///< 2 or 3 (required in the deck)
+    PlaneMode plane = PlaneMode::strain;      ///< 2D only
+    Kinematics kinematics = Kinematics::small;
+};
+
+struct Material {
+    std::string name;
+    MaterialModel model = MaterialModel::linear_elastic;
+    double E = 0.0;   ///< Young's modulus, > 0
+    double nu = 0.0;  ///< Poisson's ratio, in (-1, 0.5)
+};
+
+/// Raw NURBS data of one patch as written in the deck.
+struct NurbsData {
+    std::vector<int> degrees;                       ///< one per parametric direction
+    std::vector<std::vector<double>> knots;         ///< one open knot vector per direction
+    std::vector<std::vector<double>> control_points;///< rows [x, y, (z,) w]; u index fastest
+};
+
+/// Built-in exact shape (2D): see nurbs/shapes.hpp for the side names.
+struct Shape {
+    ShapeType type = ShapeType::rectangle;
+    std::vector<double> center;  ///< half_disc, quarter_disc
+    double radius = 0.0;         ///< half_disc, quarter_disc
+    std::vector<double> corner;  ///< rectangle
+    std::vector<double> size;    ///< rectangle
+};
+
+/// Refinement, applied in this order: elevate, then uniform spans, then insert.
+struct Refine {
+    std::vector<int> elevate;                ///< empty: none; else one per direction
+    std::vector<int> spans;                  ///< empty: none; else spans per direction
+    std::vector<std::vector<double>> insert; ///< empty: none; else knots per direction
+};
+
+struct RigidPlane {
+    std::vector<double> point;   ///< d coordinates
+    std::vector<double> normal;  ///< d coordinates, points out of the obstacle (normalized by the reader)
+};
+
+struct Body {
+    std::string name;
+    bool rigid = false;
+    // Deformable body: a material and exactly one of nurbs / shape.
+    std::string material;
+    std::optional<NurbsData> nurbs;
+    std::optional<Shape> shape;
+    Refine refine;
+    // Rigid obstacle.
+    std::optional<RigidPlane> plane;
+};
+
+/// Dirichlet condition on every control point of a side.
+struct Constraint {
+    std::string body;
+    Side side = Side::u0;
+    std::vector<bool> fixed;    ///< d entries: which components are prescribed
+    std::vector<double> value;  ///< d entries: prescribed values at load factor 1 (0 for `fix`)
+};
+
+struct Load {
+    std::string body;
+    std::optional<Side> side;     ///< all kinds but gravity
+    LoadKind kind = LoadKind::traction;
+    std::vector<double> vector;   ///< traction, force, gravity: d components
+    double pressure = 0.0;        ///< pressure: follower, along the inward normal
+    double density = 0.0;         ///< gravity: mass per unit reference volume (area in 2D)
+};
+
+/// One side of a contact pair: a deformable body's side, or a rigid body (no side).
+struct ContactSurface {
+    std::string body;
+    std::optional<Side> side;
+};
+
+struct ContactPair {
+    std::string name;
+    ContactSurface first, second;
+    Formulation formulation = Formulation::two_half_pass;
+    double penalty = 0.0;  ///< required, > 0
+    int quadrature = 0;    ///< Gauss points per knot span; 0 means degree + 2 of the side
+};
+
+struct Steps {
+    int count = 1;
+    bool adaptive = true;
+    int max_cutbacks = 8;
+};
+
+struct Newton {
+    double tolerance = 1e-10;
+    int max_iterations = 25;
+    bool line_search = true;
+};
+
+struct Reference {
+    std::string pair;
+    ReferenceType type = ReferenceType::hertz_cylinder_plane;
+    double radius = 0.0;                 ///< hertz_cylinder_plane
+    std::vector<double> radii;           ///< hertz_two_cylinders: two radii
+    double force = 0.0;                  ///< total force per unit thickness on the whole cylinder
+};
+
+struct Output {
+    std::string file;              ///< resolved: deck name with .h5 when not given (relative to the deck folder)
+    bool every_step = true;
+    int samples_per_span = 16;
+    std::optional<Reference> reference;
+    bool paraview = false;
+};
+
+struct Deck {
+    int format = 1;
+    std::string title;
+    Analysis analysis;
+    std::vector<Material> materials;
+    std::vector<Body> bodies;
+    std::vector<Constraint> constraints;
+    std::vector<Load> loads;
+    std::vector<ContactPair> contact;
+    Steps steps;
+    Newton newton;
+    Output output;
+
+    std::string source_file;  ///< path of the deck file as given
+    std::string resolved_yaml;///< the resolved deck (after --set, defaults filled in), for /deck and `check`
+
+    const Material* find_material(const std::string& name) const
+    {
+        for (const auto& m : materials)
+            if (m.name == name)
+                return &m;
+        return nullptr;
+    }
+    const Body* find_body(const std::string& name) const
+    {
+        for (const auto& b : bodies)
+            if (b.name == name)
+                return &b;
+        return nullptr;
+    }
+};
+
+}  // namespace iga::io

@@ -1,0 +1,36 @@
+#pragma once
+// Geometry-preserving refinement of NURBS patches: knot insertion (A5.1/A5.4)
+// and degree elevation (A5.9), applied direction by direction in homogeneous
+// coordinates (P w, w), so the rational map and the weights' parametrization are
+// unchanged (Piegl & Tiller ch. 5).
+
+#include "nurbs/patch.hpp"
+
+#include <vector>
+
+namespace iga::nurbs {
+
+/// Inserts each value of `values` once into direction `dir` (a value already
+/// present raises its multiplicity). Values must lie strictly inside (front, back)
+/// and may not push a multiplicity above the degree.
+Patch insert_knots(const Patch& patch, int dir, const std::vector<double>& values);
+
+/// Raises the degree in direction `dir` by `times`; interior multiplicities rise
+/// with it, so the continuity is kept.
+Patch elevate_degree(const Patch& patch, int dir, int times);
+
+/// Inserts the uniform values front + k (back - front) / n_spans, k = 1..n_spans-1,
+/// that are not already knots: n_spans spans when the existing breakpoints lie on
+/// that grid, more otherwise.
+Patch refine_uniform(const Patch& patch, int dir, int n_spans);
+
+/// Bezier extraction operators of a knot vector (Borden et al. 2011): one
+/// (p+1) x (p+1) matrix C_e per span with N^e(u) = C_e B(u~), B the Bernstein
+/// basis on the span mapped to [0, 1].
+std::vector<Eigen::MatrixXd> bezier_extraction(const KnotVector& knots);
+
+/// Bezier control points (projected, n_local x d) of element `element` of a patch,
+/// whose convex hull contains that piece (weights > 0): used for bounding boxes.
+RowMatrix bezier_control_points(const Patch& patch, const Element& element);
+
+}  // namespace iga::nurbs
