@@ -30,6 +30,8 @@ struct Analysis {
     int dimension = 2;                        ///< 2 or 3 (required in the deck)
     PlaneMode plane = PlaneMode::strain;      ///< 2D only
     Kinematics kinematics = Kinematics::small;
+
+    bool operator==(const Analysis&) const = default;
 };
 
 struct Material {
@@ -37,6 +39,8 @@ struct Material {
     MaterialModel model = MaterialModel::linear_elastic;
     double E = 0.0;   ///< Young's modulus, > 0
     double nu = 0.0;  ///< Poisson's ratio, in (-1, 0.5)
+
+    bool operator==(const Material&) const = default;
 };
 
 /// Raw NURBS data of one patch as written in the deck.
@@ -44,6 +48,8 @@ struct NurbsData {
     std::vector<int> degrees;                       ///< one per parametric direction
     std::vector<std::vector<double>> knots;         ///< one open knot vector per direction
     std::vector<std::vector<double>> control_points;///< rows [x, y, (z,) w]; u index fastest
+
+    bool operator==(const NurbsData&) const = default;
 };
 
 /// Built-in exact shape (2D): see nurbs/shapes.hpp for the side names.
@@ -53,6 +59,8 @@ struct Shape {
     double radius = 0.0;         ///< half_disc, quarter_disc
     std::vector<double> corner;  ///< rectangle
     std::vector<double> size;    ///< rectangle
+
+    bool operator==(const Shape&) const = default;
 };
 
 /// Refinement, applied in this order: elevate, then uniform spans, then insert.
@@ -60,11 +68,15 @@ struct Refine {
     std::vector<int> elevate;                ///< empty: none; else one per direction
     std::vector<int> spans;                  ///< empty: none; else spans per direction
     std::vector<std::vector<double>> insert; ///< empty: none; else knots per direction
+
+    bool operator==(const Refine&) const = default;
 };
 
 struct RigidPlane {
     std::vector<double> point;   ///< d coordinates
     std::vector<double> normal;  ///< d coordinates, points out of the obstacle (normalized by the reader)
+
+    bool operator==(const RigidPlane&) const = default;
 };
 
 struct Body {
@@ -77,6 +89,8 @@ struct Body {
     Refine refine;
     // Rigid obstacle.
     std::optional<RigidPlane> plane;
+
+    bool operator==(const Body&) const = default;
 };
 
 /// Dirichlet condition on every control point of a side.
@@ -85,6 +99,8 @@ struct Constraint {
     Side side = Side::u0;
     std::vector<bool> fixed;    ///< d entries: which components are prescribed
     std::vector<double> value;  ///< d entries: prescribed values at load factor 1 (0 for `fix`)
+
+    bool operator==(const Constraint&) const = default;
 };
 
 struct Load {
@@ -94,12 +110,16 @@ struct Load {
     std::vector<double> vector;   ///< traction, force, gravity: d components
     double pressure = 0.0;        ///< pressure: follower, along the inward normal
     double density = 0.0;         ///< gravity: mass per unit reference volume (area in 2D)
+
+    bool operator==(const Load&) const = default;
 };
 
 /// One side of a contact pair: a deformable body's side, or a rigid body (no side).
 struct ContactSurface {
     std::string body;
     std::optional<Side> side;
+
+    bool operator==(const ContactSurface&) const = default;
 };
 
 struct ContactPair {
@@ -108,18 +128,24 @@ struct ContactPair {
     Formulation formulation = Formulation::two_half_pass;
     double penalty = 0.0;  ///< required, > 0
     int quadrature = 0;    ///< Gauss points per knot span; 0 means degree + 2 of the side
+
+    bool operator==(const ContactPair&) const = default;
 };
 
 struct Steps {
     int count = 1;
     bool adaptive = true;
     int max_cutbacks = 8;
+
+    bool operator==(const Steps&) const = default;
 };
 
 struct Newton {
     double tolerance = 1e-10;
     int max_iterations = 25;
     bool line_search = true;
+
+    bool operator==(const Newton&) const = default;
 };
 
 struct Reference {
@@ -128,6 +154,8 @@ struct Reference {
     double radius = 0.0;                 ///< hertz_cylinder_plane
     std::vector<double> radii;           ///< hertz_two_cylinders: two radii
     double force = 0.0;                  ///< total force per unit thickness on the whole cylinder
+
+    bool operator==(const Reference&) const = default;
 };
 
 struct Output {
@@ -136,6 +164,8 @@ struct Output {
     int samples_per_span = 16;
     std::optional<Reference> reference;
     bool paraview = false;
+
+    bool operator==(const Output&) const = default;
 };
 
 struct Deck {
@@ -153,6 +183,9 @@ struct Deck {
 
     std::string source_file;  ///< path of the deck file as given
     std::string resolved_yaml;///< the resolved deck (after --set, defaults filled in), for /deck and `check`
+
+
+    bool operator==(const Deck&) const = default;
 
     const Material* find_material(const std::string& name) const
     {

@@ -27,6 +27,7 @@ public:
     double back() const { return knots_[knots_.size() - degree_ - 1]; }             ///< end of the domain
 
     /// Knot index i with u in [u_i, u_{i+1}) (A2.1); u is clamped to [front, back].
+    /// NaN gives the first span, so the basis evaluated there is NaN (a visible numerical failure).
     int find_span(double u) const;
     /// Knot index i of the k-th span of positive length, k in [0, n_spans()).
     int span_start(int k) const { return span_starts_[k]; }
@@ -51,5 +52,9 @@ private:
 /// Returns a (n_derivs+1) x (p+1) matrix: entry (k, j) is the k-th derivative of
 /// N_{span-p+j}(u). Derivatives above p are zero.
 Eigen::MatrixXd basis_derivatives(const KnotVector& knots, int span, double u, int n_derivs);
+
+/// Same as basis_derivatives, writing into `ders` (resized; no allocation once it
+/// has the size): the out-parameter form for hot loops.
+void basis_derivatives_into(const KnotVector& knots, int span, double u, int n_derivs, Eigen::MatrixXd& ders);
 
 }  // namespace iga::nurbs

@@ -1,0 +1,16 @@
+#pragma once
+// The three commands of the CLI. Each parses its own arguments (CLI11) and
+// returns the process exit code.
+
+namespace iga::app {
+
+inline constexpr int exit_ok = 0;
+inline constexpr int exit_failed = 1;     ///< the solve failed; `compare`: files differ
+inline constexpr int exit_bad_input = 2;  ///< bad deck, bad usage, unreadable file
+inline constexpr int exit_internal = 3;   ///< a bug
+
+int run_command(int argc, char** argv);
+int check_command(int argc, char** argv);
+int compare_command(int argc, char** argv);
+
+}  // namespace iga::app

@@ -1,0 +1,321 @@
+#include "analysis/output.hpp"
+
+#include "analytic/hertz.hpp"
+#include "analytic/pressure_errors.hpp"
+#include "contact/pressure_recovery.hpp"
+#include "nurbs/shapes.hpp"
+#include "nurbs/side_patch.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+namespace iga::analysis {
+
+namespace {
+
+std::string shape_name(io::ShapeType t)
+{
+    switch (t) {
+    case io::ShapeType::half_disc: return "half_disc";
+    case io::ShapeType::quarter_disc: return "quarter_disc";
+    case io::ShapeType::rectangle: return "rectangle";
+    }
+    return "";
+}
+
+const contact::DeformableSide* deformable(const contact::ContactPair& pair, int k)
+{
+    return std::get_if<contact::DeformableSide>(&pair.surface(k));
+}
+
+/// Reference point of `side` that lies deepest along -direction (the first point
+/// to touch a plane with outward normal `direction`), by sampling and a parabola fit.
+VecN first_touch_point(const nurbs::Patch& side, const VecN& direction)
+{
+    const auto& knots = side.knots(0);
+    constexpr int samples_per_span = 64;
+    double best_xi = knots.front(), best = std::numeric_limits<double>::infinity();
+    const std::vector<double> breaks = knots.breakpoints();
+    for (std::size_t s = 0; s + 1 < breaks.size(); ++s)
+        for (int k = 0; k <= samples_per_span; ++k) {
+            const double xi = breaks[s] + (breaks[s + 1] - breaks[s]) * k / samples_per_span;
+            VecN p(1);
+            p(0) = xi;
+            const double h = nurbs::evaluate(side, p, 0).x.dot(direction);
+            if (h < best) {
+                best = h;
+                best_xi = xi;
+            }
+        }
+    // Golden-section polish in a bracket of one sample spacing each way.
+    const double spacing = (knots.back() - knots.front()) / (samples_per_span * (breaks.size() - 1));
+    double lo = std::max(knots.front(), best_xi - spacing), hi = std::min(knots.back(), best_xi + spacing);
+    auto height = [&](double xi) {
+        VecN p(1);
+        p(0) = xi;
+        return nurbs::evaluate(side, p, 0).x.dot(direction);
+    };
+    const double g = (std::sqrt(5.0) - 1.0) / 2.0;
+    for (int it = 0; it < 80; ++it) {
+        const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+        if (height(a) < height(b))
+            hi = b;
+        else
+            lo = a;
+    }
+    VecN p(1);
+    p(0) = 0.5 * (lo + hi);
+    return nurbs::evaluate(side, p, 0).x;
+}
+
+/// Closest pair of points of two reference sides, by sampling: the parameter on
+/// `a` and the two points.
+struct ClosestPair {
+    double xi_a;
+    VecN x_a, x_b;
+};
+ClosestPair closest_points(const nurbs::Patch& a, const nurbs::Patch& b)
+{
+    auto samples = [](const nurbs::Patch& side) {
+        std::vector<std::pair<double, VecN>> out;
+        const std::vector<double> breaks = side.knots(0).breakpoints();
+        for (std::size_t s = 0; s + 1 < breaks.size(); ++s)
+            for (int k = 0; k <= 32; ++k) {
+                VecN p(1);
+                p(0) = breaks[s] + (breaks[s + 1] - breaks[s]) * k / 32.0;
+                out.emplace_back(p(0), nurbs::evaluate(side, p, 0).x);
+            }
+        return out;
+    };
+    const auto pa = samples(a), pb = samples(b);
+    double best = std::numeric_limits<double>::infinity();
+    ClosestPair out{pa.front().first, pa.front().second, pb.front().second};
+    for (const auto& [xi, x] : pa)
+        for (const auto& y : pb)
+            if ((x - y.second).squaredNorm() < best) {
+                best = (x - y.second).squaredNorm();
+                out = {xi, x, y.second};
+            }
+    return out;
+}
+
+std::vector<double> to_std(const VecN& v)
+{
+    return std::vector<double>(v.data(), v.data() + v.size());
+}
+
+}  // namespace
+
+std::vector<io::BodyGeometry> body_geometry(const io::Deck& deck, const Scene& scene)
+{
+    std::vector<io::BodyGeometry> out;
+    for (std::size_t k = 0; k < deck.bodies.size(); ++k) {
+        const int b = scene.body_of_deck[k];
+        if (b < 0)
+            continue;
+        const nurbs::Patch& patch = scene.bodies[static_cast<std::size_t>(b)].patch;
+        io::BodyGeometry g;
+        g.name = deck.bodies[k].name;
+        for (int dir = 0; dir < patch.n_par(); ++dir) {
+            g.degrees.push_back(patch.degree(dir));
+            g.knots.push_back(patch.knots(dir).knot_values());
+        }
+        g.control_points.resize(patch.n_control_points(), patch.dim() + 1);
+        g.control_points.leftCols(patch.dim()) = patch.control_points();
+        g.control_points.col(patch.dim()) = patch.weights();
+        if (deck.bodies[k].shape)
+            g.side_names = nurbs::shape_side_names(shape_name(deck.bodies[k].shape->type));
+        out.push_back(std::move(g));
+    }
+    return out;
+}
+
+io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_free, double load_factor,
+                       int samples_per_span)
+{
+    io::StepData step;
+    step.load_factor = load_factor;
+    const Vector u_full = scene.dofs->expand(u_free, load_factor);
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+        step.displacement.emplace_back(scene.bodies[b].name, system.body_displacement(u_full, static_cast<int>(b)));
+    if (!scene.has_contact())
+        return step;
+
+    const std::vector<contact::PairEvaluation> states = system.contact_state(u_free, load_factor);
+    for (std::size_t p = 0; p < scene.pairs.size(); ++p) {
+        const PairModel& model = scene.pairs[p];
+        const contact::PairEvaluation& state = states[p];
+        io::ContactPairResult result;
+        result.name = model.name;
+        result.attributes["n_active"] = state.n_active;
+        result.attributes["max_penetration"] = state.max_penetration;
+        result.attributes["candidates"] = static_cast<double>(state.candidates);
+        result.attributes["projections"] = static_cast<double>(state.projections);
+        for (const contact::CarrierResult& carrier : state.carriers) {
+            const contact::DeformableSide* side = deformable(model.pair, carrier.surface);
+            IGA_CHECK(side != nullptr, "a rigid surface cannot carry Gauss points");
+            const contact::RecoveredPressure recovered = contact::recover_pressure(
+                side->side.patch, system.side_displacement(u_full, static_cast<int>(p), carrier.surface), carrier,
+                samples_per_span);
+            io::ContactSideResult r;
+            r.side_name = model.label[static_cast<std::size_t>(carrier.surface)];
+            r.gauss_points.coordinates = carrier.coordinates;
+            r.gauss_points.reference_coordinates = carrier.reference_coordinates;
+            r.gauss_points.parameter.resize(static_cast<Index>(carrier.parameter.size()), 1);
+            for (std::size_t g = 0; g < carrier.parameter.size(); ++g)
+                r.gauss_points.parameter(static_cast<Index>(g), 0) = carrier.parameter[g];
+            r.gauss_points.gap = carrier.gap;
+            r.gauss_points.pressure = carrier.pressure;
+            r.gauss_points.weight = carrier.weight;
+            r.postprocessed.control_point_pressure = recovered.control_point_pressure;
+            r.postprocessed.coordinates = recovered.coordinates;
+            r.postprocessed.reference_coordinates = recovered.reference_coordinates;
+            r.postprocessed.pressure = recovered.pressure;
+            r.normal_force = recovered.normal_force;
+            int active = 0;
+            double penetration = 0.0;
+            for (Index g = 0; g < carrier.pressure.size(); ++g)
+                if (carrier.pressure(g) > 0.0) {
+                    ++active;
+                    penetration = std::max(penetration, carrier.gap(g));
+                }
+            r.attributes["n_active"] = active;
+            r.attributes["max_penetration"] = penetration;
+            result.sides.push_back(std::move(r));
+        }
+        step.contact.push_back(std::move(result));
+    }
+    return step;
+}
+
+std::vector<io::ReferenceData> references(const io::Deck& deck, const Scene& scene, const io::StepData* step)
+{
+    std::vector<io::ReferenceData> out;
+    if (!deck.output.reference)
+        return out;
+    const io::Reference& ref = *deck.output.reference;
+    const PairModel* model = nullptr;
+    for (const PairModel& p : scene.pairs)
+        if (p.name == ref.pair)
+            model = &p;
+    IGA_CHECK(model != nullptr, "the deck reader let a reference to an unknown pair through");
+    const int d = scene.dim;
+    if (d != 2)
+        return out;  // Hertz line contact is a 2D reference
+
+    auto elastic = [&](int k, double& E, double& nu) {
+        const int b = model->body[static_cast<std::size_t>(k)];
+        if (b < 0) {
+            E = std::numeric_limits<double>::infinity();
+            nu = 0.0;
+            return;
+        }
+        const mechanics::Material& m = scene.bodies[static_cast<std::size_t>(b)].material;
+        E = m.E;
+        // Plane stress: E* = E (nu drops out); plane strain: E / (1 - nu^2).
+        nu = m.plane == mechanics::PlaneMode::stress ? 0.0 : m.nu;
+    };
+
+    io::ReferenceData data;
+    data.pair = ref.pair;
+    analytic::HertzLineContact hertz{};
+    VecN center(2), tangent(2);
+    if (ref.type == io::ReferenceType::hertz_cylinder_plane) {
+        data.type = "hertz_cylinder_plane";
+        int k_body = deformable(model->pair, 0) ? 0 : 1;
+        int k_plane = 1 - k_body;
+        double E, nu;
+        elastic(k_body, E, nu);
+        hertz = analytic::hertz_cylinder_plane(E, nu, ref.radius, ref.force);
+        VecN normal(2);
+        if (const auto* plane = std::get_if<contact::RigidPlane>(&model->pair.surface(k_plane)))
+            normal = plane->normal;
+        else
+            normal << 0.0, 1.0;
+        tangent << normal(1), -normal(0);
+        center = first_touch_point(deformable(model->pair, k_body)->side.patch, normal);
+        data.inputs["radius"] = ref.radius;
+        data.inputs["E"] = E;
+        data.inputs["nu"] = nu;
+    } else {
+        data.type = "hertz_two_cylinders";
+        double E1, nu1, E2, nu2;
+        elastic(0, E1, nu1);
+        elastic(1, E2, nu2);
+        hertz = analytic::hertz_two_cylinders(E1, nu1, ref.radii[0], E2, nu2, ref.radii[1], ref.force);
+        const contact::DeformableSide* s0 = deformable(model->pair, 0);
+        const contact::DeformableSide* s1 = deformable(model->pair, 1);
+        IGA_CHECK(s0 && s1, "hertz_two_cylinders needs two deformable sides");
+        const ClosestPair closest = closest_points(s0->side.patch, s1->side.patch);
+        center = 0.5 * (closest.x_a + closest.x_b);
+        VecN p(1);
+        p(0) = closest.xi_a;
+        tangent = nurbs::evaluate(s0->side.patch, p, 1).dx.col(0).normalized();
+        data.inputs["radius_first"] = ref.radii[0];
+        data.inputs["radius_second"] = ref.radii[1];
+    }
+    if (tangent(0) < 0 || (tangent(0) == 0 && tangent(1) < 0))
+        tangent = -tangent;  // x increases to the right, for plots
+    data.inputs["force"] = ref.force;
+    data.inputs["E_star"] = hertz.E_star;
+    data.inputs["R_star"] = hertz.R_star;
+    data.a = hertz.a;
+    data.p0 = hertz.p0;
+    data.center = to_std(center);
+    data.tangent = to_std(tangent);
+
+    constexpr int n_curve = 601;
+    data.x.resize(n_curve);
+    data.pressure.resize(n_curve);
+    data.coordinates.resize(n_curve, 2);
+    for (int i = 0; i < n_curve; ++i) {
+        const double x = -1.5 * hertz.a + 3.0 * hertz.a * i / (n_curve - 1);
+        data.x(i) = x;
+        data.pressure(i) = hertz.pressure(x);
+        data.coordinates.row(i) = (center + x * tangent).transpose();
+    }
+
+    // Errors of this run (last converged increment) over reference coordinates.
+    if (step) {
+        for (const io::ContactPairResult& pair : step->contact) {
+            if (pair.name != ref.pair)
+                continue;
+            for (std::size_t s = 0; s < pair.sides.size(); ++s) {
+                const io::ContactSideResult& side = pair.sides[s];
+                auto measure = [&](const RowMatrix& X, const Vector& p, const std::string& prefix) {
+                    std::vector<double> xs, ps;
+                    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+                    for (Index i = 0; i < X.rows(); ++i) {
+                        const double x = (X.row(i).transpose() - center).dot(tangent);
+                        xs.push_back(x);
+                        ps.push_back(p(i));
+                        lo = std::min(lo, x);
+                        hi = std::max(hi, x);
+                    }
+                    if (xs.empty())
+                        return;
+                    // A symmetric half model covers one side of x = 0 only: count it twice.
+                    const double slack = 1e-8 * std::max(1.0, hertz.a);
+                    const bool mirror = lo >= -slack || hi <= slack;
+                    const analytic::PressureErrors e = analytic::pressure_errors(hertz, xs, ps, mirror);
+                    const std::string tag = s == 0 ? prefix : side.side_name + "." + prefix;
+                    data.errors[tag + "peak"] = e.peak;
+                    data.errors[tag + "half_width"] = e.half_width;
+                    data.errors[tag + "l2"] = e.l2;
+                };
+                measure(side.postprocessed.reference_coordinates, side.postprocessed.pressure, "");
+                measure(side.gauss_points.reference_coordinates, side.gauss_points.pressure, "gauss_");
+                if (s == 0) {
+                    // Force balance: the contact resultant against the force of the (modelled part of the) load.
+                    data.errors["normal_force"] = side.normal_force;
+                }
+            }
+        }
+    }
+    out.push_back(std::move(data));
+    return out;
+}
+
+}  // namespace iga::analysis

@@ -1,0 +1,150 @@
+#include "analysis/run.hpp"
+
+#include "analysis/output.hpp"
+#include "analysis/scene.hpp"
+#include "analysis/system.hpp"
+#include "io/results_writer.hpp"
+#include "solver/linear.hpp"
+#include "solver/load_stepping.hpp"
+#include "version.hpp"
+
+#include <fmt/format.h>
+
+#include <optional>
+
+namespace iga::analysis {
+
+namespace {
+
+solver::NewtonSettings newton_settings(const io::Newton& n)
+{
+    solver::NewtonSettings s;
+    s.tolerance = n.tolerance;
+    s.max_iterations = n.max_iterations;
+    s.line_search = n.line_search;
+    return s;
+}
+
+solver::SteppingSettings stepping_settings(const io::Steps& steps)
+{
+    solver::SteppingSettings s;
+    s.count = steps.count;
+    s.adaptive = steps.adaptive;
+    s.max_cutbacks = steps.max_cutbacks;
+    return s;
+}
+
+}  // namespace
+
+RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& context)
+{
+    ScopedTimer total(nullptr, "total");
+    Scene scene = build_scene(deck);
+    SceneSystem system(scene, context);
+
+    std::optional<io::ResultsWriter> writer;
+    try {
+        writer.emplace(deck.output.file, program_version, deck.resolved_yaml);
+    } catch (const Error& e) {
+        throw DeckError(DeckIssue{{deck.source_file, 0, 0}, "output.file", deck.output.file, e.what()});
+    }
+    {
+        ScopedTimer t(&context, "output");
+        writer->write_bodies(body_geometry(deck, scene));
+    }
+
+    const solver::NonlinearSystem nonlinear = system.nonlinear_system();
+    solver::LinearSolver linear(nonlinear.symmetric ? solver::LinearSolver::Kind::cholesky
+                                                    : solver::LinearSolver::Kind::lu);
+    Vector u = Vector::Zero(scene.dofs->n_free());
+
+    std::optional<io::StepData> last_step;
+    std::vector<std::array<double, 4>> convergence;
+    solver::SteppingCallbacks callbacks;
+    callbacks.commit = [&] {
+        for (PairModel& p : scene.pairs)
+            p.pair.commit();
+    };
+    callbacks.rollback = [&] {
+        for (PairModel& p : scene.pairs)
+            p.pair.rollback();
+    };
+    callbacks.stop_requested = options.stop_requested;
+    callbacks.converged = [&](const solver::IncrementRecord& record, const Vector& state) {
+        ScopedTimer t(&context, "output");
+        io::StepData step = step_data(scene, system, state, record.load_factor, deck.output.samples_per_span);
+        step.index = record.index;
+        step.newton_iterations = record.report.iterations;
+        step.residual_norm = record.report.residual_norm;
+        step.cutbacks = record.cutbacks;
+        step.wall_s = record.wall_s;
+        for (std::size_t k = 0; k < record.report.residual_history.size(); ++k)
+            convergence.push_back({static_cast<double>(record.index), static_cast<double>(k),
+                                   record.report.residual_history[k], record.load_factor});
+        if (deck.output.every_step)
+            writer->write_step(step);
+        if (scene.has_contact())
+            context.log(Verbosity::verbose, fmt::format("  active Gauss points: {}", system.last_active()));
+        last_step = std::move(step);
+    };
+
+    const solver::SteppingResult result =
+        solver::run_load_steps(nonlinear, u, stepping_settings(deck.steps), newton_settings(deck.newton), linear,
+                               callbacks, &context);
+
+    if (!deck.output.every_step && last_step) {
+        ScopedTimer t(&context, "output");
+        writer->write_step(*last_step);
+    }
+
+    RunOutcome outcome;
+    outcome.status = result.completed ? "completed" : "failed";
+    outcome.message = result.message;
+    outcome.results_file = deck.output.file;
+    outcome.increments = static_cast<int>(result.increments.size());
+    outcome.newton_iterations = result.total_iterations;
+    outcome.cutbacks = result.total_cutbacks;
+
+    io::RunSummary summary;
+    summary.status = outcome.status;
+    summary.message = outcome.message;
+    summary.references = references(deck, scene, last_step ? &*last_step : nullptr);
+    for (const io::ReferenceData& r : summary.references)
+        for (const auto& [key, value] : r.errors)
+            outcome.errors[key] = value;
+    summary.convergence.resize(static_cast<Index>(convergence.size()), 4);
+    for (std::size_t k = 0; k < convergence.size(); ++k)
+        for (int j = 0; j < 4; ++j)
+            summary.convergence(static_cast<Index>(k), j) = convergence[k][static_cast<std::size_t>(j)];
+
+    // Timings: the solver times all of evaluate() as "assembly"; contact is reported apart.
+    const double contact_time = context.time("contact");
+    summary.timings["assembly"] = std::max(0.0, context.time("assembly") - contact_time);
+    summary.timings["elements"] = context.time("elements");
+    summary.timings["contact"] = contact_time;
+    summary.timings["contact_search"] = context.time("contact_search");
+    summary.timings["projection"] = context.time("projection");
+    summary.timings["linear_solve"] = context.time("linear_solve");
+    summary.timings["output"] = context.time("output");
+    summary.timings["total"] = total.elapsed();
+    for (const auto& [name, count] : context.counters())
+        summary.counters[name] = count;
+    summary.counters["dofs"] = scene.dofs->n_full();
+    summary.counters["free_dofs"] = scene.dofs->n_free();
+    summary.counters["increments"] = outcome.increments;
+    summary.counters["cutbacks"] = outcome.cutbacks;
+    summary.counters["total_newton_iterations"] = outcome.newton_iterations;
+    long long gauss_points = 0;
+    for (const PairModel& p : scene.pairs)
+        for (int c = 0; c < p.pair.n_carriers(); ++c)
+            gauss_points += p.pair.n_gauss_points(c);
+    summary.counters["contact_gauss_points"] = gauss_points;
+
+    writer->finish(summary);
+    outcome.wall_s = total.elapsed();
+    outcome.numbers["dofs"] = scene.dofs->n_full();
+    outcome.numbers["contact_gauss_points"] = static_cast<double>(gauss_points);
+    return outcome;
+}
+
+}  // namespace iga::analysis

@@ -1,0 +1,40 @@
+#pragma once
+// The driver: deck -> scene -> load steps (Newton) -> results file.
+//
+//   build_scene -> open the results file (temporary name) -> write bodies ->
+//   run_load_steps, writing each converged increment -> references and errors ->
+//   finish (status, timings, counters, convergence) -> atomic rename.
+//
+// Bad input found here (geometry that cannot be built, an output path that
+// cannot be written) throws DeckError before anything is written. A failed solve
+// is not an exception: the file is written with status "failed" and the message.
+
+#include "core/run_context.hpp"
+#include "io/deck.hpp"
+
+#include <functional>
+#include <map>
+#include <string>
+
+namespace iga::analysis {
+
+struct RunOptions {
+    std::function<bool()> stop_requested;  ///< polled between increments (SIGINT)
+    bool progress = false;                 ///< a progress line per increment (terminal)
+};
+
+struct RunOutcome {
+    std::string status;        ///< "completed" or "failed"
+    std::string message;
+    std::string results_file;
+    int increments = 0;
+    int newton_iterations = 0;
+    int cutbacks = 0;
+    double wall_s = 0.0;
+    std::map<std::string, double> errors;   ///< against the reference, when the deck asks for one
+    std::map<std::string, double> numbers;  ///< dofs, gauss points, active points, ...
+};
+
+RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& context);
+
+}  // namespace iga::analysis

@@ -1,0 +1,249 @@
+#include "analysis/scene.hpp"
+
+#include "analysis/geometry.hpp"
+#include "nurbs/side_patch.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace iga::analysis {
+
+namespace {
+
+mechanics::Material to_material(const io::Material& m, const io::Analysis& analysis)
+{
+    mechanics::Material out;
+    switch (m.model) {
+    case io::MaterialModel::linear_elastic: out.model = mechanics::MaterialModel::linear_elastic; break;
+    case io::MaterialModel::saint_venant_kirchhoff: out.model = mechanics::MaterialModel::saint_venant_kirchhoff; break;
+    case io::MaterialModel::neo_hookean: out.model = mechanics::MaterialModel::neo_hookean; break;
+    }
+    out.E = m.E;
+    out.nu = m.nu;
+    if (analysis.dimension == 3)
+        out.plane = mechanics::PlaneMode::none;
+    else
+        out.plane = analysis.plane == io::PlaneMode::stress ? mechanics::PlaneMode::stress : mechanics::PlaneMode::strain;
+    return out;
+}
+
+VecN to_vec(const std::vector<double>& v)
+{
+    VecN out(static_cast<Index>(v.size()));
+    for (std::size_t i = 0; i < v.size(); ++i)
+        out(static_cast<Index>(i)) = v[i];
+    return out;
+}
+
+DeckIssue body_issue(const io::Deck& deck, const std::string& path, const std::string& reason)
+{
+    return DeckIssue{{deck.source_file, 0, 0}, path, "", reason};
+}
+
+std::string format_vec(const VecN& v)
+{
+    std::string out = "(";
+    for (Index i = 0; i < v.size(); ++i)
+        out += fmt::format("{}{:.6g}", i ? ", " : "", v(i));
+    return out + ")";
+}
+
+/// Full dofs of a list of body control points (local dof a*d + i order).
+std::vector<int> dofs_of(const assembly::DofMap& dofs, int body, const std::vector<int>& points)
+{
+    const int d = dofs.dimension();
+    std::vector<int> out;
+    out.reserve(points.size() * static_cast<std::size_t>(d));
+    for (int p : points)
+        for (int i = 0; i < d; ++i)
+            out.push_back(dofs.dof(dofs.node_offset(body) + p, i));
+    return out;
+}
+
+}  // namespace
+
+Scene build_scene(const io::Deck& deck)
+{
+    Scene scene;
+    scene.dim = deck.analysis.dimension;
+    const int d = scene.dim;
+    scene.kinematics =
+        deck.analysis.kinematics == io::Kinematics::finite ? mechanics::Kinematics::finite : mechanics::Kinematics::small;
+
+    // Bodies: patches and element geometry.
+    Eigen::VectorXd lo = Eigen::VectorXd::Constant(d, 1e300), hi = Eigen::VectorXd::Constant(d, -1e300);
+    for (const io::Body& body : deck.bodies) {
+        if (body.rigid) {
+            scene.body_of_deck.push_back(-1);
+            continue;
+        }
+        scene.body_of_deck.push_back(static_cast<int>(scene.bodies.size()));
+        nurbs::Patch patch = [&] {
+            try {
+                return build_patch(body, d);
+            } catch (const Error& e) {
+                throw DeckError(body_issue(deck, "bodies." + body.name, std::string("cannot build the patch: ") + e.what()));
+            }
+        }();
+        if (patch.n_par() != d)
+            throw DeckError(body_issue(deck, "bodies." + body.name,
+                                       fmt::format("a {}D analysis needs a patch with {} parametric directions", d, d)));
+        std::vector<mechanics::ElementGeometry> elements;
+        try {
+            elements = mechanics::patch_geometry(patch);
+        } catch (const mechanics::NonPositiveJacobian& e) {
+            throw DeckError(body_issue(
+                deck, "bodies." + body.name,
+                fmt::format("the parametrization is inverted or degenerate: det(dX/dxi) = {:.3g} at parameter {} "
+                            "(X = {}); check the control point order (u index fastest) and that u, v(, w) "
+                            "form a right-handed system",
+                            e.det_J(), format_vec(e.xi()), format_vec(e.X()))));
+        }
+        lo = lo.cwiseMin(patch.control_points().colwise().minCoeff().transpose());
+        hi = hi.cwiseMax(patch.control_points().colwise().maxCoeff().transpose());
+        const io::Material* material = deck.find_material(body.material);
+        IGA_CHECK(material != nullptr, "the deck reader let an unknown material through");
+        scene.bodies.push_back(BodyModel{body.name, std::move(patch), to_material(*material, deck.analysis),
+                                         std::move(elements), {}, 0});
+    }
+    if (!scene.bodies.empty())
+        scene.model_size = std::max((hi - lo).norm(), 1e-300);
+
+    auto body_index = [&](const std::string& name) {
+        for (std::size_t k = 0; k < deck.bodies.size(); ++k)
+            if (deck.bodies[k].name == name)
+                return scene.body_of_deck[k];
+        return -1;
+    };
+
+    // Dirichlet data.
+    std::vector<int> nodes_per_body;
+    std::vector<int> node_offset;
+    int n_nodes = 0;
+    for (const BodyModel& b : scene.bodies) {
+        node_offset.push_back(n_nodes);
+        nodes_per_body.push_back(b.patch.n_control_points());
+        n_nodes += b.patch.n_control_points();
+    }
+    std::vector<assembly::PrescribedDof> prescribed;
+    for (const io::Constraint& c : deck.constraints) {
+        const int b = body_index(c.body);
+        IGA_CHECK(b >= 0, "the deck reader let a constraint on a rigid or unknown body through");
+        const nurbs::SidePatch side = nurbs::extract_side(scene.bodies[b].patch, c.side);
+        for (int p : side.parent_index)
+            for (int i = 0; i < d; ++i)
+                if (c.fixed[static_cast<std::size_t>(i)])
+                    prescribed.push_back({(node_offset[b] + p) * d + i, c.value[static_cast<std::size_t>(i)]});
+    }
+    try {
+        scene.dofs = std::make_unique<assembly::DofMap>(d, nodes_per_body, prescribed);
+    } catch (const Error& e) {
+        throw DeckError(body_issue(deck, "constraints", std::string("conflicting constraints: ") + e.what()));
+    }
+    const assembly::DofMap& dofs = *scene.dofs;
+
+    // Blocks: elements first.
+    std::vector<std::vector<int>> blocks;
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+        BodyModel& body = scene.bodies[b];
+        body.first_block = static_cast<int>(blocks.size());
+        for (const auto& element : body.elements) {
+            body.element_dofs.push_back(dofs_of(dofs, static_cast<int>(b), element.indices));
+            blocks.push_back(body.element_dofs.back());
+        }
+    }
+    scene.n_element_blocks = static_cast<int>(blocks.size());
+
+    // Loads: dead ones summed into f_ext at load factor 1.
+    scene.f_ext = Vector::Zero(dofs.n_full());
+    auto scatter = [&](int body, const std::vector<int>& indices, const Vector& f) {
+        const std::vector<int> full = dofs_of(dofs, body, indices);
+        for (std::size_t k = 0; k < full.size(); ++k)
+            scene.f_ext(full[k]) += f(static_cast<Index>(k));
+    };
+    for (const io::Load& load : deck.loads) {
+        const int b = body_index(load.body);
+        IGA_CHECK(b >= 0, "the deck reader let a load on a rigid or unknown body through");
+        const BodyModel& body = scene.bodies[b];
+        if (load.kind == io::LoadKind::gravity) {
+            for (const auto& element : body.elements) {
+                const mechanics::LocalForce f = mechanics::gravity(element, load.density, to_vec(load.vector));
+                scatter(b, f.indices, f.f_ext);
+            }
+            continue;
+        }
+        mechanics::SideQuadrature side = mechanics::side_quadrature(body.patch, *load.side);
+        if (load.kind == io::LoadKind::traction || load.kind == io::LoadKind::force) {
+            VecN traction = to_vec(load.vector);
+            if (load.kind == io::LoadKind::force) {
+                const double measure = mechanics::reference_measure(side);
+                if (!(measure > 0.0))
+                    throw DeckError(body_issue(deck, fmt::format("loads (body {}, side {})", load.body, side_name(*load.side)),
+                                               "a force on a collapsed side (zero length) cannot be spread"));
+                traction /= measure;
+            }
+            for (const auto& element : side.elements) {
+                const mechanics::LocalForce f = mechanics::dead_traction(element, d, traction);
+                scatter(b, f.indices, f.f_ext);
+            }
+        } else if (scene.kinematics == mechanics::Kinematics::small) {
+            for (const auto& element : side.elements) {
+                const Matrix none;
+                const mechanics::LocalForceTangent f =
+                    mechanics::follower_pressure(element, d, load.pressure, scene.kinematics, none);
+                scatter(b, f.indices, f.f_ext);
+            }
+        } else {
+            FollowerPressure follower{b, load.pressure, std::move(side), {}, static_cast<int>(blocks.size())};
+            for (const auto& element : follower.side.elements) {
+                follower.element_dofs.push_back(dofs_of(dofs, b, element.indices));
+                blocks.push_back(follower.element_dofs.back());
+            }
+            scene.followers.push_back(std::move(follower));
+        }
+    }
+
+    // Contact pairs.
+    for (const io::ContactPair& c : deck.contact) {
+        contact::PairSettings settings;
+        settings.formulation = c.formulation == io::Formulation::single_pass ? contact::Formulation::single_pass
+                                                                             : contact::Formulation::two_half_pass;
+        settings.penalty = c.penalty;
+        settings.quadrature = c.quadrature;
+        std::array<int, 2> body{-1, -1};
+        std::array<std::string, 2> label;
+        std::array<std::vector<int>, 2> parent;
+        auto make_surface = [&](const io::ContactSurface& s, int k) -> contact::Surface {
+            const io::Body* deck_body = deck.find_body(s.body);
+            IGA_CHECK(deck_body != nullptr, "the deck reader let an unknown contact body through");
+            if (deck_body->rigid) {
+                label[k] = s.body;
+                return contact::RigidPlane::make(to_vec(deck_body->plane->point), to_vec(deck_body->plane->normal));
+            }
+            body[k] = body_index(s.body);
+            label[k] = s.body + "." + std::string(side_name(*s.side));
+            contact::DeformableSide side = contact::DeformableSide::make(scene.bodies[body[k]].patch, *s.side);
+            parent[k] = side.side.parent_index;
+            return side;
+        };
+        contact::Surface first = make_surface(c.first, 0);
+        contact::Surface second = make_surface(c.second, 1);
+        PairModel model{c.name, contact::ContactPair(settings, std::move(first), std::move(second)), body, parent,
+                        label, {}, static_cast<int>(blocks.size())};
+        for (int k = 0; k < 2; ++k)
+            if (body[k] >= 0) {
+                const std::vector<int> full = dofs_of(dofs, body[k], parent[k]);
+                model.local_to_full.insert(model.local_to_full.end(), full.begin(), full.end());
+            }
+        IGA_CHECK(static_cast<int>(model.local_to_full.size()) == model.pair.n_local_dofs(),
+                  "contact pair local numbering does not match its sides");
+        blocks.push_back(model.local_to_full);
+        scene.pairs.push_back(std::move(model));
+    }
+
+    scene.pattern = std::make_unique<assembly::SparsePattern>(dofs, std::move(blocks));
+    return scene;
+}
+
+}  // namespace iga::analysis

@@ -1,0 +1,79 @@
+#pragma once
+// Scene: the runtime model built from a deck — the refined patches with their
+// precomputed element geometry, the dof map with the Dirichlet data, the dead
+// external force at load factor 1, follower pressures, and the contact pairs —
+// plus the sparsity pattern shared by every evaluation.
+//
+// Block order in the pattern: every element of every body (body order, element
+// order of Patch::elements()), then one block per side element carrying a
+// follower pressure in finite kinematics, then one block per contact pair
+// (all dofs of both sides, in the pair's local order).
+//
+// Only the effects the deck calls for are built: no contact pairs means no
+// contact data at all; small kinematics caches the constant element stiffness.
+
+#include "assembly/dof_map.hpp"
+#include "assembly/sparse_pattern.hpp"
+#include "contact/contact_pair.hpp"
+#include "io/deck.hpp"
+#include "mechanics/element_geometry.hpp"
+#include "mechanics/loads.hpp"
+#include "mechanics/material.hpp"
+#include "nurbs/patch.hpp"
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace iga::analysis {
+
+struct BodyModel {
+    std::string name;
+    nurbs::Patch patch;
+    mechanics::Material material;
+    std::vector<mechanics::ElementGeometry> elements;
+    std::vector<std::vector<int>> element_dofs;  ///< full dofs of each element (local dof a*d+i order)
+    int first_block = 0;                         ///< pattern block of elements[0]
+};
+
+/// A follower pressure in finite kinematics (recomputed each evaluation).
+struct FollowerPressure {
+    int body = 0;
+    double pressure = 0.0;
+    mechanics::SideQuadrature side;
+    std::vector<std::vector<int>> element_dofs;  ///< full dofs of each side element
+    int first_block = 0;
+};
+
+struct PairModel {
+    std::string name;
+    contact::ContactPair pair;
+    std::array<int, 2> body{-1, -1};                 ///< deformable body index of each surface, -1 rigid
+    std::array<std::vector<int>, 2> parent_index;    ///< side control point -> body control point
+    std::array<std::string, 2> label;                ///< "cylinder.v0" or the rigid body's name
+    std::vector<int> local_to_full;                  ///< pair-local dof -> full dof
+    int block = 0;
+};
+
+struct Scene {
+    int dim = 2;
+    mechanics::Kinematics kinematics = mechanics::Kinematics::small;
+    std::vector<BodyModel> bodies;
+    std::vector<int> body_of_deck;  ///< deck body index -> deformable body index (-1 for rigid)
+    std::unique_ptr<assembly::DofMap> dofs;
+    Vector f_ext;  ///< full, at load factor 1: dead tractions, forces, gravity, small-kinematics pressures
+    std::vector<FollowerPressure> followers;
+    std::vector<PairModel> pairs;
+    std::unique_ptr<assembly::SparsePattern> pattern;
+    int n_element_blocks = 0;
+    double model_size = 1.0;  ///< bounding-box diagonal of all deformable bodies
+
+    bool has_contact() const { return !pairs.empty(); }
+};
+
+/// Builds the scene. Geometry problems (a refinement that cannot be applied, a
+/// non-positive Jacobian) are reported as DeckError naming the body.
+Scene build_scene(const io::Deck& deck);
+
+}  // namespace iga::analysis

@@ -1,0 +1,257 @@
+#include "analysis/system.hpp"
+
+#include "mechanics/element.hpp"
+
+#include <fmt/format.h>
+
+#include <atomic>
+#include <mutex>
+
+namespace iga::analysis {
+
+namespace {
+
+Matrix local_displacement(const Vector& u_full, const std::vector<int>& dofs, int d)
+{
+    const int n = static_cast<int>(dofs.size()) / d;
+    Matrix u(n, d);
+    for (int a = 0; a < n; ++a)
+        for (int i = 0; i < d; ++i)
+            u(a, i) = u_full(dofs[static_cast<std::size_t>(a * d + i)]);
+    return u;
+}
+
+}  // namespace
+
+SceneSystem::SceneSystem(Scene& scene, RunContext& context)
+    : scene_(scene), context_(context), element_force_(static_cast<std::size_t>(scene.n_element_blocks))
+{
+}
+
+solver::NonlinearSystem SceneSystem::nonlinear_system()
+{
+    solver::NonlinearSystem system;
+    system.evaluate = [this](const Vector& u, double lambda, bool need_tangent, solver::Evaluation& out) {
+        evaluate(u, lambda, need_tangent, out);
+    };
+    const bool follower = !scene_.followers.empty();
+    system.linear = scene_.kinematics == mechanics::Kinematics::small && !scene_.has_contact();
+    system.symmetric = !scene_.has_contact() && !follower;
+    // A trust radius only where a singular first touch can send a step far away.
+    system.max_step = scene_.has_contact() ? 0.05 * scene_.model_size : 0.0;
+    return system;
+}
+
+RowMatrix SceneSystem::body_displacement(const Vector& u_full, int b) const
+{
+    const assembly::DofMap& dofs = *scene_.dofs;
+    const int d = scene_.dim;
+    const int n = dofs.n_nodes(b);
+    RowMatrix u(n, d);
+    for (int a = 0; a < n; ++a)
+        for (int i = 0; i < d; ++i)
+            u(a, i) = u_full(dofs.dof(dofs.node_offset(b) + a, i));
+    return u;
+}
+
+RowMatrix SceneSystem::side_displacement(const Vector& u_full, int p, int k) const
+{
+    const PairModel& pair = scene_.pairs[static_cast<std::size_t>(p)];
+    if (pair.body[static_cast<std::size_t>(k)] < 0)
+        return RowMatrix(0, scene_.dim);
+    const assembly::DofMap& dofs = *scene_.dofs;
+    const int d = scene_.dim;
+    const int b = pair.body[static_cast<std::size_t>(k)];
+    const auto& parent = pair.parent_index[static_cast<std::size_t>(k)];
+    RowMatrix u(static_cast<Index>(parent.size()), d);
+    for (std::size_t a = 0; a < parent.size(); ++a)
+        for (int i = 0; i < d; ++i)
+            u(static_cast<Index>(a), i) = u_full(dofs.dof(dofs.node_offset(b) + parent[a], i));
+    return u;
+}
+
+void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vector& r_full, SparseMatrix& K,
+                                    solver::Evaluation& out)
+{
+    const assembly::SparsePattern& pattern = *scene_.pattern;
+    const int d = scene_.dim;
+    const bool small = scene_.kinematics == mechanics::Kinematics::small;
+
+    // Small kinematics: the element stiffness matrices are computed once, and
+    // assembled once; afterwards f_int = K_e u_e element by element.
+    if (small && !small_stiffness_) {
+        SparseMatrix K0 = pattern.make_matrix();
+        element_stiffness_.resize(static_cast<std::size_t>(scene_.n_element_blocks));
+        pattern.for_each_block(
+            [&](int block) {
+                if (block >= scene_.n_element_blocks)
+                    return;
+                for (const BodyModel& body : scene_.bodies) {
+                    const int e = block - body.first_block;
+                    if (e < 0 || e >= static_cast<int>(body.elements.size()))
+                        continue;
+                    const auto& geometry = body.elements[static_cast<std::size_t>(e)];
+                    const Matrix zero = Matrix::Zero(geometry.n_local(), d);
+                    mechanics::ElementResponse response =
+                        mechanics::element_response(geometry, body.material, scene_.kinematics, zero);
+                    pattern.add(block, response.K, K0);
+                    element_stiffness_[static_cast<std::size_t>(block)] = std::move(response.K);
+                }
+            },
+            assembly::Execution::parallel);
+        small_stiffness_ = std::move(K0);
+    }
+
+    std::atomic<bool> failed{false};
+    std::mutex message_mutex;
+    std::string failure;
+    pattern.for_each_block(
+        [&](int block) {
+            if (block >= scene_.n_element_blocks)
+                return;
+            for (const BodyModel& body : scene_.bodies) {
+                const int e = block - body.first_block;
+                if (e < 0 || e >= static_cast<int>(body.elements.size()))
+                    continue;
+                const auto& dofs = body.element_dofs[static_cast<std::size_t>(e)];
+                const Matrix u_local = local_displacement(u_full, dofs, d);
+                Vector& f = element_force_[static_cast<std::size_t>(block)];
+                if (small) {
+                    const Matrix& K_e = element_stiffness_[static_cast<std::size_t>(block)];
+                    Vector u_e(static_cast<Index>(dofs.size()));
+                    for (std::size_t k = 0; k < dofs.size(); ++k)
+                        u_e(static_cast<Index>(k)) = u_full(dofs[k]);
+                    f = K_e * u_e;
+                    continue;
+                }
+                const mechanics::ElementResponse response = mechanics::element_response(
+                    body.elements[static_cast<std::size_t>(e)], body.material, scene_.kinematics, u_local);
+                if (response.status != mechanics::ResponseStatus::ok || !response.f_int.allFinite()) {
+                    failed.store(true);
+                    std::lock_guard<std::mutex> lock(message_mutex);
+                    if (failure.empty())
+                        failure = fmt::format("body '{}': inadmissible deformation in element {} (det F <= 0 or "
+                                              "material evaluation failed)",
+                                              body.name, e);
+                    f = Vector::Zero(static_cast<Index>(dofs.size()));
+                    continue;
+                }
+                f = response.f_int;
+                if (need_tangent)
+                    pattern.add(block, response.K, K);
+            }
+        },
+        assembly::Execution::parallel);
+    if (failed.load()) {
+        out.ok = false;
+        out.message = failure;
+    }
+    if (small && need_tangent)
+        K = *small_stiffness_;
+
+    // Vectors are scattered serially: cheap, and constrained entries (reactions)
+    // may be shared between blocks of one color.
+    for (const BodyModel& body : scene_.bodies)
+        for (std::size_t e = 0; e < body.elements.size(); ++e) {
+            const auto& dofs = body.element_dofs[e];
+            const Vector& f = element_force_[static_cast<std::size_t>(body.first_block) + e];
+            for (std::size_t k = 0; k < dofs.size(); ++k)
+                r_full(dofs[k]) += f(static_cast<Index>(k));
+        }
+}
+
+void SceneSystem::evaluate(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out)
+{
+    const assembly::DofMap& dofs = *scene_.dofs;
+    const assembly::SparsePattern& pattern = *scene_.pattern;
+    const int d = scene_.dim;
+    const Vector u_full = dofs.expand(u_free, load_factor);
+
+    Vector r_full = Vector::Zero(dofs.n_full());
+    if (need_tangent) {
+        if (!pattern.matches(out.tangent))
+            out.tangent = pattern.make_matrix();
+        else
+            out.tangent.coeffs().setZero();
+    }
+
+    {
+        ScopedTimer timer(&context_, "elements");
+        assemble_elements(u_full, need_tangent, r_full, out.tangent, out);
+    }
+    double f_int_norm = 0.0, reaction_norm2 = 0.0;
+    for (Index k = 0; k < r_full.size(); ++k)
+        if (dofs.is_constrained(static_cast<int>(k)))
+            reaction_norm2 += r_full(k) * r_full(k);
+    f_int_norm = r_full.norm();
+
+    // External loads: dead ones scale with lambda; follower pressures depend on u.
+    r_full -= load_factor * scene_.f_ext;
+    double external_norm = load_factor * scene_.f_ext.norm();
+    for (const FollowerPressure& follower : scene_.followers) {
+        const BodyModel& body = scene_.bodies[static_cast<std::size_t>(follower.body)];
+        (void)body;
+        for (std::size_t e = 0; e < follower.side.elements.size(); ++e) {
+            const auto& element_dofs = follower.element_dofs[e];
+            const Matrix u_local = local_displacement(u_full, element_dofs, d);
+            const mechanics::LocalForceTangent f = mechanics::follower_pressure(
+                follower.side.elements[e], d, follower.pressure, scene_.kinematics, u_local);
+            for (std::size_t k = 0; k < element_dofs.size(); ++k)
+                r_full(element_dofs[k]) -= load_factor * f.f_ext(static_cast<Index>(k));
+            external_norm += load_factor * f.f_ext.norm();
+            if (need_tangent && f.df_ext_du.size() > 0)
+                pattern.add(follower.first_block + static_cast<int>(e), Matrix(-load_factor * f.df_ext_du),
+                            out.tangent);
+        }
+    }
+
+    // Contact pairs.
+    double contact_norm = 0.0;
+    int active = 0;
+    {
+        ScopedTimer timer(&context_, "contact");
+        for (std::size_t p = 0; p < scene_.pairs.size(); ++p) {
+            PairModel& pair = scene_.pairs[p];
+            const contact::PairEvaluation c =
+                pair.pair.evaluate(side_displacement(u_full, static_cast<int>(p), 0),
+                                   side_displacement(u_full, static_cast<int>(p), 1), need_tangent, &context_);
+            if (!c.ok) {
+                out.ok = false;
+                out.message = fmt::format("contact pair '{}': {}", pair.name, c.message);
+                continue;
+            }
+            active += c.n_active;
+            for (std::size_t k = 0; k < pair.local_to_full.size(); ++k)
+                r_full(pair.local_to_full[k]) += c.residual(static_cast<Index>(k));
+            contact_norm += c.residual.norm();
+            if (need_tangent && !c.tangent.empty()) {
+                const Index n = static_cast<Index>(pair.local_to_full.size());
+                Matrix K_local = Matrix::Zero(n, n);
+                for (const Triplet& t : c.tangent)
+                    K_local(t.row(), t.col()) += t.value();
+                pattern.add(pair.block, K_local, out.tangent);
+            }
+        }
+    }
+    last_active_ = active;
+
+    out.residual = dofs.restrict(r_full);
+    out.force_scale = std::max({external_norm, std::sqrt(reaction_norm2), contact_norm, f_int_norm});
+    if (!out.residual.allFinite() && out.ok) {
+        out.ok = false;
+        out.message = "the residual is not finite";
+    }
+}
+
+std::vector<contact::PairEvaluation> SceneSystem::contact_state(const Vector& u_free, double load_factor)
+{
+    const Vector u_full = scene_.dofs->expand(u_free, load_factor);
+    std::vector<contact::PairEvaluation> out;
+    for (std::size_t p = 0; p < scene_.pairs.size(); ++p)
+        out.push_back(scene_.pairs[p].pair.evaluate(side_displacement(u_full, static_cast<int>(p), 0),
+                                                    side_displacement(u_full, static_cast<int>(p), 1), false,
+                                                    nullptr));
+    return out;
+}
+
+}  // namespace iga::analysis

@@ -1,0 +1,55 @@
+#pragma once
+// The residual and tangent of a scene, as the sum of its terms:
+//   r(u) = f_int(u) - lambda f_ext - lambda f_follower(u) + sum_pairs r_c(u),
+//   K = dr/du,
+// on the free dofs (solver/newton.hpp's NonlinearSystem). Elements are
+// evaluated in parallel (OpenMP, colored blocks); contact pairs serially.
+// Small kinematics: the element stiffness is constant, assembled once and
+// reused (f_int = K u): no geometric terms are ever computed.
+//
+// force_scale (the scale of the relative residual) = max(||lambda f_ext||,
+// ||reactions||, ||contact forces||, ||f_int||): the forces in play, so that
+// displacement-driven scenes converge relative to their reactions.
+
+#include "analysis/scene.hpp"
+#include "core/run_context.hpp"
+#include "solver/newton.hpp"
+
+#include <optional>
+#include <vector>
+
+namespace iga::analysis {
+
+class SceneSystem {
+public:
+    SceneSystem(Scene& scene, RunContext& context);
+
+    /// The NonlinearSystem view for the solver (captures this object).
+    solver::NonlinearSystem nonlinear_system();
+
+    void evaluate(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out);
+
+    /// Contact evaluation of every pair at a converged state (no tangent, not counted
+    /// in the contact timers): for output.
+    std::vector<contact::PairEvaluation> contact_state(const Vector& u_free, double load_factor);
+
+    /// n_cp x d displacements of the control points of body b from a full vector.
+    RowMatrix body_displacement(const Vector& u_full, int b) const;
+    /// n_cp_side x d displacements of surface k of pair p (empty for a rigid surface).
+    RowMatrix side_displacement(const Vector& u_full, int p, int k) const;
+
+    int last_active() const { return last_active_; }
+
+private:
+    void assemble_elements(const Vector& u_full, bool need_tangent, Vector& r_full, SparseMatrix& K,
+                           solver::Evaluation& out);
+
+    Scene& scene_;
+    RunContext& context_;
+    std::optional<SparseMatrix> small_stiffness_;  // small kinematics: elastic K, assembled once
+    std::vector<Matrix> element_stiffness_;        // small kinematics: K_e per element block
+    std::vector<Vector> element_force_;            // per element block, reused storage
+    int last_active_ = 0;
+};
+
+}  // namespace iga::analysis

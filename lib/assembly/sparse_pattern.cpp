@@ -1,0 +1,225 @@
+#include "assembly/sparse_pattern.hpp"
+
+#include "core/error.hpp"
+
+#include <algorithm>
+#include <exception>
+#include <string>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace iga::assembly {
+
+namespace {
+
+// Greedy coloring: each block takes the smallest color that no block sharing
+// one of its free dofs has taken. Structured IGA meshes of degree p need about
+// (p+1)^d colors; a dense contact block conflicts with its neighbours only.
+std::vector<std::vector<int>> color_blocks(const std::vector<std::vector<int>>& block_free, int n_free)
+{
+    std::vector<std::vector<int>> colors_at_dof(n_free);
+    std::vector<int> forbidden_by;  // color -> last block that saw it taken
+    std::vector<std::vector<int>> colors;
+    for (int b = 0; b < static_cast<int>(block_free.size()); ++b) {
+        for (int f : block_free[b])
+            if (f >= 0)
+                for (int c : colors_at_dof[f])
+                    forbidden_by[c] = b;
+        int color = 0;
+        while (color < static_cast<int>(colors.size()) && forbidden_by[color] == b)
+            ++color;
+        if (color == static_cast<int>(colors.size())) {
+            colors.emplace_back();
+            forbidden_by.push_back(-1);
+        }
+        colors[color].push_back(b);
+        for (int f : block_free[b])
+            if (f >= 0 && (colors_at_dof[f].empty() || colors_at_dof[f].back() != color))
+                colors_at_dof[f].push_back(color);
+    }
+    return colors;
+}
+
+}  // namespace
+
+SparsePattern::SparsePattern(const DofMap& dofs, std::vector<std::vector<int>> blocks)
+    : n_free_(dofs.n_free()), free_of_full_(dofs.free_of_full()), blocks_(std::move(blocks))
+{
+    const int n_full = static_cast<int>(free_of_full_.size());
+    block_free_.resize(blocks_.size());
+    for (std::size_t b = 0; b < blocks_.size(); ++b) {
+        block_free_[b].reserve(blocks_[b].size());
+        for (int full : blocks_[b]) {
+            IGA_CHECK(full >= 0 && full < n_full, "SparsePattern: block " + std::to_string(b) + " has dof " +
+                                                      std::to_string(full) + " outside [0, " +
+                                                      std::to_string(n_full) + ")");
+            block_free_[b].push_back(free_of_full_[full]);
+        }
+    }
+
+    // Rows of each column: the union of the blocks' dense couplings, plus the diagonal.
+    std::vector<std::vector<int>> rows(n_free_);
+    for (int j = 0; j < n_free_; ++j)
+        rows[j].push_back(j);
+    for (const std::vector<int>& f : block_free_)
+        for (int col : f)
+            if (col >= 0)
+                for (int row : f)
+                    if (row >= 0)
+                        rows[col].push_back(row);
+    outer_.assign(n_free_ + 1, 0);
+    for (int j = 0; j < n_free_; ++j) {
+        std::sort(rows[j].begin(), rows[j].end());
+        rows[j].erase(std::unique(rows[j].begin(), rows[j].end()), rows[j].end());
+        outer_[j + 1] = outer_[j] + static_cast<int>(rows[j].size());
+    }
+    inner_.reserve(outer_.back());
+    for (std::vector<int>& r : rows) {
+        inner_.insert(inner_.end(), r.begin(), r.end());
+        std::vector<int>().swap(r);
+    }
+
+    position_offset_.assign(blocks_.size() + 1, 0);
+    for (std::size_t b = 0; b < blocks_.size(); ++b)
+        position_offset_[b + 1] = position_offset_[b] + blocks_[b].size() * blocks_[b].size();
+    positions_.assign(position_offset_.back(), -1);
+    for (std::size_t b = 0; b < blocks_.size(); ++b) {
+        const std::vector<int>& f = block_free_[b];
+        const std::size_t n = f.size();
+        int* pos = positions_.data() + position_offset_[b];
+        for (std::size_t j = 0; j < n; ++j) {
+            if (f[j] < 0)
+                continue;
+            const int* first = inner_.data() + outer_[f[j]];
+            const int* last = inner_.data() + outer_[f[j] + 1];
+            for (std::size_t i = 0; i < n; ++i)
+                if (f[i] >= 0)
+                    pos[j * n + i] = static_cast<int>(std::lower_bound(first, last, f[i]) - inner_.data());
+        }
+    }
+
+    colors_ = color_blocks(block_free_, n_free_);
+}
+
+SparseMatrix SparsePattern::make_matrix() const
+{
+    const std::vector<double> zeros(inner_.size(), 0.0);
+    const Eigen::Map<const SparseMatrix> view(n_free_, n_free_, static_cast<Index>(inner_.size()), outer_.data(),
+                                              inner_.data(), zeros.data());
+    SparseMatrix K = view;
+    K.makeCompressed();
+    return K;
+}
+
+bool SparsePattern::matches(const SparseMatrix& K) const
+{
+    return K.isCompressed() && K.rows() == n_free_ && K.cols() == n_free_ &&
+           K.nonZeros() == static_cast<Index>(inner_.size()) &&
+           std::equal(outer_.begin(), outer_.end(), K.outerIndexPtr()) &&
+           std::equal(inner_.begin(), inner_.end(), K.innerIndexPtr());
+}
+
+void SparsePattern::add(int block, const Matrix& K_local, SparseMatrix& K) const
+{
+    const Index n = static_cast<Index>(blocks_[block].size());
+    IGA_ASSERT(K_local.rows() == n && K_local.cols() == n, "SparsePattern::add: local matrix is not n x n");
+    IGA_ASSERT(K.nonZeros() == n_nonzeros() && K.rows() == n_free_, "SparsePattern::add: K is not from make_matrix()");
+    const int* pos = positions_.data() + position_offset_[block];
+    double* values = K.valuePtr();
+    const double* local = K_local.data();
+    for (Index k = 0; k < n * n; ++k)  // column-major on both sides
+        if (pos[k] >= 0)
+            values[pos[k]] += local[k];
+}
+
+void SparsePattern::add(int block, std::span<const int> local, const Matrix& K_sub, SparseMatrix& K) const
+{
+    const std::size_t n = blocks_[block].size();
+    const Index m = static_cast<Index>(local.size());
+    IGA_ASSERT(K_sub.rows() == m && K_sub.cols() == m, "SparsePattern::add: sub-block matrix size differs");
+    IGA_ASSERT(K.nonZeros() == n_nonzeros() && K.rows() == n_free_, "SparsePattern::add: K is not from make_matrix()");
+    const int* pos = positions_.data() + position_offset_[block];
+    double* values = K.valuePtr();
+    for (Index b = 0; b < m; ++b) {
+        IGA_ASSERT(local[b] >= 0 && static_cast<std::size_t>(local[b]) < n, "SparsePattern::add: local index out of range");
+        const int* column = pos + static_cast<std::size_t>(local[b]) * n;
+        for (Index a = 0; a < m; ++a) {
+            const int p = column[local[a]];
+            if (p >= 0)
+                values[p] += K_sub(a, b);
+        }
+    }
+}
+
+void SparsePattern::add_vector(int block, const Vector& r_local, Vector& r_free) const
+{
+    const std::vector<int>& f = block_free_[block];
+    IGA_ASSERT(r_local.size() == static_cast<Index>(f.size()), "SparsePattern::add_vector: local vector size differs");
+    IGA_ASSERT(r_free.size() == n_free_, "SparsePattern::add_vector: r_free is not n_free");
+    for (std::size_t i = 0; i < f.size(); ++i)
+        if (f[i] >= 0)
+            r_free(f[i]) += r_local(static_cast<Index>(i));
+}
+
+void SparsePattern::add_vector(const std::vector<int>& full_dofs, const Vector& r_local, Vector& r_free) const
+{
+    IGA_ASSERT(r_local.size() == static_cast<Index>(full_dofs.size()), "SparsePattern::add_vector: sizes differ");
+    IGA_ASSERT(r_free.size() == n_free_, "SparsePattern::add_vector: r_free is not n_free");
+    for (std::size_t i = 0; i < full_dofs.size(); ++i) {
+        const int f = free_of_full_[full_dofs[i]];
+        if (f >= 0)
+            r_free(f) += r_local(static_cast<Index>(i));
+    }
+}
+
+std::vector<int> SparsePattern::local_indices(int block, std::span<const int> full_dofs) const
+{
+    const std::vector<int>& dofs = blocks_[block];
+    std::vector<int> local;
+    local.reserve(full_dofs.size());
+    for (int full : full_dofs) {
+        const auto it = std::find(dofs.begin(), dofs.end(), full);
+        IGA_CHECK(it != dofs.end(), "SparsePattern::local_indices: dof " + std::to_string(full) +
+                                        " is not in block " + std::to_string(block));
+        local.push_back(static_cast<int>(it - dofs.begin()));
+    }
+    return local;
+}
+
+void SparsePattern::for_each_block(const std::function<void(int block)>& kernel, Execution execution) const
+{
+#ifdef _OPENMP
+    if (execution == Execution::parallel && omp_get_max_threads() > 1) {
+        std::exception_ptr error;
+#pragma omp parallel
+        {
+            for (const std::vector<int>& blocks : colors_) {
+                const int n = static_cast<int>(blocks.size());
+                // Dynamic chunks: contact blocks cost far more than element blocks.
+#pragma omp for schedule(dynamic, 8)
+                for (int k = 0; k < n; ++k) {
+                    try {
+                        kernel(blocks[k]);
+                    } catch (...) {
+#pragma omp critical(iga_assembly_error)
+                        if (!error)
+                            error = std::current_exception();
+                    }
+                }
+                // the implicit barrier of `omp for` separates the colors
+            }
+        }
+        if (error)
+            std::rethrow_exception(error);
+        return;
+    }
+#endif
+    (void)execution;
+    for (const std::vector<int>& blocks : colors_)
+        for (int b : blocks)
+            kernel(b);
+}
+
+}  // namespace iga::assembly

@@ -1,0 +1,310 @@
+#include "contact/contact_pair.hpp"
+
+#include "contact/gpts_kernel.hpp"
+#include "contact/orientation.hpp"
+#include "contact/projection.hpp"
+#include "contact/search.hpp"
+#include "core/error.hpp"
+#include "quadrature/gauss.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace iga::contact {
+namespace {
+
+const char* const not_3d = " (3D contact with surface sides is not supported yet)";
+
+/// Fraction of the larger side's reference size used as the automatic search
+/// margin: far above any sensible penalty penetration, small enough to prune.
+constexpr double auto_search_fraction = 0.1;
+/// Control points closer than this fraction of the coordinates' magnitude count
+/// as coincident (a few hundred ulps): such a side is collapsed.
+constexpr double collapsed_relative_tolerance = 1e-13;
+
+void check_surface(const Surface& s, const char* which)
+{
+    if (const auto* side = std::get_if<DeformableSide>(&s)) {
+        const nurbs::Patch& p = side->side.patch;
+        if (p.n_par() != 1 || p.dim() != 2)
+            throw Error(std::string("contact: ") + which + " surface is not a curve in 2D" + not_3d);
+        const double scale = std::max(1.0, p.control_points().cwiseAbs().maxCoeff());
+        if (nurbs::is_collapsed(side->side, collapsed_relative_tolerance * scale))
+            throw Error(std::string("contact: ") + which + " surface, side " +
+                        std::string(side_name(side->side.side)) + ", is collapsed to a point");
+        IGA_CHECK(side->outward_sign == 1 || side->outward_sign == -1, "contact: outward sign must be +1 or -1");
+    } else {
+        const RigidPlane& plane = std::get<RigidPlane>(s);
+        if (plane.point.size() != 2 || plane.normal.size() != 2)
+            throw Error(std::string("contact: ") + which + " surface is a rigid plane in 3D" + not_3d);
+    }
+}
+
+/// Current control points of a side: reference + displacement.
+RowMatrix current_points(const DeformableSide& s, const RowMatrix& disp)
+{
+    return s.side.patch.control_points() + disp;
+}
+
+class Stopwatch {
+public:
+    void start() { t0_ = std::chrono::steady_clock::now(); }
+    void stop() { seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count(); }
+    double seconds = 0.0;
+
+private:
+    std::chrono::steady_clock::time_point t0_;
+};
+
+std::string describe_point(int surface, int g, double eta, const VecN& x)
+{
+    std::ostringstream os;
+    os << "Gauss point " << g << " of surface " << (surface == 0 ? "first" : "second") << " (eta = " << eta
+       << ", x = (" << x(0) << ", " << x(1) << "))";
+    return os.str();
+}
+
+}  // namespace
+
+DeformableSide DeformableSide::make(const nurbs::Patch& parent, Side side)
+{
+    if (parent.n_par() != 2 || parent.dim() != 2)
+        throw Error(std::string("contact: a deformable contact side needs a 2D surface patch") + not_3d);
+    const int sign = contact::outward_sign(parent, side);
+    return DeformableSide{nurbs::extract_side(parent, side), sign};
+}
+
+ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
+    : settings_(settings), surfaces_{std::move(first), std::move(second)}
+{
+    IGA_CHECK(std::isfinite(settings_.penalty) && settings_.penalty > 0.0, "contact: penalty must be > 0");
+    IGA_CHECK(settings_.quadrature >= 0, "contact: quadrature must be >= 0 (0 = degree + 2)");
+    IGA_CHECK(std::isfinite(settings_.search_distance) && settings_.search_distance >= 0.0,
+              "contact: search distance must be >= 0");
+    check_surface(surfaces_[0], "first");
+    check_surface(surfaces_[1], "second");
+    const bool deformable[2] = {std::holds_alternative<DeformableSide>(surfaces_[0]),
+                                std::holds_alternative<DeformableSide>(surfaces_[1])};
+    if (!deformable[0] && !deformable[1])
+        throw Error("contact: a pair of two rigid obstacles has no unknowns");
+
+    if (deformable[0] && deformable[1]) {
+        if (settings_.formulation == Formulation::two_half_pass)
+            carriers_ = {{0, 1, false, {}}, {1, 0, false, {}}};
+        else
+            carriers_ = {{0, 1, true, {}}};
+    } else {
+        const int s = deformable[0] ? 0 : 1;
+        carriers_ = {{s, 1 - s, false, {}}};
+    }
+
+    double size = 0.0;
+    for (int i = 0; i < 2; ++i)
+        if (deformable[i]) {
+            const RowMatrix& cps = std::get<DeformableSide>(surfaces_[i]).side.patch.control_points();
+            size = std::max(size, (cps.colwise().maxCoeff() - cps.colwise().minCoeff()).norm());
+        }
+    search_distance_ = settings_.search_distance > 0.0 ? settings_.search_distance : auto_search_fraction * size;
+
+    for (Carrier& c : carriers_) {
+        const nurbs::Patch& patch = std::get<DeformableSide>(surfaces_[c.slave]).side.patch;
+        const int n_q = settings_.quadrature > 0 ? settings_.quadrature : patch.degree(0) + 2;
+        for (const nurbs::Element& element : patch.elements()) {
+            const quadrature::TensorRule rule = quadrature::element_rule(patch, element, n_q);
+            for (Index q = 0; q < rule.weights.size(); ++q) {
+                VecN eta(1);
+                eta(0) = rule.points(q, 0);
+                const nurbs::BasisValues basis = nurbs::rational_basis(patch, element.span, eta, 1);
+                const nurbs::PointDerivatives X = nurbs::combine(basis, patch.control_points());
+                GaussPoint gp;
+                gp.eta = eta(0);
+                gp.weight = rule.weights(q) * X.dx.col(0).norm();
+                gp.reference = X.x;
+                gp.indices = basis.indices;
+                gp.N = basis.R;
+                c.points.push_back(std::move(gp));
+            }
+        }
+    }
+    trial_xi_.resize(carriers_.size());
+    for (std::size_t c = 0; c < carriers_.size(); ++c)
+        trial_xi_[c].assign(carriers_[c].points.size(), std::nullopt);
+    committed_xi_ = trial_xi_;
+}
+
+int ContactPair::n_control_points(int i) const
+{
+    if (const auto* side = std::get_if<DeformableSide>(&surfaces_[i]))
+        return side->side.patch.n_control_points();
+    return 0;
+}
+
+PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatrix& disp_second, bool need_tangent,
+                                     RunContext* ctx) const
+{
+    const int d = dim_;
+    PairEvaluation ev;
+    ev.residual = Vector::Zero(n_local_dofs());
+    const RowMatrix* disp[2] = {&disp_first, &disp_second};
+    const int offset[2] = {0, n_control_points(0)};
+    for (int i = 0; i < 2; ++i) {
+        const int n_cp = n_control_points(i);
+        IGA_CHECK((n_cp == 0 && disp[i]->size() == 0) || (disp[i]->rows() == n_cp && disp[i]->cols() == d),
+                  "contact: displacement of a pair surface must be n_cp_side x d (empty for a rigid one)");
+        if (!disp[i]->allFinite()) {
+            ev.ok = false;
+            ev.message = "contact: non-finite displacement on a contact side";
+            return ev;
+        }
+    }
+    std::array<RowMatrix, 2> current;
+    for (int i = 0; i < 2; ++i)
+        if (const auto* side = std::get_if<DeformableSide>(&surfaces_[i]))
+            current[i] = current_points(*side, *disp[i]);
+
+    Stopwatch search_time, projection_time;
+    auto flush = [&]() {
+        if (!ctx)
+            return;
+        ctx->add_time("contact_search", search_time.seconds);
+        ctx->add_time("projection", projection_time.seconds);
+        ctx->add_count("contact_candidates", ev.candidates);
+        ctx->add_count("projections", ev.projections);
+        ctx->add_count("projection_iterations", ev.projection_iterations);
+    };
+    const KernelSettings kernel_base{.penalty = settings_.penalty, .master_rows = false, .need_tangent = need_tangent};
+    std::vector<int> candidates;
+
+    for (std::size_t ci = 0; ci < carriers_.size(); ++ci) {
+        const Carrier& c = carriers_[ci];
+        const int n_g = static_cast<int>(c.points.size());
+        CarrierResult cr;
+        cr.surface = c.slave;
+        cr.parameter.resize(n_g);
+        cr.reference_coordinates.resize(n_g, d);
+        cr.coordinates.resize(n_g, d);
+        cr.gap = Vector::Constant(n_g, -search_distance_);
+        cr.pressure = Vector::Zero(n_g);
+        cr.weight.resize(n_g);
+        cr.state.assign(n_g, PointState::far);
+        for (int g = 0; g < n_g; ++g) {
+            const GaussPoint& gp = c.points[g];
+            VecN x = VecN::Zero(d);
+            for (std::size_t a = 0; a < gp.indices.size(); ++a)
+                x += gp.N(a) * current[c.slave].row(gp.indices[a]).transpose();
+            cr.parameter[g] = gp.eta;
+            cr.reference_coordinates.row(g) = gp.reference.transpose();
+            cr.coordinates.row(g) = x.transpose();
+            cr.weight(g) = gp.weight;
+        }
+
+        // Scatters a kernel's local residual/tangent: slave cps then master cps.
+        auto scatter = [&](const KernelResult& kr, const GaussPoint& gp, const std::vector<int>& master_indices) {
+            std::vector<int> map;
+            map.reserve(kr.residual.size());
+            for (const int a : gp.indices)
+                for (int i = 0; i < d; ++i)
+                    map.push_back((offset[c.slave] + a) * d + i);
+            for (const int b : master_indices)
+                for (int i = 0; i < d; ++i)
+                    map.push_back((offset[c.master] + b) * d + i);
+            for (std::size_t r = 0; r < map.size(); ++r)
+                ev.residual(map[r]) += kr.residual(static_cast<Index>(r));
+            if (!need_tangent)
+                return;
+            for (std::size_t r = 0; r < map.size(); ++r)
+                for (std::size_t s = 0; s < map.size(); ++s) {
+                    const double v = kr.tangent(static_cast<Index>(r), static_cast<Index>(s));
+                    if (v != 0.0)
+                        ev.tangent.emplace_back(map[r], map[s], v);
+                }
+        };
+
+        if (const auto* plane = std::get_if<RigidPlane>(&surfaces_[c.master])) {
+            for (int g = 0; g < n_g; ++g) {
+                const VecN x = cr.coordinates.row(g).transpose();
+                const double gap = plane->gap(x);
+                cr.gap(g) = gap;
+                cr.state[g] = PointState::ok;
+                const KernelResult kr = gpts_rigid_kernel(c.points[g].N, c.points[g].weight, plane->normal, gap,
+                                                          kernel_base);
+                cr.pressure(g) = kr.pressure;
+                if (kr.pressure > 0.0) {
+                    ++ev.n_active;
+                    ev.max_penetration = std::max(ev.max_penetration, gap);
+                    scatter(kr, c.points[g], {});
+                }
+            }
+            ev.carriers.push_back(std::move(cr));
+            continue;
+        }
+
+        const DeformableSide& master = std::get<DeformableSide>(surfaces_[c.master]);
+        const nurbs::Patch master_patch = master.side.patch.with_control_points(current[c.master]);
+        search_time.start();
+        const SpanSearch search(master_patch, SearchOptions{.distance = search_distance_});
+        const bool may_touch = bounding_box(current[c.slave]).overlaps(search.bounds());
+        search_time.stop();
+        if (!may_touch) {  // the slave side's hull misses every inflated master span box
+            ev.carriers.push_back(std::move(cr));
+            continue;
+        }
+        KernelSettings kernel_settings = kernel_base;
+        kernel_settings.master_rows = c.master_rows;
+
+        for (int g = 0; g < n_g; ++g) {
+            const GaussPoint& gp = c.points[g];
+            const VecN x = cr.coordinates.row(g).transpose();
+            search_time.start();
+            search.candidates(x, candidates);
+            search_time.stop();
+            if (candidates.empty())
+                continue;
+            ev.candidates += static_cast<long long>(candidates.size());
+
+            ProjectionOptions options;
+            options.start = trial_xi_[ci][g];
+            options.candidate_spans = candidates;
+            projection_time.start();
+            Projection proj = project_to_curve(master_patch, master.outward_sign, x, options);
+            projection_time.stop();
+            ++ev.projections;
+            ev.projection_iterations += proj.iterations;
+            if (proj.status == Projection::Status::failed) {
+                ev.ok = false;
+                ev.message = "contact: closest-point projection failed at " + describe_point(c.slave, g, gp.eta, x);
+                flush();
+                return ev;
+            }
+            trial_xi_[ci][g] = proj.xi;
+            cr.gap(g) = proj.gap;
+            if (proj.status != Projection::Status::ok) {
+                cr.state[g] = proj.status == Projection::Status::off_end ? PointState::off_end : PointState::at_kink;
+                continue;
+            }
+            cr.state[g] = PointState::ok;
+            if (!(proj.gap > 0.0))
+                continue;
+            const KernelResult kr = gpts_kernel(gp.N, gp.weight, proj, kernel_settings);
+            if (!kr.ok) {
+                ev.ok = false;
+                ev.message = "contact: the penetration at " + describe_point(c.slave, g, gp.eta, x) +
+                             " exceeds the master's radius of curvature (the projection is not a distance "
+                             "minimum); try a larger penalty or smaller load steps";
+                flush();
+                return ev;
+            }
+            cr.pressure(g) = kr.pressure;
+            ++ev.n_active;
+            ev.max_penetration = std::max(ev.max_penetration, proj.gap);
+            scatter(kr, gp, proj.basis.indices);
+        }
+        ev.carriers.push_back(std::move(cr));
+    }
+    flush();
+    return ev;
+}
+
+}  // namespace iga::contact

@@ -1,0 +1,147 @@
+#pragma once
+// One contact pair: its two surfaces (deformable 2D sides or a rigid plane), the
+// Gauss points that carry the penalty, and the per-Newton-iteration evaluation
+// of its residual and tangent (Kopacka et al. eqs. 5-7; physics.md 3.4).
+//
+// Who carries Gauss points:
+//  - two_half_pass, both deformable: both sides; each is projected onto the
+//    other and each half pass assembles ONLY its own (slave) rows, with the full
+//    penalty (tangent non-symmetric: use a general sparse LU);
+//  - single_pass, both deformable: the first surface is the slave, slave and
+//    master rows are assembled (action-reaction; tangent symmetric);
+//  - deformable vs rigid plane: the deformable side, whatever the formulation.
+// Gauss points: `quadrature` per knot span of the carrying side (0 means degree
+// + 2), placed in the REFERENCE configuration with weight W = w_g |dX/deta|
+// (reference Jacobian, held fixed); kinematics use the current configuration.
+//
+// Sign conventions as in gap.hpp (positive gap = penetration); the residual is
+// the contact part r_c = dPi_c/du of the driver's r = f_int - lambda f_ext + r_c.
+//
+// Local numbering (shapes): the first surface's control points, then the
+// second's (a rigid surface has none); dof = cp * d + component, d = 2; cp is
+// the SIDE control-point index (SidePatch::parent_index maps it to the parent).
+// Displacements are given per side, n_cp_side x d, row-major.
+//
+// Warm starts: evaluate() remembers each Gauss point's last foot point as a
+// trial state; commit() keeps the trial state (call it after a converged
+// increment), rollback() returns to the last committed one (after a cutback).
+// 3D (surface sides, planes in 3D) is not supported: the constructor throws
+// iga::Error.
+
+#include "contact/rigid_plane.hpp"
+#include "core/run_context.hpp"
+#include "core/side.hpp"
+#include "core/types.hpp"
+#include "nurbs/side_patch.hpp"
+
+#include <array>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace iga::contact {
+
+enum class Formulation { two_half_pass, single_pass };
+
+struct PairSettings {
+    Formulation formulation = Formulation::two_half_pass;
+    double penalty = 0.0;         ///< eps_N > 0, pressure per unit penetration
+    int quadrature = 0;           ///< Gauss points per knot span of a carrying side; 0 = degree + 2
+    double search_distance = 0.0; ///< global search margin; 0 = auto (a tenth of the larger side's size)
+};
+
+/// A deformable side in its REFERENCE configuration with its orientation sign.
+struct DeformableSide {
+    nurbs::SidePatch side;
+    int outward_sign = 1;
+
+    /// Extracts `side` of `parent` (a 2D surface patch) and computes its outward sign.
+    static DeformableSide make(const nurbs::Patch& parent, Side side);
+};
+
+using Surface = std::variant<DeformableSide, RigidPlane>;
+
+/// What happened at one Gauss point.
+enum class PointState {
+    far,      ///< pruned by the global search (gap not computed)
+    ok,       ///< projected (or plane gap); active when gap > 0
+    off_end,  ///< nearest master point at a patch end, not orthogonal: inactive
+    at_kink,  ///< nearest master point at a C0 corner, not orthogonal: inactive
+};
+
+/// Gauss point data of one carrying side, n_g points in span order (eta ascending).
+struct CarrierResult {
+    int surface = 0;                    ///< 0: the pair's first surface, 1: the second
+    std::vector<double> parameter;      ///< n_g, eta on the side
+    RowMatrix reference_coordinates;    ///< n_g x d
+    RowMatrix coordinates;              ///< n_g x d, current configuration
+    Vector gap;                         ///< n_g, g_N (positive = penetration); far: -search distance, a bound
+    Vector pressure;                    ///< n_g, eps <g_N> (0 unless state ok)
+    Vector weight;                      ///< n_g, W = w_g |dX/deta| (reference)
+    std::vector<PointState> state;      ///< n_g
+};
+
+struct PairEvaluation {
+    bool ok = true;               ///< false: a numerical failure (see message); residual incomplete
+    std::string message;
+    Vector residual;              ///< n_local_dofs()
+    std::vector<Triplet> tangent; ///< local numbering; empty unless requested
+    int n_active = 0;             ///< Gauss points with positive pressure
+    long long candidates = 0;     ///< (Gauss point, master span) pairs from the global search
+    long long projections = 0;
+    long long projection_iterations = 0;
+    double max_penetration = 0.0; ///< largest positive gap of an ok point, 0 if none
+    std::vector<CarrierResult> carriers;  ///< one per carrying side (2 for two_half_pass, else 1)
+};
+
+class ContactPair {
+public:
+    ContactPair(PairSettings settings, Surface first, Surface second);
+
+    const PairSettings& settings() const { return settings_; }
+    const Surface& surface(int i) const { return surfaces_[i]; }
+    /// Side control points of surface i (0 for a rigid plane).
+    int n_control_points(int i) const;
+    int n_local_dofs() const { return (n_control_points(0) + n_control_points(1)) * dim_; }
+    int dim() const { return dim_; }
+    double search_distance() const { return search_distance_; }
+    /// Gauss points of the carrying sides, in the order of PairEvaluation::carriers.
+    int n_carriers() const { return static_cast<int>(carriers_.size()); }
+    int n_gauss_points(int carrier) const { return static_cast<int>(carriers_[carrier].points.size()); }
+
+    /// Residual (and tangent) at the displacements of the two sides (n_cp_i x d,
+    /// an empty matrix for a rigid surface). Adds the timers "contact_search" and
+    /// "projection" and the counters "contact_candidates", "projections",
+    /// "projection_iterations" to ctx when it is not null.
+    PairEvaluation evaluate(const RowMatrix& disp_first, const RowMatrix& disp_second, bool need_tangent,
+                            RunContext* ctx = nullptr) const;
+
+    void commit() { committed_xi_ = trial_xi_; }
+    void rollback() { trial_xi_ = committed_xi_; }
+
+private:
+    struct GaussPoint {
+        double eta;
+        double weight;             ///< W = w_g |dX/deta|
+        VecN reference;            ///< X(eta)
+        std::vector<int> indices;  ///< side control points with non-zero basis
+        Vector N;                  ///< their basis values
+    };
+    struct Carrier {
+        int slave;
+        int master;
+        bool master_rows;
+        std::vector<GaussPoint> points;
+    };
+
+    PairSettings settings_;
+    std::array<Surface, 2> surfaces_;
+    int dim_ = 2;
+    double search_distance_ = 0.0;
+    std::vector<Carrier> carriers_;
+    mutable std::vector<std::vector<std::optional<double>>> trial_xi_;
+    std::vector<std::vector<std::optional<double>>> committed_xi_;
+};
+
+}  // namespace iga::contact

@@ -1,0 +1,46 @@
+#pragma once
+// Sauer's post-processing of the Gauss-point contact pressure (Sauer, Comput Mech
+// 52 (2013) 301; Kopacka et al. eqs. 10-11; physics.md section 3.6):
+//
+//   p_A = sum_g R_A(eta_g) p_g W_g / sum_g R_A(eta_g) W_g,     p^h = sum_A R_A p_A,
+//
+// sums over ALL Gauss points of the side (W = w_g |dX/deta|, reference). p_A is a
+// weighted average, not the pressure at control point A; p_A = 0 where the
+// denominator is 0. Properties: p_A >= 0; sum_A p_A sum_g R_A W_g = sum_g p_g W_g
+// exactly (partition of unity); a uniform p_g = p gives p_A = p.
+//
+// Shapes: the side has n_cp control points and d = 2 coordinates; the sampled
+// curve has n_s = n_spans * samples_per_span + 1 points: each span is divided
+// into samples_per_span equal parameter intervals and every interval end is
+// taken once (shared span ends too).
+
+#include "contact/contact_pair.hpp"
+#include "core/types.hpp"
+#include "nurbs/patch.hpp"
+
+#include <vector>
+
+namespace iga::contact {
+
+struct RecoveredPressure {
+    Vector control_point_pressure;   ///< n_cp, p_A
+    Vector parameter;                ///< n_s, sample parameters (ascending)
+    RowMatrix coordinates;           ///< n_s x d, current configuration
+    RowMatrix reference_coordinates; ///< n_s x d
+    Vector pressure;                 ///< n_s, p^h at the samples
+    double normal_force = 0.0;       ///< sum_g p_g W_g, the resultant of the contact pressure on the side
+};
+
+/// p_A from Gauss-point parameters eta (n_g), pressures p (n_g) and weights W (n_g)
+/// on `side` (n_par = 1).
+Vector control_point_pressure(const nurbs::Patch& side, const std::vector<double>& eta, const Vector& pressure,
+                              const Vector& weight);
+
+/// Everything results.md asks for one carrying side: `side_reference` is the
+/// side in the reference configuration, `side_displacement` its n_cp x d
+/// control-point displacements, `carrier` its Gauss-point data from
+/// ContactPair::evaluate. samples_per_span >= 1.
+RecoveredPressure recover_pressure(const nurbs::Patch& side_reference, const RowMatrix& side_displacement,
+                                   const CarrierResult& carrier, int samples_per_span);
+
+}  // namespace iga::contact

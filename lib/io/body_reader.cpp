@@ -1,0 +1,383 @@
+#include "io/body_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace iga::io {
+
+const std::pair<std::string, bool>* KnownNames::find_body(const std::string& name) const
+{
+    const auto it = std::find_if(bodies.begin(), bodies.end(), [&](const auto& b) { return b.first == name; });
+    return it == bodies.end() ? nullptr : &*it;
+}
+
+std::vector<std::string> KnownNames::body_names() const
+{
+    std::vector<std::string> names;
+    for (const auto& b : bodies)
+        names.push_back(b.first);
+    return names;
+}
+
+bool NameRegistry::add(const std::string& name, const Cursor& at)
+{
+    for (const auto& [seen, where] : seen_) {
+        if (seen != name)
+            continue;
+        std::string first;
+        if (where.line > 0)
+            first = " (first defined at line " + std::to_string(where.line) + ")";
+        else if (where.file == command_line_file)
+            first = " (first defined on the command line)";
+        at.fail("duplicate " + what_ + " name" + first);
+        return false;
+    }
+    seen_.emplace_back(name, at.location());
+    return true;
+}
+
+std::optional<std::string> read_name(const Cursor& item)
+{
+    const auto name = item.get<std::string>("name");
+    if (!name)
+        return std::nullopt;
+    if (name->empty() || name->find('.') != std::string::npos) {
+        item.child("name").fail("must be a non-empty word without '.' (the separator in key paths and body.side)");
+        return std::nullopt;
+    }
+    return name;
+}
+
+std::vector<std::string> side_names(int dim)
+{
+    std::vector<std::string> names;
+    for (int i = 0; i < 2 * dim; ++i)
+        names.emplace_back(side_name(static_cast<Side>(i)));
+    return names;
+}
+
+std::optional<Side> side_from_text(const Cursor& at, const std::string& text, int dim)
+{
+    const auto side = parse_side(text);
+    if (side && side_direction(*side) < dim)
+        return side;
+    at.fail("'" + text + "' is not a side of a " + std::to_string(dim) + "D patch (sides: " +
+            join_names(side_names(dim)) + ")");
+    return std::nullopt;
+}
+
+namespace {
+
+/// Degrees and knot vectors of a patch as the deck gives them: what `refine` is checked against.
+struct Parametrization {
+    std::vector<int> degrees;
+    std::vector<std::vector<double>> knots;
+};
+
+/// The required value of `key`, or nullopt after recording that it is missing.
+std::optional<Cursor> required(const Cursor& map, std::string_view key)
+{
+    const Cursor c = map.child(key);
+    if (c.exists())
+        return c;
+    map.fail_missing(key);
+    return std::nullopt;
+}
+
+/// Checks an open knot vector of degree p; records the first problem at `c`.
+bool check_knots(const Cursor& c, const std::vector<double>& u, int p)
+{
+    const std::size_t order = static_cast<std::size_t>(p) + 1;
+    for (std::size_t i = 1; i < u.size(); ++i)
+        if (u[i] < u[i - 1]) {
+            c.item(i).fail(fmt::format("knots must be non-decreasing (the knot before is {})", u[i - 1]));
+            return false;
+        }
+    if (u.size() < 2 * order) {
+        c.fail(fmt::format("too few knots for degree {}: an open knot vector has at least 2(p+1) = {}", p,
+                           2 * order));
+        return false;
+    }
+    const auto n = u.size();
+    const bool open = u[order - 1] == u.front() && u[n - order] == u.back() && u[order] > u.front() &&
+                      u[n - order - 1] < u.back();
+    if (!open) {
+        c.fail(fmt::format("not an open knot vector: the first and the last value must each appear exactly "
+                           "degree + 1 = {} times, with a parameter interval of positive length",
+                           order));
+        return false;
+    }
+    bool ok = true;
+    for (std::size_t i = order; i < n - order;) {
+        std::size_t j = i;
+        while (j < n - order && u[j] == u[i])
+            ++j;
+        if (j - i > order - 1) {
+            c.item(i).fail(fmt::format("interior knot {} appears {} times, more than the degree {}", u[i], j - i, p));
+            ok = false;
+        }
+        i = j;
+    }
+    return ok;
+}
+
+std::optional<NurbsData> read_nurbs(const Cursor& c, int dim, std::optional<Parametrization>& param)
+{
+    if (!c.allow_only({"degrees", "knots", "control_points"}))
+        return std::nullopt;
+    NurbsData nurbs;
+    bool degrees_ok = false;
+    bool knots_ok = false;
+    if (const auto d = required(c, "degrees"))
+        if (const auto degrees = d->to_integers(dim)) {
+            nurbs.degrees = *degrees;
+            degrees_ok = true;
+            for (int i = 0; i < dim; ++i)
+                if (nurbs.degrees[i] < 1) {
+                    d->item(i).fail("must be >= 1");
+                    degrees_ok = false;
+                }
+        }
+    if (const auto k = required(c, "knots")) {
+        if (!k->is_list() || k->size() != static_cast<std::size_t>(dim)) {
+            k->fail(fmt::format("expected a list of {} knot vectors (one per parametric direction)", dim));
+        } else {
+            knots_ok = degrees_ok;
+            for (int dir = 0; dir < dim; ++dir) {
+                const Cursor kc = k->item(dir);
+                const auto u = kc.to_numbers();
+                if (u)
+                    nurbs.knots.push_back(*u);
+                knots_ok = u && degrees_ok && check_knots(kc, *u, nurbs.degrees[dir]) && knots_ok;
+            }
+        }
+    }
+    if (const auto cps = required(c, "control_points"); cps && cps->expect_list()) {
+        for (const Cursor& point : cps->items()) {
+            const auto row = point.to_numbers(dim + 1);
+            if (!row)
+                continue;
+            if (!(row->back() > 0))
+                point.item(dim).fail("weight must be > 0");
+            nurbs.control_points.push_back(*row);
+        }
+        if (knots_ok) {
+            std::size_t expected = 1;
+            std::string product;
+            for (int dir = 0; dir < dim; ++dir) {
+                const std::size_t n = nurbs.knots[dir].size() - nurbs.degrees[dir] - 1;
+                expected *= n;
+                product += (dir > 0 ? " x " : "") + std::to_string(n);
+            }
+            if (cps->size() != expected)
+                cps->fail_here(fmt::format("expected {} control points ({} from the knots and degrees), got {}",
+                                           expected, product, cps->size()));
+        }
+    }
+    if (degrees_ok && knots_ok)
+        param = Parametrization{nurbs.degrees, nurbs.knots};
+    return nurbs;
+}
+
+/// The parametrization of a built-in shape, as nurbs/shapes.hpp builds it (io/
+/// may not depend on nurbs/): u cubic (half_disc), quadratic (quarter_disc) or
+/// linear (rectangle), v linear, on [0, 1]^2 with no interior knots.
+Parametrization shape_parametrization(ShapeType type)
+{
+    const int p = type == ShapeType::half_disc ? 3 : type == ShapeType::quarter_disc ? 2 : 1;
+    const auto open = [](int degree) {
+        std::vector<double> u(2 * static_cast<std::size_t>(degree) + 2, 0.0);
+        std::fill(u.begin() + degree + 1, u.end(), 1.0);
+        return u;
+    };
+    return {{p, 1}, {open(p), open(1)}};
+}
+
+std::optional<Shape> read_shape(const Cursor& c, int dim, std::optional<Parametrization>& param)
+{
+    if (dim != 2) {
+        c.fail_here("built-in shapes are 2D only; describe a 3D body with 'nurbs'");
+        return std::nullopt;
+    }
+    if (!c.allow_only({"type", "center", "radius", "corner", "size"}))
+        return std::nullopt;
+    const auto type = c.get<ShapeType>("type");
+    if (!type)
+        return std::nullopt;
+    Shape s;
+    s.type = *type;
+    param = shape_parametrization(s.type);
+    const bool disc = s.type != ShapeType::rectangle;
+    const std::string takes = disc ? "center and radius" : "corner and size";
+    for (const char* key : disc ? std::vector{"corner", "size"} : std::vector{"center", "radius"})
+        if (c.has(key))
+            c.child(key).fail_here("does not apply to a " + std::string(deck_name(s.type)) + " (it takes " + takes +
+                                   ")");
+    if (disc) {
+        if (const auto center = required(c, "center"))
+            s.center = center->to_numbers(2).value_or(std::vector<double>{});
+        s.radius = c.positive("radius").value_or(0.0);
+    } else {
+        if (const auto corner = required(c, "corner"))
+            s.corner = corner->to_numbers(2).value_or(std::vector<double>{});
+        if (const auto size = required(c, "size"))
+            if (const auto v = size->to_numbers(2)) {
+                s.size = *v;
+                for (std::size_t i = 0; i < 2; ++i)
+                    if (!(s.size[i] > 0))
+                        size->item(i).fail("must be > 0");
+            }
+    }
+    return s;
+}
+
+/// Checks one direction of `refine.insert` against the parameter interval and,
+/// when the patch is known, against the degree after elevation: a value inserted
+/// more often than the degree allows would break the patch apart.
+void check_insert(const Cursor& c, const std::vector<double>& values, const std::vector<double>& knots, int degree,
+                  int elevate, int spans)
+{
+    const double front = knots.front();
+    const double back = knots.back();
+    for (std::size_t k = 0; k < values.size(); ++k) {
+        const double v = values[k];
+        if (!(v > front && v < back)) {
+            c.item(k).fail(fmt::format("must lie strictly inside the parameter interval ({}, {})", front, back));
+            continue;
+        }
+        if (std::find(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), v) !=
+            values.begin() + static_cast<std::ptrdiff_t>(k))
+            continue;  // each value is checked once, at its first occurrence
+        int multiplicity = static_cast<int>(std::count(knots.begin(), knots.end(), v));
+        if (multiplicity > 0)
+            multiplicity += elevate;  // elevation keeps the continuity, so interior knots repeat more
+        else if (spans > 0)
+            for (int i = 1; i < spans; ++i)
+                // The grid value refine_uniform inserts; a relative 1e-12 absorbs its round-off.
+                if (std::abs(front + i * (back - front) / spans - v) <= 1e-12 * (back - front))
+                    multiplicity = 1;
+        multiplicity += static_cast<int>(std::count(values.begin(), values.end(), v));
+        if (multiplicity > degree + elevate)
+            c.item(k).fail(fmt::format("the knot would appear {} times, more than the degree {}", multiplicity,
+                                       degree + elevate));
+    }
+}
+
+Refine read_refine(const Cursor& c, int dim, const std::optional<Parametrization>& param)
+{
+    Refine r;
+    if (!c.allow_only({"elevate", "spans", "insert"}))
+        return r;
+    const auto read_counts = [&](const char* key, int min, std::vector<int>& out) {
+        const Cursor list = c.child(key);
+        if (!list.exists())
+            return;
+        const auto values = list.to_integers(dim);
+        if (!values)
+            return;
+        out = *values;
+        for (int i = 0; i < dim; ++i)
+            if (out[i] < min)
+                list.item(i).fail("must be >= " + std::to_string(min));
+    };
+    read_counts("elevate", 0, r.elevate);
+    read_counts("spans", 1, r.spans);
+    const Cursor insert = c.child("insert");
+    if (!insert.exists())
+        return r;
+    if (!insert.is_list() || insert.size() != static_cast<std::size_t>(dim)) {
+        insert.fail(fmt::format("expected a list of {} lists of knot values (one per parametric direction)", dim));
+        return r;
+    }
+    for (int dir = 0; dir < dim; ++dir) {
+        const Cursor values = insert.item(dir);
+        const auto v = values.to_numbers();
+        r.insert.push_back(v.value_or(std::vector<double>{}));
+        if (v && param)
+            check_insert(values, *v, param->knots[dir], param->degrees[dir],
+                         r.elevate.empty() ? 0 : std::max(0, r.elevate[dir]),
+                         r.spans.empty() ? 0 : r.spans[dir]);
+    }
+    return r;
+}
+
+std::optional<RigidPlane> read_rigid(const Cursor& c, int dim)
+{
+    if (!c.allow_only({"plane"}))
+        return std::nullopt;
+    const auto plane = required(c, "plane");
+    if (!plane || !plane->allow_only({"point", "normal"}))
+        return std::nullopt;
+    RigidPlane r;
+    if (const auto point = required(*plane, "point"))
+        r.point = point->to_numbers(dim).value_or(std::vector<double>{});
+    const auto normal = required(*plane, "normal");
+    if (!normal)
+        return r;
+    const auto n = normal->to_numbers(dim);
+    if (!n)
+        return r;
+    double norm2 = 0.0;
+    for (double x : *n)
+        norm2 += x * x;
+    const double norm = std::sqrt(norm2);
+    if (!(norm > 0)) {
+        normal->fail("must have non-zero length");
+        return r;
+    }
+    r.normal = *n;
+    // A normal of unit length up to round-off is kept as written, so that the
+    // resolved deck reads back bit-identical (renormalizing may move the last bit).
+    constexpr double unit_length_slack = 4 * std::numeric_limits<double>::epsilon();
+    if (std::abs(norm - 1.0) > unit_length_slack)
+        for (double& x : r.normal)
+            x /= norm;
+    return r;
+}
+
+}  // namespace
+
+Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names)
+{
+    Body b;
+    if (!c.allow_only({"name", "material", "nurbs", "shape", "refine", "rigid"}))
+        return b;
+    b.rigid = c.has("rigid");
+    if (const auto name = read_name(c)) {
+        b.name = *name;
+        if (names.add(*name, c.child("name")))
+            known.bodies.emplace_back(*name, b.rigid);
+    }
+    if (b.rigid) {
+        for (const char* key : {"material", "nurbs", "shape", "refine"})
+            if (c.has(key))
+                c.child(key).fail_here("a rigid body takes no '" + std::string(key) + "'");
+        b.plane = read_rigid(c.child("rigid"), known.dim);
+        return b;
+    }
+    if (const auto material = c.get<std::string>("material")) {
+        b.material = *material;
+        if (std::find(known.materials.begin(), known.materials.end(), *material) == known.materials.end())
+            c.child("material").fail("unknown material '" + *material + "'" +
+                                     hint_or_list(*material, known.materials, "materials"));
+    }
+    const bool has_nurbs = c.has("nurbs");
+    const bool has_shape = c.has("shape");
+    if (has_nurbs && has_shape)
+        c.fail_here("takes 'nurbs' or 'shape', not both");
+    else if (!has_nurbs && !has_shape)
+        c.fail_here("needs 'nurbs' or 'shape' (or 'rigid' for an obstacle)");
+    std::optional<Parametrization> param;
+    if (has_nurbs && !has_shape)
+        b.nurbs = read_nurbs(c.child("nurbs"), known.dim, param);
+    if (has_shape && !has_nurbs)
+        b.shape = read_shape(c.child("shape"), known.dim, param);
+    if (c.has("refine"))
+        b.refine = read_refine(c.child("refine"), known.dim, param);
+    return b;
+}
+
+}  // namespace iga::io

@@ -1,0 +1,58 @@
+#pragma once
+// Reading the `bodies` entries of a deck (deformable NURBS patches, built-in
+// shapes, refinement, rigid planes: shared/spec/deck.md "bodies"), and the name
+// bookkeeping that the later sections check their references against.
+//
+// Part of the deck reader (deck_reader.cpp); internal to io/. Checks made here:
+// knot vectors open, non-decreasing, interior multiplicity <= degree;
+// control-point count = prod(n_knots - degree - 1) with rows [x, y, (z,) w],
+// w > 0; refine lists with one entry per parametric direction; inserted knots
+// strictly inside the parameter interval; rigid plane normals of non-zero
+// length (normalized here).
+
+#include "io/deck.hpp"
+#include "io/yaml_cursor.hpp"
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace iga::io {
+
+/// Names defined by the sections read so far.
+struct KnownNames {
+    int dim = 0;  ///< analysis.dimension once valid, else 0
+    std::vector<std::string> materials;
+    std::vector<std::pair<std::string, bool>> bodies;  ///< name, is rigid
+    std::vector<std::string> pairs;
+
+    const std::pair<std::string, bool>* find_body(const std::string& name) const;
+    std::vector<std::string> body_names() const;
+};
+
+/// Keeps the item names of one list unique.
+class NameRegistry {
+public:
+    explicit NameRegistry(std::string what) : what_(std::move(what)) {}
+    /// Records "duplicate <what> name" at `at` and returns false when `name` is taken.
+    bool add(const std::string& name, const Cursor& at);
+
+private:
+    std::string what_;
+    std::vector<std::pair<std::string, SourceLocation>> seen_;
+};
+
+/// The required `name` of a list item: a non-empty word without '.' (the
+/// separator of key paths and of `body.side`).
+std::optional<std::string> read_name(const Cursor& item);
+
+/// Side names of a dim-D patch: u0, u1, v0, v1 (, w0, w1).
+std::vector<std::string> side_names(int dim);
+/// `text` as a side of a dim-D patch; records an issue at `at` if it is not one.
+std::optional<Side> side_from_text(const Cursor& at, const std::string& text, int dim);
+
+/// One entry of `bodies` (known.dim must be valid); registers its name in `known`.
+Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names);
+
+}  // namespace iga::io

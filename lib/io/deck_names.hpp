@@ -1,0 +1,75 @@
+#pragma once
+// The deck spellings of the enums of io/deck.hpp: the one string <-> enum table,
+// used by the reader (parsing) and the writer (the resolved deck).
+//
+// Spellings equal the enumerator names (style §4.2) and the words of
+// shared/spec/deck.md. Side names live in core/side.hpp.
+
+#include "io/deck.hpp"
+
+#include <array>
+#include <string_view>
+
+namespace iga::io {
+
+template <class E>
+struct EnumName {
+    std::string_view name;
+    E value;
+};
+
+/// DeckNames<E>::all lists every enumerator of E with its deck spelling.
+template <class E>
+struct DeckNames;
+
+template <>
+struct DeckNames<PlaneMode> {
+    static constexpr std::array<EnumName<PlaneMode>, 2> all{{{"strain", PlaneMode::strain},
+                                                             {"stress", PlaneMode::stress}}};
+};
+
+template <>
+struct DeckNames<Kinematics> {
+    static constexpr std::array<EnumName<Kinematics>, 2> all{{{"small", Kinematics::small},
+                                                              {"finite", Kinematics::finite}}};
+};
+
+template <>
+struct DeckNames<MaterialModel> {
+    static constexpr std::array<EnumName<MaterialModel>, 3> all{
+        {{"linear_elastic", MaterialModel::linear_elastic},
+         {"saint_venant_kirchhoff", MaterialModel::saint_venant_kirchhoff},
+         {"neo_hookean", MaterialModel::neo_hookean}}};
+};
+
+template <>
+struct DeckNames<Formulation> {
+    static constexpr std::array<EnumName<Formulation>, 2> all{{{"two_half_pass", Formulation::two_half_pass},
+                                                               {"single_pass", Formulation::single_pass}}};
+};
+
+template <>
+struct DeckNames<ShapeType> {
+    static constexpr std::array<EnumName<ShapeType>, 3> all{{{"half_disc", ShapeType::half_disc},
+                                                             {"quarter_disc", ShapeType::quarter_disc},
+                                                             {"rectangle", ShapeType::rectangle}}};
+};
+
+template <>
+struct DeckNames<ReferenceType> {
+    static constexpr std::array<EnumName<ReferenceType>, 2> all{
+        {{"hertz_cylinder_plane", ReferenceType::hertz_cylinder_plane},
+         {"hertz_two_cylinders", ReferenceType::hertz_two_cylinders}}};
+};
+
+/// The deck spelling of an enumerator ("linear_elastic", ...).
+template <class E>
+constexpr std::string_view deck_name(E value)
+{
+    for (const auto& entry : DeckNames<E>::all)
+        if (entry.value == value)
+            return entry.name;
+    return "?";
+}
+
+}  // namespace iga::io

@@ -1,0 +1,470 @@
+#include "io/deck_reader.hpp"
+
+#include "io/body_reader.hpp"
+#include "io/deck_writer.hpp"
+#include "io/overrides.hpp"
+#include "io/yaml_cursor.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+namespace iga::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+Analysis read_analysis(const Cursor& root, KnownNames& known)
+{
+    Analysis a;
+    const Cursor c = root.child("analysis");
+    if (!c.exists()) {
+        root.fail_missing("analysis");
+        return a;
+    }
+    if (!c.allow_only({"dimension", "plane", "kinematics"}))
+        return a;
+    if (const auto d = c.get<int>("dimension")) {
+        if (*d == 2 || *d == 3)
+            a.dimension = known.dim = *d;
+        else
+            c.child("dimension").fail("must be 2 or 3");
+    }
+    a.kinematics = c.get_or("kinematics", a.kinematics);
+    if (c.has("plane")) {
+        if (known.dim == 3)
+            c.child("plane").fail("applies to 2D only (analysis.dimension is 3)");
+        else
+            a.plane = c.get_or("plane", a.plane);
+    }
+    return a;
+}
+
+std::vector<Material> read_materials(const Cursor& root, KnownNames& known)
+{
+    std::vector<Material> out;
+    const Cursor list = root.child("materials");
+    if (!list.exists()) {
+        root.fail_missing("materials");
+        return out;
+    }
+    if (!list.expect_list())
+        return out;
+    if (list.size() == 0)
+        list.fail_here("must list at least one material");
+    NameRegistry names("material");
+    for (const Cursor& c : list.items()) {
+        if (!c.allow_only({"name", "model", "E", "nu"}))
+            continue;
+        Material m;
+        if (const auto name = read_name(c)) {
+            m.name = *name;
+            if (names.add(*name, c.child("name")))
+                known.materials.push_back(*name);
+        }
+        m.model = c.get_or("model", m.model);
+        if (const auto E = c.get<double>("E")) {
+            if (*E > 0)
+                m.E = *E;
+            else
+                c.child("E").fail("must be > 0");
+        }
+        if (const auto nu = c.get<double>("nu")) {
+            if (*nu > -1 && *nu < 0.5)
+                m.nu = *nu;
+            else
+                c.child("nu").fail("must lie in (-1, 0.5)");
+        }
+        out.push_back(m);
+    }
+    return out;
+}
+
+std::vector<Body> read_bodies(const Cursor& root, KnownNames& known)
+{
+    std::vector<Body> out;
+    const Cursor list = root.child("bodies");
+    if (!list.exists()) {
+        root.fail_missing("bodies");
+        return out;
+    }
+    if (!list.expect_list())
+        return out;
+    NameRegistry names("body");
+    for (const Cursor& c : list.items())
+        out.push_back(read_body(c, known, names));
+    if (std::none_of(out.begin(), out.end(), [](const Body& b) { return !b.rigid; }))
+        list.fail_here("needs at least one deformable body (one with 'nurbs' or 'shape')");
+    return out;
+}
+
+/// The name under `key` of a body that may carry constraints or loads (a deformable one).
+std::optional<std::string> deformable_body(const Cursor& map, const KnownNames& known, const std::string& what)
+{
+    const auto name = map.get<std::string>("body");
+    if (!name)
+        return std::nullopt;
+    const Cursor c = map.child("body");
+    const auto* body = known.find_body(*name);
+    if (!body) {
+        c.fail("unknown body '" + *name + "'" + hint_or_list(*name, known.body_names(), "bodies"));
+        return std::nullopt;
+    }
+    if (body->second) {
+        c.fail("rigid body '" + *name + "' takes no " + what + ": rigid obstacles are fixed");
+        return std::nullopt;
+    }
+    return name;
+}
+
+std::optional<Side> required_side(const Cursor& map, int dim)
+{
+    const Cursor c = map.child("side");
+    if (!c.exists()) {
+        map.fail_missing("side");
+        return std::nullopt;
+    }
+    const auto text = c.to_string();
+    return text ? side_from_text(c, *text, dim) : std::nullopt;
+}
+
+std::vector<Constraint> read_constraints(const Cursor& root, const KnownNames& known)
+{
+    std::vector<Constraint> out;
+    const Cursor list = root.child("constraints");
+    if (!list.exists() || !list.expect_list())
+        return out;
+    const int dim = known.dim;
+    const std::vector<std::string> components = dim == 2 ? std::vector<std::string>{"x", "y"}
+                                                          : std::vector<std::string>{"x", "y", "z"};
+    for (const Cursor& c : list.items()) {
+        if (!c.allow_only({"body", "side", "fix", "displacement"}))
+            continue;
+        Constraint k;
+        k.body = deformable_body(c, known, "constraints").value_or("");
+        k.side = required_side(c, dim).value_or(Side::u0);
+        const bool fix = c.has("fix");
+        const bool displacement = c.has("displacement");
+        if (fix == displacement) {
+            c.fail_here(fix ? "takes 'fix' or 'displacement', not both"
+                            : "needs 'fix' (components held at zero) or 'displacement' (prescribed values)");
+        } else if (fix) {
+            k.fixed.assign(dim, false);
+            k.value.assign(dim, 0.0);
+            const Cursor f = c.child("fix");
+            if (!f.is_list() || f.size() == 0)
+                f.fail("expected a list of components, e.g. [" + join_names(components) + "]");
+            for (const Cursor& item : f.items()) {
+                const auto name = item.to_string();
+                const auto at = name ? std::find(components.begin(), components.end(), *name) : components.end();
+                if (at != components.end())
+                    k.fixed[static_cast<std::size_t>(at - components.begin())] = true;
+                else if (name)
+                    item.fail("expected a component: " + join_names(components));
+            }
+        } else if (const auto v = c.child("displacement").to_numbers(dim)) {
+            k.fixed.assign(dim, true);
+            k.value = *v;
+        }
+        out.push_back(k);
+    }
+    return out;
+}
+
+std::vector<Load> read_loads(const Cursor& root, const KnownNames& known)
+{
+    std::vector<Load> out;
+    const Cursor list = root.child("loads");
+    if (!list.exists() || !list.expect_list())
+        return out;
+    const int dim = known.dim;
+    constexpr std::pair<std::string_view, LoadKind> kinds[] = {{"traction", LoadKind::traction},
+                                                               {"force", LoadKind::force},
+                                                               {"pressure", LoadKind::pressure},
+                                                               {"gravity", LoadKind::gravity}};
+    for (const Cursor& c : list.items()) {
+        if (!c.allow_only({"body", "side", "traction", "force", "pressure", "gravity", "density"}))
+            continue;
+        Load l;
+        l.body = deformable_body(c, known, "loads").value_or("");
+        std::vector<std::string> given;
+        for (const auto& [key, kind] : kinds)
+            if (c.has(key)) {
+                given.emplace_back(key);
+                l.kind = kind;
+            }
+        if (given.size() != 1) {
+            c.fail_here(given.empty() ? "needs one of traction, force, pressure, gravity"
+                                      : "takes exactly one of traction, force, pressure, gravity (got " +
+                                            join_names(given) + ")");
+            out.push_back(l);
+            continue;
+        }
+        const Cursor value = c.child(given.front());
+        if (l.kind == LoadKind::gravity) {
+            if (c.has("side"))
+                c.child("side").fail("gravity acts on the whole body: no side");
+            if (const auto rho = c.get<double>("density")) {
+                if (*rho > 0)
+                    l.density = *rho;
+                else
+                    c.child("density").fail("must be > 0");
+            }
+        } else {
+            if (c.has("density"))
+                c.child("density").fail("applies to gravity loads only");
+            l.side = required_side(c, dim);
+        }
+        if (l.kind == LoadKind::pressure)
+            l.pressure = value.to_number().value_or(0.0);
+        else
+            l.vector = value.to_numbers(dim).value_or(std::vector<double>{});
+        out.push_back(l);
+    }
+    return out;
+}
+
+/// One entry of `between`: "body.side" of a deformable body, or a rigid body's name.
+std::optional<ContactSurface> read_surface(const Cursor& c, const KnownNames& known)
+{
+    const auto text = c.to_string();
+    if (!text)
+        return std::nullopt;
+    const std::string sides = "(sides: " + join_names(side_names(known.dim)) + ")";
+    if (const auto* body = known.find_body(*text)) {
+        if (body->second)
+            return ContactSurface{*text, std::nullopt};
+        c.fail("a deformable body's surface needs a side, e.g. '" + *text + ".v0' " + sides);
+        return std::nullopt;
+    }
+    const auto dot = text->rfind('.');
+    const std::string name = text->substr(0, dot);
+    const auto* body = known.find_body(name);
+    if (!body) {
+        c.fail("unknown body '" + name + "'" + hint_or_list(name, known.body_names(), "bodies"));
+        return std::nullopt;
+    }
+    if (body->second) {
+        c.fail("'" + name + "' is a rigid body: it has no sides, write just '" + name + "'");
+        return std::nullopt;
+    }
+    const auto side = side_from_text(c, text->substr(dot + 1), known.dim);
+    return side ? std::optional(ContactSurface{name, side}) : std::nullopt;
+}
+
+std::vector<ContactPair> read_contact(const Cursor& root, KnownNames& known)
+{
+    std::vector<ContactPair> out;
+    const Cursor list = root.child("contact");
+    if (!list.exists() || !list.expect_list())
+        return out;
+    NameRegistry names("contact pair");
+    for (const Cursor& c : list.items()) {
+        if (!c.allow_only({"name", "between", "formulation", "penalty", "quadrature"}))
+            continue;
+        ContactPair p;
+        if (const auto name = read_name(c)) {
+            p.name = *name;
+            if (names.add(*name, c.child("name")))
+                known.pairs.push_back(*name);
+        }
+        const Cursor between = c.child("between");
+        if (!between.exists()) {
+            c.fail_missing("between");
+        } else if (!between.is_list() || between.size() != 2) {
+            between.fail("expected a list of two surfaces: [body.side, body.side or rigid body]");
+        } else {
+            const auto first = read_surface(between.item(0), known);
+            const auto second = read_surface(between.item(1), known);
+            if (first && second) {
+                if (!first->side && !second->side)
+                    between.fail("at least one surface must be the side of a deformable body");
+                else if (*first == *second)
+                    between.fail("the two surfaces are the same side");
+                p.first = *first;
+                p.second = *second;
+            }
+        }
+        p.formulation = c.get_or("formulation", p.formulation);
+        if (const auto penalty = c.get<double>("penalty")) {
+            if (*penalty > 0)
+                p.penalty = *penalty;
+            else
+                c.child("penalty").fail("must be > 0");
+        }
+        p.quadrature = c.integer_at_least("quadrature", p.quadrature, 1);
+        out.push_back(p);
+    }
+    return out;
+}
+
+Steps read_steps(const Cursor& root)
+{
+    Steps s;
+    const Cursor c = root.child("steps");
+    if (!c.exists() || !c.allow_only({"count", "adaptive", "max_cutbacks"}))
+        return s;
+    s.count = c.integer_at_least("count", s.count, 1);
+    s.adaptive = c.get_or("adaptive", s.adaptive);
+    s.max_cutbacks = c.integer_at_least("max_cutbacks", s.max_cutbacks, 0);
+    return s;
+}
+
+Newton read_newton(const Cursor& root)
+{
+    Newton n;
+    const Cursor c = root.child("newton");
+    if (!c.exists() || !c.allow_only({"tolerance", "max_iterations", "line_search"}))
+        return n;
+    n.tolerance = c.positive_or("tolerance", n.tolerance);
+    n.max_iterations = c.integer_at_least("max_iterations", n.max_iterations, 1);
+    n.line_search = c.get_or("line_search", n.line_search);
+    return n;
+}
+
+std::optional<Reference> read_reference(const Cursor& c, const KnownNames& known)
+{
+    if (!c.allow_only({"pair", "type", "radius", "radii", "force"}))
+        return std::nullopt;
+    Reference r;
+    if (const auto pair = c.get<std::string>("pair")) {
+        r.pair = *pair;
+        if (std::find(known.pairs.begin(), known.pairs.end(), *pair) == known.pairs.end())
+            c.child("pair").fail("unknown contact pair '" + *pair + "'" + hint_or_list(*pair, known.pairs, "pairs"));
+    }
+    const auto type = c.get<ReferenceType>("type");
+    if (!type)
+        return r;
+    r.type = *type;
+    const bool plane = r.type == ReferenceType::hertz_cylinder_plane;
+    const std::string takes = plane ? "radius" : "radii";
+    const std::string other = plane ? "radii" : "radius";
+    if (c.has(other))
+        c.child(other).fail_here("does not apply to " + std::string(deck_name(r.type)) + " (it takes '" + takes +
+                                 "')");
+    if (plane) {
+        r.radius = c.positive("radius").value_or(0.0);
+    } else if (const auto radii = c.child("radii"); !radii.exists()) {
+        c.fail_missing("radii");
+    } else if (const auto v = radii.to_numbers(2)) {
+        r.radii = *v;
+        for (std::size_t i = 0; i < 2; ++i)
+            if (!(r.radii[i] > 0))
+                radii.item(i).fail("must be > 0");
+    }
+    r.force = c.positive("force").value_or(0.0);
+    return r;
+}
+
+/// `file` relative to the deck's folder, unless absolute.
+std::string resolve_path(const std::string& deck_dir, const std::string& file)
+{
+    const fs::path p(file);
+    if (p.is_absolute() || deck_dir.empty())
+        return p.lexically_normal().string();
+    return (fs::path(deck_dir) / p).lexically_normal().string();
+}
+
+Output read_output(const Cursor& root, const std::string& file_label, const std::string& deck_dir,
+                   const KnownNames& known)
+{
+    Output o;
+    o.file = resolve_path(deck_dir, fs::path(file_label).filename().replace_extension(".h5").string());
+    const Cursor c = root.child("output");
+    if (!c.exists() || !c.allow_only({"file", "every_step", "samples_per_span", "reference", "paraview"}))
+        return o;
+    if (c.has("file")) {
+        const auto file = c.child("file").to_string();
+        if (file && file->empty())
+            c.child("file").fail("must not be empty");
+        else if (file)
+            o.file = resolve_path(deck_dir, *file);
+    }
+    o.every_step = c.get_or("every_step", o.every_step);
+    o.samples_per_span = c.integer_at_least("samples_per_span", o.samples_per_span, 1);
+    if (c.has("reference"))
+        o.reference = read_reference(c.child("reference"), known);
+    o.paraview = c.get_or("paraview", o.paraview);
+    return o;
+}
+
+Deck read_tree(const Cursor& root, const std::string& file_label, const std::string& deck_dir)
+{
+    Deck deck;
+    if (!root.exists()) {
+        root.fail_here("the deck is empty: it needs at least format, analysis, materials and bodies");
+        return deck;
+    }
+    if (!root.allow_only({"format", "title", "analysis", "materials", "bodies", "constraints", "loads", "contact",
+                          "steps", "newton", "output"}))
+        return deck;
+    if (const auto format = root.get<int>("format"); format && *format != 1)
+        root.child("format").fail("unsupported deck format: this program reads format 1");
+    deck.title = root.get_or<std::string>("title", "");
+    KnownNames known;
+    deck.analysis = read_analysis(root, known);
+    deck.materials = read_materials(root, known);
+    if (known.dim == 0)
+        return deck;  // every later section depends on the dimension
+    deck.bodies = read_bodies(root, known);
+    deck.constraints = read_constraints(root, known);
+    deck.loads = read_loads(root, known);
+    deck.contact = read_contact(root, known);
+    deck.steps = read_steps(root);
+    deck.newton = read_newton(root);
+    deck.output = read_output(root, file_label, deck_dir, known);
+    return deck;
+}
+
+}  // namespace
+
+Deck read_deck_text(const std::string& yaml_text, const std::string& file_label, const std::string& deck_dir,
+                    const std::vector<std::string>& set_overrides)
+{
+    YAML::Node root;
+    try {
+        root = YAML::Load(yaml_text);
+    } catch (const YAML::Exception& e) {
+        const bool located = e.mark.line >= 0;
+        throw DeckError(DeckIssue{{file_label, located ? e.mark.line + 1 : 0, located ? e.mark.column + 1 : 0},
+                                  "",
+                                  "",
+                                  "invalid YAML: " + e.msg});
+    }
+    DeckSource source(file_label);
+    IssueList issues;
+    apply_overrides(root, set_overrides, source, issues);
+    Deck deck = read_tree(Cursor(root, source, issues), file_label, deck_dir);
+    issues.throw_if_any();
+    deck.source_file = file_label;
+    deck.resolved_yaml = write_resolved_yaml(deck);
+    return deck;
+}
+
+Deck read_deck(const std::string& path, const std::vector<std::string>& set_overrides)
+{
+    const auto cannot = [&](const std::string& why) {
+        DeckIssue issue;
+        issue.where.file = path;
+        issue.reason = why;
+        return DeckError(std::move(issue));
+    };
+    std::error_code ec;
+    if (!fs::exists(path, ec))
+        throw cannot("no such deck file");
+    if (fs::is_directory(path, ec))
+        throw cannot("is a directory, not a deck file");
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+        throw cannot("cannot open the deck file (" + std::generic_category().message(errno) + ")");
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad())
+        throw cannot("cannot read the deck file");
+    return read_deck_text(text.str(), path, fs::path(path).parent_path().string(), set_overrides);
+}
+
+}  // namespace iga::io

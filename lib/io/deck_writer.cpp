@@ -1,0 +1,279 @@
+#include "io/deck_writer.hpp"
+
+#include "io/deck_names.hpp"
+#include "io/yaml_cursor.hpp"
+
+#include <algorithm>
+
+namespace iga::io {
+namespace {
+
+// Numbers and words go to the emitter as pre-formatted text: yaml-cpp writes a
+// string plain when it is a valid plain scalar, and quotes it otherwise.
+
+const char* word(bool value)
+{
+    return value ? "true" : "false";
+}
+
+template <class E>
+std::string word(E value)
+{
+    return std::string(deck_name(value));
+}
+
+std::string word(Side side)
+{
+    return std::string(side_name(side));
+}
+
+/// Starts a block list of items, or writes `[]` when there are none (a block
+/// emitter would put the empty list on a line of its own).
+template <class T>
+bool begin_items(YAML::Emitter& out, const std::vector<T>& items)
+{
+    if (items.empty()) {
+        out << YAML::Flow << YAML::BeginSeq << YAML::EndSeq;
+        return false;
+    }
+    out << YAML::BeginSeq;
+    return true;
+}
+
+void numbers(YAML::Emitter& out, const std::vector<double>& values)
+{
+    out << YAML::Flow << YAML::BeginSeq;
+    for (double v : values)
+        out << format_number(v);
+    out << YAML::EndSeq;
+}
+
+void integers(YAML::Emitter& out, const std::vector<int>& values)
+{
+    out << YAML::Flow << YAML::BeginSeq;
+    for (int v : values)
+        out << std::to_string(v);
+    out << YAML::EndSeq;
+}
+
+std::string surface(const ContactSurface& s)
+{
+    return s.side ? s.body + "." + word(*s.side) : s.body;
+}
+
+void write_body(YAML::Emitter& out, const Body& b)
+{
+    out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << b.name;
+    if (b.rigid) {
+        out << YAML::Key << "rigid" << YAML::Value << YAML::Flow << YAML::BeginMap;
+        if (b.plane) {
+            out << YAML::Key << "plane" << YAML::Value << YAML::BeginMap;
+            out << YAML::Key << "point" << YAML::Value;
+            numbers(out, b.plane->point);
+            out << YAML::Key << "normal" << YAML::Value;
+            numbers(out, b.plane->normal);
+            out << YAML::EndMap;
+        }
+        out << YAML::EndMap << YAML::EndMap;
+        return;
+    }
+    out << YAML::Key << "material" << YAML::Value << b.material;
+    if (b.nurbs) {
+        out << YAML::Key << "nurbs" << YAML::Value << YAML::BeginMap;
+        out << YAML::Key << "degrees" << YAML::Value;
+        integers(out, b.nurbs->degrees);
+        out << YAML::Key << "knots" << YAML::Value << YAML::BeginSeq;
+        for (const auto& u : b.nurbs->knots)
+            numbers(out, u);
+        out << YAML::EndSeq;
+        out << YAML::Key << "control_points" << YAML::Value << YAML::BeginSeq;
+        for (const auto& p : b.nurbs->control_points)
+            numbers(out, p);
+        out << YAML::EndSeq << YAML::EndMap;
+    }
+    if (b.shape) {
+        const Shape& s = *b.shape;
+        out << YAML::Key << "shape" << YAML::Value << YAML::Flow << YAML::BeginMap;
+        out << YAML::Key << "type" << YAML::Value << word(s.type);
+        if (s.type == ShapeType::rectangle) {
+            out << YAML::Key << "corner" << YAML::Value;
+            numbers(out, s.corner);
+            out << YAML::Key << "size" << YAML::Value;
+            numbers(out, s.size);
+        } else {
+            out << YAML::Key << "center" << YAML::Value;
+            numbers(out, s.center);
+            out << YAML::Key << "radius" << YAML::Value << format_number(s.radius);
+        }
+        out << YAML::EndMap;
+    }
+    const Refine& r = b.refine;
+    if (!r.elevate.empty() || !r.spans.empty() || !r.insert.empty()) {
+        out << YAML::Key << "refine" << YAML::Value << YAML::BeginMap;
+        if (!r.elevate.empty()) {
+            out << YAML::Key << "elevate" << YAML::Value;
+            integers(out, r.elevate);
+        }
+        if (!r.spans.empty()) {
+            out << YAML::Key << "spans" << YAML::Value;
+            integers(out, r.spans);
+        }
+        if (!r.insert.empty()) {
+            out << YAML::Key << "insert" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+            for (const auto& values : r.insert)
+                numbers(out, values);
+            out << YAML::EndSeq;
+        }
+        out << YAML::EndMap;
+    }
+    out << YAML::EndMap;
+}
+
+void write_constraint(YAML::Emitter& out, const Constraint& k, int dim)
+{
+    out << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "body" << YAML::Value << k.body;
+    out << YAML::Key << "side" << YAML::Value << word(k.side);
+    const bool all_zero = std::all_of(k.value.begin(), k.value.end(), [](double v) { return v == 0.0; });
+    if (all_zero) {
+        constexpr const char* components[] = {"x", "y", "z"};
+        out << YAML::Key << "fix" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+        for (int i = 0; i < dim && i < static_cast<int>(k.fixed.size()); ++i)
+            if (k.fixed[i])
+                out << components[i];
+        out << YAML::EndSeq;
+    } else {
+        out << YAML::Key << "displacement" << YAML::Value;
+        numbers(out, k.value);
+    }
+    out << YAML::EndMap;
+}
+
+void write_load(YAML::Emitter& out, const Load& l)
+{
+    out << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "body" << YAML::Value << l.body;
+    if (l.side)
+        out << YAML::Key << "side" << YAML::Value << word(*l.side);
+    switch (l.kind) {
+    case LoadKind::traction: out << YAML::Key << "traction" << YAML::Value; break;
+    case LoadKind::force: out << YAML::Key << "force" << YAML::Value; break;
+    case LoadKind::gravity: out << YAML::Key << "gravity" << YAML::Value; break;
+    case LoadKind::pressure: out << YAML::Key << "pressure" << YAML::Value << format_number(l.pressure); break;
+    }
+    if (l.kind != LoadKind::pressure)
+        numbers(out, l.vector);
+    if (l.kind == LoadKind::gravity)
+        out << YAML::Key << "density" << YAML::Value << format_number(l.density);
+    out << YAML::EndMap;
+}
+
+void write_contact(YAML::Emitter& out, const ContactPair& p)
+{
+    out << YAML::BeginMap;
+    out << YAML::Key << "name" << YAML::Value << p.name;
+    out << YAML::Key << "between" << YAML::Value << YAML::Flow << YAML::BeginSeq << surface(p.first)
+        << surface(p.second) << YAML::EndSeq;
+    out << YAML::Key << "formulation" << YAML::Value << word(p.formulation);
+    out << YAML::Key << "penalty" << YAML::Value << format_number(p.penalty);
+    if (p.quadrature > 0)
+        out << YAML::Key << "quadrature" << YAML::Value << std::to_string(p.quadrature);
+    out << YAML::EndMap;
+}
+
+void write_output(YAML::Emitter& out, const Output& o)
+{
+    out << YAML::BeginMap;
+    out << YAML::Key << "file" << YAML::Value << o.file;
+    out << YAML::Key << "every_step" << YAML::Value << word(o.every_step);
+    out << YAML::Key << "samples_per_span" << YAML::Value << std::to_string(o.samples_per_span);
+    if (o.reference) {
+        const Reference& r = *o.reference;
+        out << YAML::Key << "reference" << YAML::Value << YAML::Flow << YAML::BeginMap;
+        out << YAML::Key << "pair" << YAML::Value << r.pair;
+        out << YAML::Key << "type" << YAML::Value << word(r.type);
+        if (r.type == ReferenceType::hertz_cylinder_plane) {
+            out << YAML::Key << "radius" << YAML::Value << format_number(r.radius);
+        } else {
+            out << YAML::Key << "radii" << YAML::Value;
+            numbers(out, r.radii);
+        }
+        out << YAML::Key << "force" << YAML::Value << format_number(r.force);
+        out << YAML::EndMap;
+    }
+    out << YAML::Key << "paraview" << YAML::Value << word(o.paraview);
+    out << YAML::EndMap;
+}
+
+}  // namespace
+
+std::string write_resolved_yaml(const Deck& deck)
+{
+    YAML::Emitter out;
+    out.SetIndent(2);
+    out << YAML::BeginMap;
+    out << YAML::Key << "format" << YAML::Value << std::to_string(deck.format);
+    out << YAML::Key << "title" << YAML::Value << deck.title;
+
+    out << YAML::Key << "analysis" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "dimension" << YAML::Value << std::to_string(deck.analysis.dimension);
+    if (deck.analysis.dimension == 2)
+        out << YAML::Key << "plane" << YAML::Value << word(deck.analysis.plane);
+    out << YAML::Key << "kinematics" << YAML::Value << word(deck.analysis.kinematics);
+    out << YAML::EndMap;
+
+    out << YAML::Key << "materials" << YAML::Value << YAML::BeginSeq;
+    for (const Material& m : deck.materials) {
+        out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << m.name;
+        out << YAML::Key << "model" << YAML::Value << word(m.model);
+        out << YAML::Key << "E" << YAML::Value << format_number(m.E);
+        out << YAML::Key << "nu" << YAML::Value << format_number(m.nu);
+        out << YAML::EndMap;
+    }
+    out << YAML::EndSeq;
+
+    out << YAML::Key << "bodies" << YAML::Value << YAML::BeginSeq;
+    for (const Body& b : deck.bodies)
+        write_body(out, b);
+    out << YAML::EndSeq;
+
+    out << YAML::Key << "constraints" << YAML::Value;
+    if (begin_items(out, deck.constraints)) {
+        for (const Constraint& k : deck.constraints)
+            write_constraint(out, k, deck.analysis.dimension);
+        out << YAML::EndSeq;
+    }
+
+    out << YAML::Key << "loads" << YAML::Value;
+    if (begin_items(out, deck.loads)) {
+        for (const Load& l : deck.loads)
+            write_load(out, l);
+        out << YAML::EndSeq;
+    }
+
+    out << YAML::Key << "contact" << YAML::Value;
+    if (begin_items(out, deck.contact)) {
+        for (const ContactPair& p : deck.contact)
+            write_contact(out, p);
+        out << YAML::EndSeq;
+    }
+
+    out << YAML::Key << "steps" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "count" << YAML::Value << std::to_string(deck.steps.count);
+    out << YAML::Key << "adaptive" << YAML::Value << word(deck.steps.adaptive);
+    out << YAML::Key << "max_cutbacks" << YAML::Value << std::to_string(deck.steps.max_cutbacks);
+    out << YAML::EndMap;
+
+    out << YAML::Key << "newton" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "tolerance" << YAML::Value << format_number(deck.newton.tolerance);
+    out << YAML::Key << "max_iterations" << YAML::Value << std::to_string(deck.newton.max_iterations);
+    out << YAML::Key << "line_search" << YAML::Value << word(deck.newton.line_search);
+    out << YAML::EndMap;
+
+    out << YAML::Key << "output" << YAML::Value;
+    write_output(out, deck.output);
+    out << YAML::EndMap;
+    return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace iga::io

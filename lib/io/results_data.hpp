@@ -1,0 +1,102 @@
+#pragma once
+// What one run writes to its results file (shared/spec/results.md, version 1),
+// as plain structs with no HDF5 types: analysis/ fills them, io::ResultsWriter
+// stores them. Names follow the groups and datasets of results.md.
+//
+// Shapes (row-major, d = spatial dimension 2 or 3, all reals float64):
+//   control_points n_cp x (d+1) (x, y[, z], w); displacement n_cp x d;
+//   Gauss-point coordinates n_g x d, parameter n_g x (d-1) (written 1-D in 2D);
+//   postprocessed coordinates n_s x d; convergence n x 4.
+// Sign convention: gap > 0 means penetration (contact/gap.hpp).
+
+#include "core/types.hpp"
+
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace iga::io {
+
+/// The analysed (refined) geometry of one deformable body: /bodies/<name>/.
+struct BodyGeometry {
+    std::string name;
+    std::vector<int> degrees;                ///< one per parametric direction
+    std::vector<std::vector<double>> knots;  ///< knots[0] = u, knots[1] = v (, knots[2] = w)
+    RowMatrix control_points;                ///< n_cp x (d+1): x, y[, z], w
+    /// Optional, for built-in shapes: (name, side) pairs, written as an n x 2 string dataset "side_names".
+    std::vector<std::pair<std::string, std::string>> side_names;
+};
+
+/// Per-Gauss-point contact data of one side: .../gauss_points/.
+struct GaussPointData {
+    RowMatrix coordinates;            ///< n_g x d, current configuration
+    RowMatrix reference_coordinates;  ///< n_g x d, reference configuration
+    RowMatrix parameter;              ///< n_g x (d-1); written as a 1-D dataset of length n_g when d-1 == 1
+    Vector gap;                       ///< n_g, normal gap g_N (positive = penetration)
+    Vector pressure;                  ///< n_g, penalty pressure eps_N <g_N>
+    Vector weight;                    ///< n_g, quadrature weight times Jacobian (extra; written when non-empty)
+};
+
+/// Recovered pressure of one side (Sauer's weighted averages): .../postprocessed/.
+struct PostProcessedData {
+    Vector control_point_pressure;    ///< n_cp_side, p_A
+    RowMatrix coordinates;            ///< n_s x d, sample points, current configuration
+    RowMatrix reference_coordinates;  ///< n_s x d, the same points, reference configuration
+    Vector pressure;                  ///< n_s, sum_A R_A p_A at the sample points
+};
+
+/// One side of a contact pair that carries Gauss points: contact/<pair>/<body.side>/.
+struct ContactSideResult {
+    std::string side_name;  ///< "body.side", e.g. "cylinder.v0"
+    GaussPointData gauss_points;
+    PostProcessedData postprocessed;
+    double normal_force = 0.0;                ///< resultant of the contact pressure on this side
+    std::map<std::string, double> attributes;  ///< extra numbers (n_active, max_penetration, ...)
+};
+
+/// One contact pair: contact/<pair>/.
+struct ContactPairResult {
+    std::string name;
+    std::vector<ContactSideResult> sides;
+    std::map<std::string, double> attributes;  ///< extra numbers (candidates, projections, ...)
+};
+
+/// One converged increment: /steps/<kkkk>/.
+struct StepData {
+    int index = 0;  ///< 1-based; the group name is index with at least 4 digits
+    double load_factor = 0.0;
+    int newton_iterations = 0;
+    double residual_norm = 0.0;
+    int cutbacks = 0;
+    double wall_s = 0.0;
+    std::vector<std::pair<std::string, RowMatrix>> displacement;  ///< (body, n_cp x d) per deformable body
+    std::vector<ContactPairResult> contact;
+};
+
+/// An analytic reference curve and this run's errors against it: /reference/<pair>/.
+struct ReferenceData {
+    std::string pair;
+    std::string type;  ///< deck spelling, e.g. "hertz_cylinder_plane"
+    double a = 0.0;    ///< contact half-width
+    double p0 = 0.0;   ///< peak pressure
+    std::map<std::string, double> inputs;  ///< radius, force, E_star, ...: one attribute each
+    std::map<std::string, double> errors;  ///< peak, half_width, l2, ...: one attribute each
+    RowMatrix coordinates;                 ///< n x d, points of the curve
+    Vector x;                              ///< n, signed distance along the contact line (dataset "x")
+    Vector pressure;                       ///< n
+    std::vector<double> center;            ///< d, where x = 0 (attribute; written when non-empty)
+    std::vector<double> tangent;           ///< d, direction of the contact line (attribute; when non-empty)
+};
+
+/// What finish() writes once the run is over.
+struct RunSummary {
+    std::string status;   ///< "completed" | "failed" | "running"
+    std::string message;  ///< why, when failed
+    std::map<std::string, double> timings;      ///< seconds: total, assembly, contact_search, ... -> /timings
+    std::map<std::string, long long> counters;  ///< -> attributes of /counters (int64)
+    RowMatrix convergence;                      ///< n x 4: increment, iteration, residual_norm, load_factor
+    std::vector<ReferenceData> references;
+};
+
+}  // namespace iga::io

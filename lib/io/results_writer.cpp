@@ -1,0 +1,288 @@
+#include "io/results_writer.hpp"
+
+#include "core/error.hpp"
+#include "io/h5_file.hpp"
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <set>
+#include <unistd.h>
+
+namespace iga::io {
+
+struct ResultsWriter::State {
+    h5::Handle file;
+};
+
+namespace {
+
+constexpr const char* format_name = "igacontact-results";
+constexpr int format_version = 1;
+
+// Why a file cannot be created at `path`, in words, if the folder is the cause; "" otherwise.
+std::string folder_problem(const std::string& path)
+{
+    namespace fs = std::filesystem;
+    fs::path folder = fs::path(path).parent_path();
+    if (folder.empty())
+        folder = ".";
+    std::error_code error;
+    if (!fs::exists(folder, error))
+        return "folder '" + folder.string() + "' does not exist";
+    if (!fs::is_directory(folder, error))
+        return "'" + folder.string() + "' is not a folder";
+    if (::access(folder.c_str(), W_OK) != 0)
+        return "folder '" + folder.string() + "' is not writable";
+    return {};
+}
+
+void write_body(hid_t bodies, const BodyGeometry& body)
+{
+    const std::size_t n_directions = body.degrees.size();
+    IGA_CHECK(!body.name.empty(), "a body needs a name");
+    IGA_CHECK(n_directions >= 1 && n_directions <= 3 && body.knots.size() == n_directions,
+              "body " + body.name + ": need one knot vector per degree (1 to 3)");
+    h5::Handle group = h5::create_group(bodies, body.name);
+    h5::write_dataset(group.id(), "degrees", std::span<const int>(body.degrees));
+    h5::Handle knots = h5::create_group(group.id(), "knots");
+    constexpr const char* direction_names[] = {"u", "v", "w"};
+    for (std::size_t k = 0; k < n_directions; ++k)
+        h5::write_dataset(knots.id(), direction_names[k], std::span<const double>(body.knots[k]),
+                          {static_cast<hsize_t>(body.knots[k].size())});
+    h5::write_dataset(group.id(), "control_points", body.control_points);
+    if (!body.side_names.empty()) {
+        std::vector<std::string> table;
+        for (const auto& [name, side] : body.side_names) {
+            table.push_back(name);
+            table.push_back(side);
+        }
+        h5::write_string_dataset(group.id(), "side_names", table, {static_cast<hsize_t>(body.side_names.size()), 2});
+    }
+}
+
+void write_side(hid_t pair, const ContactSideResult& side)
+{
+    IGA_CHECK(!side.side_name.empty(), "a contact side needs a name (body.side)");
+    h5::Handle group = h5::create_group(pair, side.side_name);
+    h5::write_attribute(group.id(), "normal_force", side.normal_force);
+    for (const auto& [name, value] : side.attributes)
+        h5::write_attribute(group.id(), name, value);
+
+    const GaussPointData& gp = side.gauss_points;
+    h5::Handle gauss = h5::create_group(group.id(), "gauss_points");
+    h5::write_dataset(gauss.id(), "coordinates", gp.coordinates);
+    h5::write_dataset(gauss.id(), "reference_coordinates", gp.reference_coordinates);
+    if (gp.parameter.cols() <= 1) {  // 2D: one parameter per point, stored 1-D as results.md says
+        const Vector flat = gp.parameter.cols() == 1 ? Vector(gp.parameter.col(0)) : Vector(gp.parameter.rows());
+        h5::write_dataset(gauss.id(), "parameter", flat);
+    } else {
+        h5::write_dataset(gauss.id(), "parameter", gp.parameter);
+    }
+    h5::write_dataset(gauss.id(), "gap", gp.gap);
+    h5::write_dataset(gauss.id(), "pressure", gp.pressure);
+    if (gp.weight.size() > 0)
+        h5::write_dataset(gauss.id(), "weight", gp.weight);
+
+    const PostProcessedData& pp = side.postprocessed;
+    h5::Handle post = h5::create_group(group.id(), "postprocessed");
+    h5::write_dataset(post.id(), "control_point_pressure", pp.control_point_pressure);
+    h5::write_dataset(post.id(), "coordinates", pp.coordinates);
+    h5::write_dataset(post.id(), "reference_coordinates", pp.reference_coordinates);
+    h5::write_dataset(post.id(), "pressure", pp.pressure);
+}
+
+void write_reference(hid_t references, const ReferenceData& reference)
+{
+    IGA_CHECK(!reference.pair.empty(), "a reference curve needs its pair name");
+    h5::Handle group = h5::create_group(references, reference.pair);
+    h5::write_dataset(group.id(), "coordinates", reference.coordinates);
+    h5::write_dataset(group.id(), "x", reference.x);
+    h5::write_dataset(group.id(), "pressure", reference.pressure);
+
+    // inputs and errors share the attribute namespace of the group with the fixed names.
+    std::set<std::string> used{"type", "a", "p0", "center", "tangent"};
+    auto write_unique = [&](const std::string& name, double value) {
+        IGA_CHECK(used.insert(name).second, "reference " + reference.pair + ": attribute '" + name + "' given twice");
+        h5::write_attribute(group.id(), name, value);
+    };
+    h5::write_attribute(group.id(), "type", reference.type);
+    h5::write_attribute(group.id(), "a", reference.a);
+    h5::write_attribute(group.id(), "p0", reference.p0);
+    for (const auto& [name, value] : reference.inputs)
+        write_unique(name, value);
+    for (const auto& [name, value] : reference.errors)
+        write_unique(name, value);
+    if (!reference.center.empty())
+        h5::write_attribute(group.id(), "center", std::span<const double>(reference.center));
+    if (!reference.tangent.empty())
+        h5::write_attribute(group.id(), "tangent", std::span<const double>(reference.tangent));
+}
+
+void flush(hid_t file, const std::string& path)
+{
+    if (H5Fflush(file, H5F_SCOPE_GLOBAL) < 0)
+        h5::throw_error("cannot flush results file " + path);
+}
+
+}  // namespace
+
+std::string step_group_name(int index)
+{
+    IGA_CHECK(index >= 1, "step indices start at 1");
+    return fmt::format("{:04d}", index);
+}
+
+ResultsWriter::ResultsWriter(std::string final_path, const std::string& program_version,
+                             const std::string& resolved_deck)
+    : final_path_(std::move(final_path)), temp_path_(final_path_ + ".tmp-" + std::to_string(::getpid()))
+{
+    h5::ErrorSilencer silence;
+    const std::string problem = folder_problem(final_path_);
+    if (!problem.empty())
+        throw Error("cannot create results file " + final_path_ + ": " + problem);
+    auto state = std::make_unique<State>();
+    try {
+        state->file = h5::create_file(temp_path_);
+    } catch (const Error& error) {
+        throw Error("cannot create results file " + final_path_ + ": " + error.what());
+    }
+    state_ = std::move(state);
+    try {
+        const hid_t file = state_->file.id();
+        h5::write_attribute(file, "format", std::string(format_name));
+        h5::write_attribute(file, "format_version", format_version);
+        h5::write_attribute(file, "program_version", program_version);
+        h5::write_attribute(file, "status", std::string("running"));
+        h5::write_attribute(file, "message", std::string());
+        h5::write_string_dataset(file, "deck", resolved_deck);
+        h5::create_group(file, "steps");
+        flush(file, temp_path_);
+    } catch (...) {
+        abandon();
+        throw;
+    }
+}
+
+ResultsWriter::~ResultsWriter() { abandon(); }
+
+ResultsWriter::ResultsWriter(ResultsWriter&&) noexcept = default;
+
+ResultsWriter& ResultsWriter::operator=(ResultsWriter&& other) noexcept
+{
+    if (this != &other) {
+        abandon();
+        final_path_ = std::move(other.final_path_);
+        temp_path_ = std::move(other.temp_path_);
+        state_ = std::move(other.state_);
+    }
+    return *this;
+}
+
+bool ResultsWriter::is_open() const { return state_ != nullptr; }
+
+void ResultsWriter::write_bodies(const std::vector<BodyGeometry>& bodies)
+{
+    IGA_CHECK(is_open(), "results file " + final_path_ + " is already closed");
+    h5::ErrorSilencer silence;
+    const hid_t file = state_->file.id();
+    IGA_CHECK(!h5::exists(file, "bodies"), "write_bodies may be called only once");
+    h5::Handle group = h5::create_group(file, "bodies");
+    for (const BodyGeometry& body : bodies)
+        write_body(group.id(), body);
+    flush(file, temp_path_);
+}
+
+void ResultsWriter::write_step(const StepData& step)
+{
+    IGA_CHECK(is_open(), "results file " + final_path_ + " is already closed");
+    h5::ErrorSilencer silence;
+    const hid_t file = state_->file.id();
+    const std::string name = step_group_name(step.index);
+    IGA_CHECK(!h5::exists(file, "steps/" + name), "step " + name + " written twice");
+    {
+        h5::Handle group = h5::create_group(file, "steps/" + name);
+        h5::write_attribute(group.id(), "load_factor", step.load_factor);
+        h5::write_attribute(group.id(), "newton_iterations", step.newton_iterations);
+        h5::write_attribute(group.id(), "residual_norm", step.residual_norm);
+        h5::write_attribute(group.id(), "cutbacks", step.cutbacks);
+        h5::write_attribute(group.id(), "wall_s", step.wall_s);
+
+        h5::Handle displacement = h5::create_group(group.id(), "displacement");
+        for (const auto& [body, values] : step.displacement)
+            h5::write_dataset(displacement.id(), body, values);
+
+        h5::Handle contact = h5::create_group(group.id(), "contact");
+        for (const ContactPairResult& pair : step.contact) {
+            h5::Handle pair_group = h5::create_group(contact.id(), pair.name);
+            for (const auto& [attribute, value] : pair.attributes)
+                h5::write_attribute(pair_group.id(), attribute, value);
+            for (const ContactSideResult& side : pair.sides)
+                write_side(pair_group.id(), side);
+        }
+    }
+    h5::replace_hard_link(file, "steps/" + name, "results");
+    flush(file, temp_path_);
+}
+
+void ResultsWriter::finish(const RunSummary& summary)
+{
+    IGA_CHECK(is_open(), "results file " + final_path_ + " is already closed");
+    IGA_CHECK(summary.status == "completed" || summary.status == "failed" || summary.status == "running",
+              "status must be completed, failed or running, not '" + summary.status + "'");
+    IGA_CHECK(summary.convergence.rows() == 0 || summary.convergence.cols() == 4,
+              "the convergence table has 4 columns: increment, iteration, residual_norm, load_factor");
+    h5::ErrorSilencer silence;
+    const hid_t file = state_->file.id();
+    h5::write_attribute(file, "status", summary.status);
+    h5::write_attribute(file, "message", summary.message);
+
+    h5::Handle timings = h5::create_group(file, "timings");
+    for (const auto& [name, seconds] : summary.timings)
+        h5::write_attribute(timings.id(), name, seconds);
+    h5::Handle counters = h5::create_group(file, "counters");
+    for (const auto& [name, count] : summary.counters)
+        h5::write_attribute(counters.id(), name, count);
+
+    const RowMatrix& table = summary.convergence;
+    h5::write_dataset(file, "convergence",
+                      std::span<const double>(table.data(), static_cast<std::size_t>(table.size())),
+                      {static_cast<hsize_t>(table.rows()), 4});
+
+    if (!summary.references.empty()) {
+        h5::Handle references = h5::create_group(file, "reference");
+        for (const ReferenceData& reference : summary.references)
+            write_reference(references.id(), reference);
+    }
+    timings.reset();
+    counters.reset();
+
+    h5::Handle closing = std::move(state_->file);
+    state_.reset();
+    try {
+        closing.close();
+    } catch (const Error& error) {
+        std::remove(temp_path_.c_str());
+        throw Error("cannot complete results file " + final_path_ + ": " + error.what());
+    }
+    if (std::rename(temp_path_.c_str(), final_path_.c_str()) != 0)
+        throw Error("cannot rename " + temp_path_ + " to results file " + final_path_ + ": " +
+                    std::strerror(errno) + " (the results are in the temporary file)");
+}
+
+void ResultsWriter::abandon() noexcept
+{
+    if (!state_)
+        return;
+    {
+        h5::ErrorSilencer silence;
+        state_->file.reset();
+    }
+    state_.reset();
+    std::remove(temp_path_.c_str());
+}
+
+}  // namespace iga::io

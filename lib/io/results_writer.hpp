@@ -1,0 +1,68 @@
+#pragma once
+// ResultsWriter: writes one run's HDF5 results file (shared/spec/results.md,
+// format "igacontact-results", version 1).
+//
+// Crash safety (results.md, last paragraph): everything goes to
+// "<final_path>.tmp-<pid>" next to the final file, which is not touched until
+// finish() renames the temporary file onto it (rename() is atomic on POSIX).
+// The temporary file is flushed after every step, so what was written stays
+// readable if the process dies. A failed run still calls finish() with
+// status "failed": the converged steps and the message end up in the final file.
+//
+// Call order: constructor, write_bodies() (once), write_step() per converged
+// increment (increasing index), then finish() or abandon(). Every HDF5 failure
+// throws iga::Error with a message naming the file and object. HDF5 types stay
+// inside the implementation.
+
+#include "io/results_data.hpp"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace iga::io {
+
+class ResultsWriter {
+public:
+    /// Creates the temporary file and writes the root attributes (format,
+    /// format_version = 1, program_version, status = "running", message = "")
+    /// and /deck. Throws iga::Error("cannot create results file <final_path>: <reason>")
+    /// if its folder does not exist or is not writable.
+    ResultsWriter(std::string final_path, const std::string& program_version, const std::string& resolved_deck);
+    /// Calls abandon() if finish() was not called (exceptions, bugs): the final path is untouched.
+    ~ResultsWriter();
+    ResultsWriter(ResultsWriter&&) noexcept;
+    ResultsWriter& operator=(ResultsWriter&&) noexcept;
+    ResultsWriter(const ResultsWriter&) = delete;
+    ResultsWriter& operator=(const ResultsWriter&) = delete;
+
+    /// /bodies/<body>/{degrees, knots/u, knots/v(, knots/w), control_points(, side_names)}.
+    void write_bodies(const std::vector<BodyGeometry>& bodies);
+
+    /// /steps/<kkkk>/ (kkkk = index, zero-padded to 4 digits) with its attributes,
+    /// displacement/<body> and contact/<pair>/<body.side>/...; then points the
+    /// hard link /results at it and flushes the file.
+    void write_step(const StepData& step);
+
+    /// Writes status/message, /timings, /counters, /convergence and /reference,
+    /// closes the file and renames it onto the final path. The writer is closed afterwards.
+    void finish(const RunSummary& summary);
+
+    /// Closes and deletes the temporary file; the final path is untouched. No-op when closed.
+    void abandon() noexcept;
+
+    bool is_open() const;
+    const std::string& final_path() const { return final_path_; }
+    const std::string& temp_path() const { return temp_path_; }
+
+private:
+    struct State;  // the open HDF5 file
+    std::string final_path_;
+    std::string temp_path_;
+    std::unique_ptr<State> state_;
+};
+
+/// The name of step `index` under /steps: "0001", ..., "9999", "10000", ...
+std::string step_group_name(int index);
+
+}  // namespace iga::io

@@ -1,0 +1,158 @@
+#include "solver/linear.hpp"
+
+#include "core/error.hpp"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/UmfPackSupport>
+
+#include <algorithm>
+
+namespace iga::solver {
+
+namespace {
+
+// A backward-stable direct solve leaves ||K x - b|| ~ eps * ||K|| ||x||; UMFPACK
+// also refines iteratively. 1e-6 ||b|| is far above that for any K we can use,
+// yet catches the garbage a near-singular K that escaped the pivot test gives.
+constexpr double backward_error_tolerance = 1e-6;
+
+bool all_finite(const SparseMatrix& K)
+{
+    const double* values = K.valuePtr();
+    return std::all_of(values, values + K.nonZeros(), [](double v) { return std::isfinite(v); });
+}
+
+}  // namespace
+
+struct LinearSolver::Backend {
+    Eigen::UmfPackLU<SparseMatrix> lu;
+    Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt;
+
+    Backend()
+    {
+        // CHOLMOD prints "not positive definite" warnings to stdout by default;
+        // the library reports statuses instead (no printing in lib/).
+        llt.cholmod().print = 0;
+    }
+};
+
+const char* status_name(LinearStatus status)
+{
+    switch (status) {
+    case LinearStatus::ok: return "ok";
+    case LinearStatus::singular: return "singular";
+    case LinearStatus::failed: return "failed";
+    }
+    return "unknown";
+}
+
+const char* kind_name(LinearSolver::Kind kind)
+{
+    return kind == LinearSolver::Kind::lu ? "lu" : "cholesky";
+}
+
+LinearSolver::LinearSolver(Kind kind) : kind_(kind), backend_(std::make_unique<Backend>()) {}
+LinearSolver::~LinearSolver() = default;
+LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
+LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
+
+void LinearSolver::set_kind(Kind kind)
+{
+    if (kind != kind_) {
+        kind_ = kind;
+        analysed_ = false;
+        factorized_ = false;
+    }
+}
+
+bool LinearSolver::same_pattern(const SparseMatrix& K) const
+{
+    if (K.rows() != K_.rows() || K.cols() != K_.cols() || K.nonZeros() != K_.nonZeros())
+        return false;
+    const int n_outer = static_cast<int>(K.outerSize()) + 1;
+    return std::equal(K.outerIndexPtr(), K.outerIndexPtr() + n_outer, K_.outerIndexPtr()) &&
+           std::equal(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros(), K_.innerIndexPtr());
+}
+
+LinearStatus LinearSolver::factorize(const SparseMatrix& K)
+{
+    IGA_CHECK(K.rows() == K.cols(), "LinearSolver::factorize: the matrix must be square");
+    factorized_ = false;
+
+    if (analysed_ && K.isCompressed() && same_pattern(K)) {
+        // Same pattern: copy the values in place, so nothing is reallocated.
+        std::copy(K.valuePtr(), K.valuePtr() + K.nonZeros(), K_.valuePtr());
+    } else {
+        SparseMatrix copy = K;
+        copy.makeCompressed();
+        if (!(analysed_ && same_pattern(copy)))
+            analysed_ = false;
+        K_ = std::move(copy);
+    }
+    if (!all_finite(K_))
+        return LinearStatus::failed;
+    if (K_.rows() == 0) {  // no unknowns: nothing to factorize, solve() returns an empty x
+        factorized_ = true;
+        return LinearStatus::ok;
+    }
+    if (K_.nonZeros() == 0)  // the backends reject an empty pattern (CHOLMOD would crash)
+        return kind_ == Kind::lu ? LinearStatus::singular : LinearStatus::failed;
+
+    Backend& b = *backend_;
+    if (!analysed_) {
+        ++n_symbolic_;
+        if (kind_ == Kind::lu) {
+            b.lu.analyzePattern(K_);
+            if (b.lu.info() != Eigen::Success)
+                return LinearStatus::failed;
+        } else {
+            b.llt.analyzePattern(K_);
+            // Eigen reports Success even when cholmod_analyze failed (and left no
+            // factor, which factorize() would dereference): check CHOLMOD's status.
+            if (b.llt.info() != Eigen::Success || b.llt.cholmod().status < 0)
+                return LinearStatus::failed;
+        }
+        analysed_ = true;
+    }
+
+    ++n_numeric_;
+    if (kind_ == Kind::lu) {
+        b.lu.factorize(K_);
+        if (b.lu.info() != Eigen::Success)
+            return LinearStatus::singular;
+    } else {
+        b.llt.factorize(K_);
+        if (b.llt.info() != Eigen::Success)
+            return LinearStatus::failed;
+    }
+    factorized_ = true;
+    return LinearStatus::ok;
+}
+
+LinearStatus LinearSolver::solve(const Vector& b, Vector& x) const
+{
+    IGA_CHECK(factorized_, "LinearSolver::solve: needs a successful factorize() first");
+    IGA_CHECK(b.size() == K_.rows(), "LinearSolver::solve: right-hand side size differs from the matrix");
+    if (K_.rows() == 0) {
+        x.resize(0);
+        return LinearStatus::ok;
+    }
+
+    if (kind_ == Kind::lu) {
+        x = backend_->lu.solve(b);
+    } else {
+        x = backend_->llt.solve(b);
+        if (backend_->llt.info() != Eigen::Success)
+            return LinearStatus::singular;
+    }
+    if (!x.allFinite())
+        return LinearStatus::singular;
+    // Also catches Cholesky handed a non-symmetric K: it reads one triangle only,
+    // the check multiplies by the whole matrix.
+    const double residual = (K_ * x - b).norm();
+    if (!(residual <= backward_error_tolerance * b.norm()))
+        return LinearStatus::singular;
+    return LinearStatus::ok;
+}
+
+}  // namespace iga::solver

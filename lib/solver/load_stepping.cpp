@@ -1,0 +1,136 @@
+#include "solver/load_stepping.hpp"
+
+#include "core/error.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+namespace iga::solver {
+
+namespace {
+
+// An increment ending this close to lambda = 1 is stretched to end at 1: the
+// sum of count increments 1/count misses 1 by a few ulps.
+constexpr double end_snap = 1e-12;
+
+std::string format_g(double value, int digits = 3)
+{
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+    return buffer;
+}
+
+std::string increment_text(int index, double from, double to)
+{
+    return "increment " + std::to_string(index) + " (load factor " + format_g(from, 6) + " -> " + format_g(to, 6) +
+           ")";
+}
+
+}  // namespace
+
+SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const SteppingSettings& stepping,
+                              const NewtonSettings& newton, LinearSolver& solver, SteppingCallbacks& callbacks,
+                              RunContext* context)
+{
+    IGA_CHECK(stepping.count >= 1, "run_load_steps: count must be >= 1");
+    IGA_CHECK(stepping.max_cutbacks >= 0, "run_load_steps: max_cutbacks must be >= 0");
+    IGA_CHECK(stepping.growth >= 1.0, "run_load_steps: growth must be >= 1");
+
+    SteppingResult result;
+    const double initial_increment = 1.0 / stepping.count;
+    // The smallest increment: what max_cutbacks halvings of the initial one give.
+    // Without it, an adaptive run toward a limit load would creep forever
+    // (every increment converging after a few cutbacks, at geometrically shrinking size).
+    const double min_increment = std::ldexp(initial_increment, -stepping.max_cutbacks);
+    double increment = initial_increment;
+    double lambda = 0.0;
+    Vector u_converged = u;
+
+    while (lambda < 1.0) {
+        const int index = static_cast<int>(result.increments.size()) + 1;
+        if (callbacks.stop_requested && callbacks.stop_requested()) {
+            result.message = index == 1 ? std::string("stopped on request before the first increment")
+                                        : "stopped on request after increment " + std::to_string(index - 1) +
+                                              " (load factor " + format_g(lambda, 6) + ")";
+            return result;
+        }
+
+        const auto start = std::chrono::steady_clock::now();
+        int cutbacks = 0;
+        double target = lambda;
+        NewtonReport report;
+        while (true) {
+            target = lambda + increment > 1.0 - end_snap ? 1.0 : lambda + increment;
+            if (!(target > lambda)) {
+                result.message = increment_text(index, lambda, target) +
+                                 ": the increment fell below the round-off of the load factor";
+                return result;
+            }
+            report = solve_newton(system, target, u, newton, solver, context);
+            result.total_iterations += report.iterations;
+            if (report.status == NewtonStatus::converged)
+                break;
+
+            u = u_converged;
+            if (callbacks.rollback)
+                callbacks.rollback();
+            const std::string why = std::string(" (") + status_name(report.status) + "): " + report.message;
+            if (system.linear) {
+                result.message = increment_text(index, lambda, target) + ": the linear solve failed" + why;
+                return result;
+            }
+            if (!stepping.adaptive) {
+                result.message = increment_text(index, lambda, target) +
+                                 ": Newton did not converge (adaptive stepping is off)" + why;
+                return result;
+            }
+            if (cutbacks == stepping.max_cutbacks) {
+                result.message = increment_text(index, lambda, target) + ": Newton did not converge after " +
+                                 std::to_string(cutbacks) + " cutbacks" + why;
+                return result;
+            }
+            if (increment * 0.5 < min_increment) {
+                result.message = increment_text(index, lambda, target) +
+                                 ": Newton did not converge and the increment cannot be cut below " +
+                                 format_g(min_increment, 6) + " (1/count / 2^max_cutbacks)" + why;
+                return result;
+            }
+            ++cutbacks;
+            ++result.total_cutbacks;
+            increment *= 0.5;
+            if (context)
+                context->log(Verbosity::verbose, increment_text(index, lambda, target) + ": " +
+                                                     status_name(report.status) + ", cutting back to " +
+                                                     format_g(increment, 6));
+        }
+
+        lambda = target;
+        u_converged = u;
+        if (callbacks.commit)
+            callbacks.commit();
+        IncrementRecord record;
+        record.index = index;
+        record.load_factor = lambda;
+        record.report = report;
+        record.cutbacks = cutbacks;
+        record.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        result.increments.push_back(record);
+        if (context)
+            context->log(Verbosity::normal,
+                         "increment " + std::to_string(index) + ": load factor " + format_g(lambda, 6) + ", " +
+                             std::to_string(report.iterations) + " iterations, relative residual " +
+                             format_g(report.residual_norm) +
+                             (cutbacks > 0 ? ", " + std::to_string(cutbacks) + " cutbacks" : std::string()));
+        if (callbacks.converged)
+            callbacks.converged(result.increments.back(), u);
+
+        if (stepping.adaptive && report.iterations <= stepping.easy_iterations)
+            increment = std::min(increment * stepping.growth, initial_increment);
+    }
+    result.completed = true;
+    return result;
+}
+
+}  // namespace iga::solver

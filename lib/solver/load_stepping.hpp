@@ -1,0 +1,75 @@
+#pragma once
+// Load stepping: drives the load factor lambda from 0 to 1 in increments, each
+// solved by Newton (solver/newton.hpp), with adaptive cutbacks (physics.md §7.2).
+//
+// Rules: the initial increment is 1/count. A failed increment restores u to the
+// last converged state, calls rollback, halves the increment (adaptive only) and
+// retries, at most max_cutbacks times per increment; then the run ends with
+// completed = false and a message naming the increment, its load factors and
+// the reason. The increment never falls below 1/count / 2^max_cutbacks either: a
+// cutback that would go below it also ends the run (else an adaptive run toward
+// a limit load creeps on forever with geometrically shrinking increments). An
+// increment that converged in <= easy_iterations grows the next one by
+// `growth`, never beyond 1/count. A final increment that would fall
+// within 1e-12 of lambda = 1 is merged into the previous one, so the run ends at
+// exactly 1. Linear systems never cut back (a smaller increment cannot cure a
+// failed linear solve). Non-adaptive stepping takes exactly `count` increments.
+// Load factors are monotone: lambda_k = lambda_{k-1} + (increment k).
+
+#include "core/run_context.hpp"
+#include "core/types.hpp"
+#include "solver/linear.hpp"
+#include "solver/newton.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace iga::solver {
+
+struct SteppingSettings {
+    int count = 1;          ///< initial number of increments: increment 1/count
+    bool adaptive = true;   ///< halve a failed increment and retry; grow after easy ones
+    int max_cutbacks = 8;   ///< per increment
+    double growth = 1.5;    ///< factor on the increment after an easy one
+    int easy_iterations = 4;  ///< converged in <= this many iterations: grow the next increment
+};
+
+struct IncrementRecord {
+    int index = 0;           ///< 1-based, counts converged increments
+    double load_factor = 0;  ///< lambda at the end of the increment
+    NewtonReport report;     ///< of the attempt that converged
+    int cutbacks = 0;        ///< failed attempts before the one that converged
+    double wall_s = 0;       ///< wall time of the increment, failed attempts included
+};
+
+struct SteppingCallbacks {
+    /// After each converged increment (after commit), with the converged state.
+    std::function<void(const IncrementRecord&, const Vector& u)> converged;
+    /// State hook after convergence (e.g. accept history variables); may be empty.
+    std::function<void()> commit;
+    /// After a failed attempt, once u is back at the last converged state; may be empty.
+    std::function<void()> rollback;
+    /// Checked before each increment; true stops the run cleanly (e.g. on SIGINT); may be empty.
+    std::function<bool()> stop_requested;
+};
+
+struct SteppingResult {
+    bool completed = false;  ///< lambda = 1 reached
+    /// Empty when completed; else why, e.g. "increment 7 (load factor 0.44 -> 0.47):
+    /// Newton did not converge after 8 cutbacks; last relative residual 3.1e-04
+    /// (tolerance 1e-10)", or that a stop was requested.
+    std::string message;
+    int total_cutbacks = 0;
+    int total_iterations = 0;  ///< Newton iterations of all attempts, failed ones included
+    std::vector<IncrementRecord> increments;
+};
+
+/// Runs the increments from u (the state at lambda = 0). On return u holds the
+/// last converged state (lambda = increments.back().load_factor, or the input u
+/// if none converged). Logs one line per converged increment at Verbosity::normal.
+SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const SteppingSettings& stepping,
+                              const NewtonSettings& newton, LinearSolver& solver, SteppingCallbacks& callbacks,
+                              RunContext* context);
+
+}  // namespace iga::solver

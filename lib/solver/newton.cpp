@@ -1,0 +1,391 @@
+#include "solver/newton.hpp"
+
+#include "core/error.hpp"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <utility>
+
+namespace iga::solver {
+
+namespace {
+
+// Armijo constant: demand a decrease of ||r|| of at least 1e-4 alpha ||r||, the
+// usual value (Nocedal & Wright §3.1): any real descent passes, a flat or
+// rising residual does not.
+constexpr double armijo = 1e-4;
+// Stagnation at round-off: a residual within 1e3 of the target and a step at
+// the level of a few ulps of u cannot be improved by more iterations.
+constexpr double stagnation_residual_factor = 1e3;
+constexpr double stagnation_step = 1e-14;
+// Levenberg-Marquardt: mu = 1e-10 perturbs K at the level of its round-off for
+// a well-scaled K; x100 per retry up to mu = 1 (6 tries).
+constexpr double first_mu = 1e-10;
+constexpr double mu_growth = 100.0;
+constexpr int max_regularizations = 6;
+// Linear systems: extra solves with the same factorization (iterative refinement)
+// while the algebraic residual is above the tolerance.
+constexpr int max_refinements = 2;
+
+std::string format_g(double value)
+{
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.3g", value);
+    return buffer;
+}
+
+double relative(double norm, double force_scale)
+{
+    return norm / std::max(force_scale, DBL_MIN);
+}
+
+double finite_norm_or_inf(const Evaluation& e)
+{
+    if (!e.ok)
+        return std::numeric_limits<double>::infinity();
+    const double n = e.residual.norm();
+    return std::isfinite(n) ? n : std::numeric_limits<double>::infinity();
+}
+
+void evaluate(const NonlinearSystem& system, const Vector& u, double load_factor, bool need_tangent,
+              Evaluation& out, RunContext* context)
+{
+    out.ok = true;
+    out.message.clear();
+    {
+        ScopedTimer timer(context, "assembly");
+        system.evaluate(u, load_factor, need_tangent, out);
+    }
+    if (!out.ok)
+        return;
+    IGA_CHECK(out.residual.size() == u.size(), "NonlinearSystem::evaluate: residual size differs from u");
+    if (need_tangent)
+        IGA_CHECK(out.tangent.rows() == u.size() && out.tangent.cols() == u.size(),
+                  "NonlinearSystem::evaluate: tangent is not n_free x n_free");
+}
+
+// K with every diagonal entry present in its pattern (so that K + mu D keeps the
+// pattern of the assembled tangent when the assembler stores the diagonal, and
+// the symbolic analysis is reused), plus the positions of the diagonal entries.
+SparseMatrix with_diagonal(const SparseMatrix& K, std::vector<int>& diagonal_position)
+{
+    SparseMatrix A = K;
+    A.makeCompressed();
+    const int n = static_cast<int>(A.rows());
+    auto find_diagonal = [&]() {
+        diagonal_position.assign(n, -1);
+        for (int j = 0; j < n; ++j) {
+            const int* first = A.innerIndexPtr() + A.outerIndexPtr()[j];
+            const int* last = A.innerIndexPtr() + A.outerIndexPtr()[j + 1];
+            const int* it = std::lower_bound(first, last, j);
+            if (it != last && *it == j)
+                diagonal_position[j] = static_cast<int>(it - A.innerIndexPtr());
+        }
+        return std::find(diagonal_position.begin(), diagonal_position.end(), -1) == diagonal_position.end();
+    };
+    if (!find_diagonal()) {
+        SparseMatrix zero_diagonal(n, n);
+        std::vector<Triplet> entries;
+        entries.reserve(n);
+        for (int j = 0; j < n; ++j)
+            entries.emplace_back(j, j, 0.0);
+        zero_diagonal.setFromTriplets(entries.begin(), entries.end());
+        A = SparseMatrix(A + zero_diagonal);  // the sum keeps the union pattern, zeros included
+        A.makeCompressed();
+        const bool complete = find_diagonal();
+        IGA_CHECK(complete, "with_diagonal: diagonal entries missing after adding them");
+    }
+    return A;
+}
+
+struct StepResult {
+    LinearStatus status = LinearStatus::ok;
+    bool regularized = false;
+    double mu = 0;
+};
+
+// Solves K du = -r; on a singular K retries with K + mu D (see the header).
+StepResult newton_step(const SparseMatrix& K, const Vector& r, LinearSolver& solver, RunContext* context,
+                       Vector& du)
+{
+    ScopedTimer timer(context, "linear_solve");
+    const Vector rhs = -r;
+    StepResult result;
+    result.status = solver.factorize(K);
+    if (result.status == LinearStatus::failed && solver.kind() == LinearSolver::Kind::cholesky) {
+        // Not positive definite (e.g. an indefinite finite-strain or contact
+        // tangent, or a singular one): LU handles every case Cholesky refuses.
+        solver.set_kind(LinearSolver::Kind::lu);
+        if (context)
+            context->log(Verbosity::verbose, "  tangent not positive definite: switching to LU");
+        result.status = solver.factorize(K);
+    }
+    if (result.status == LinearStatus::ok)
+        result.status = solver.solve(rhs, du);
+    if (result.status != LinearStatus::singular)
+        return result;
+
+    std::vector<int> diagonal_position;
+    SparseMatrix K_reg = with_diagonal(K, diagonal_position);
+    const int n = static_cast<int>(K_reg.rows());
+    Vector D(n);
+    double sum = 0;
+    int n_nonzero = 0;
+    for (int i = 0; i < n; ++i) {
+        D(i) = std::abs(K_reg.valuePtr()[diagonal_position[i]]);
+        if (D(i) > 0) {
+            sum += D(i);
+            ++n_nonzero;
+        }
+    }
+    // A zero diagonal entry gets the mean nonzero one; an all-zero diagonal
+    // carries no scale at all, so use 1 and leave the step length to max_step.
+    const double fill = n_nonzero > 0 ? sum / n_nonzero : 1.0;
+    for (int i = 0; i < n; ++i)
+        if (!(D(i) > 0))
+            D(i) = fill;
+
+    const Vector K_diagonal = [&] {
+        Vector d(n);
+        for (int i = 0; i < n; ++i)
+            d(i) = K_reg.valuePtr()[diagonal_position[i]];
+        return d;
+    }();
+    double mu = first_mu;
+    for (int attempt = 0; attempt < max_regularizations; ++attempt, mu *= mu_growth) {
+        for (int i = 0; i < n; ++i)
+            K_reg.valuePtr()[diagonal_position[i]] = K_diagonal(i) + mu * D(i);
+        result.status = solver.factorize(K_reg);
+        if (result.status == LinearStatus::ok)
+            result.status = solver.solve(rhs, du);
+        if (result.status == LinearStatus::ok) {
+            result.regularized = true;
+            result.mu = mu;
+            return result;
+        }
+    }
+    return result;
+}
+
+}  // namespace
+
+const char* status_name(NewtonStatus status)
+{
+    switch (status) {
+    case NewtonStatus::converged: return "converged";
+    case NewtonStatus::max_iterations: return "max_iterations";
+    case NewtonStatus::diverged: return "diverged";
+    case NewtonStatus::singular: return "singular";
+    case NewtonStatus::evaluation_failed: return "evaluation_failed";
+    }
+    return "unknown";
+}
+
+NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vector& u,
+                          const NewtonSettings& settings, LinearSolver& solver, RunContext* context)
+{
+    IGA_CHECK(static_cast<bool>(system.evaluate), "solve_newton: the system has no evaluate callback");
+    IGA_CHECK(settings.tolerance > 0 && settings.max_iterations >= 1 && settings.max_backtracks >= 0 &&
+                  settings.divergence_factor > 1,
+              "solve_newton: settings out of range (tolerance > 0, max_iterations >= 1, "
+              "max_backtracks >= 0, divergence_factor > 1)");
+    if (!system.symmetric && solver.kind() == LinearSolver::Kind::cholesky)
+        solver.set_kind(LinearSolver::Kind::lu);  // Cholesky would silently give wrong steps
+
+    NewtonReport report;
+    const Vector u_start = u;
+    auto finish = [&](NewtonStatus status, std::string message) {
+        if (status != NewtonStatus::converged)
+            u = u_start;
+        report.status = status;
+        report.message = std::move(message);
+        return report;
+    };
+    auto tolerance_text = [&] { return " (tolerance " + format_g(settings.tolerance) + ")"; };
+
+    Evaluation current, trial, probe;
+    evaluate(system, u, load_factor, true, current, context);
+    if (!current.ok)
+        return finish(NewtonStatus::evaluation_failed, "evaluation failed at the start state: " + current.message);
+    double r_norm = current.residual.norm();
+    if (!std::isfinite(r_norm))
+        return finish(NewtonStatus::diverged, "residual is not finite at the start state");
+    double rel = relative(r_norm, current.force_scale);
+    report.residual_history.push_back(rel);
+    report.residual_norm = rel;
+    if (rel <= settings.tolerance)
+        return finish(NewtonStatus::converged, "converged at the start state (relative residual " + format_g(rel) +
+                                                   ")");
+    const double r_initial = r_norm;
+    bool have_tangent = true;
+
+    if (system.linear) {
+        Vector du;
+        const StepResult step = newton_step(current.tangent, current.residual, solver, context, du);
+        if (step.status != LinearStatus::ok)
+            return finish(NewtonStatus::singular, std::string("linear solve failed (") + status_name(step.status) +
+                                                      "), even with regularization up to mu = " +
+                                                      format_g(first_mu * std::pow(mu_growth, max_regularizations - 1)));
+        report.regularized_iterations = step.regularized ? 1 : 0;
+        // Algebraic residual of the affine system; refine with the same factorization.
+        Vector algebraic = current.residual + current.tangent * du;
+        rel = relative(algebraic.norm(), current.force_scale);
+        for (int k = 0; k < max_refinements && !(rel <= settings.tolerance); ++k) {
+            Vector correction;
+            ScopedTimer timer(context, "linear_solve");
+            if (solver.solve(-algebraic, correction) != LinearStatus::ok)
+                break;
+            du += correction;
+            algebraic = current.residual + current.tangent * du;
+            rel = relative(algebraic.norm(), current.force_scale);
+        }
+        u += du;
+        report.iterations = 1;
+        if (context)
+            context->add_count("newton_iterations", 1);
+        report.residual_history.push_back(rel);
+        report.residual_norm = rel;
+        if (rel <= settings.tolerance)
+            return finish(NewtonStatus::converged, "linear solve, relative residual " + format_g(rel));
+        if (rel <= stagnation_residual_factor * settings.tolerance)
+            return finish(NewtonStatus::converged,
+                          "linear solve, relative residual " + format_g(rel) + " at round-off" + tolerance_text());
+        return finish(NewtonStatus::max_iterations, "linear solve left a relative residual " + format_g(rel) +
+                                                        tolerance_text() + ": the tangent is ill-conditioned");
+    }
+
+    for (int iteration = 1; iteration <= settings.max_iterations; ++iteration) {
+        if (!have_tangent) {
+            evaluate(system, u, load_factor, true, current, context);
+            if (!current.ok)
+                return finish(NewtonStatus::evaluation_failed,
+                              "iteration " + std::to_string(iteration) + ": evaluation failed: " + current.message);
+            have_tangent = true;
+        }
+
+        Vector du;
+        const StepResult step = newton_step(current.tangent, current.residual, solver, context, du);
+        if (step.status != LinearStatus::ok)
+            return finish(NewtonStatus::singular,
+                          "iteration " + std::to_string(iteration) + ": tangent singular (" +
+                              status_name(step.status) + ") even with regularization up to mu = " +
+                              format_g(first_mu * std::pow(mu_growth, max_regularizations - 1)) +
+                              "; last relative residual " + format_g(rel) + tolerance_text());
+        if (step.regularized)
+            ++report.regularized_iterations;
+        if (system.max_step > 0) {
+            const double size = du.lpNorm<Eigen::Infinity>();
+            if (size > system.max_step)
+                du *= system.max_step / size;
+        }
+
+        // Full step, with the tangent: it is accepted most of the time, and then
+        // the next iteration needs no second assembly.
+        double alpha = 1.0;
+        Vector u_new = u + du;
+        evaluate(system, u_new, load_factor, true, trial, context);
+        double new_norm = finite_norm_or_inf(trial);
+        Evaluation* chosen = &trial;
+        bool chosen_has_tangent = true;
+
+        if (!settings.line_search) {
+            if (!trial.ok)
+                return finish(NewtonStatus::evaluation_failed,
+                              "iteration " + std::to_string(iteration) + ": evaluation failed: " + trial.message);
+            if (!std::isfinite(new_norm))
+                return finish(NewtonStatus::diverged,
+                              "iteration " + std::to_string(iteration) + ": residual is not finite");
+        } else if (!(new_norm <= (1.0 - armijo) * r_norm)) {
+            double best_alpha = std::isfinite(new_norm) ? 1.0 : 0.0;
+            double best_norm = new_norm;
+            bool best_is_probe = false;  // the best trial is the one held in `probe`
+            bool accepted = false;
+            std::string failure_message = trial.ok ? std::string() : trial.message;
+            for (int cut = 1; cut <= settings.max_backtracks; ++cut) {
+                alpha *= 0.5;
+                ++report.line_search_cuts;
+                evaluate(system, u + alpha * du, load_factor, false, probe, context);
+                if (!probe.ok)
+                    failure_message = probe.message;
+                const double probe_norm = finite_norm_or_inf(probe);
+                if (probe_norm <= (1.0 - armijo * alpha) * r_norm) {
+                    accepted = true;
+                    best_alpha = alpha;
+                    best_norm = probe_norm;
+                    best_is_probe = true;
+                    break;
+                }
+                if (probe_norm < best_norm) {  // strict: ties keep the longer step
+                    best_alpha = alpha;
+                    best_norm = probe_norm;
+                    best_is_probe = true;
+                } else {
+                    best_is_probe = false;  // `probe` now holds a worse trial than the best
+                }
+            }
+            if (!std::isfinite(best_norm)) {
+                if (!failure_message.empty())
+                    return finish(NewtonStatus::evaluation_failed, "iteration " + std::to_string(iteration) +
+                                                                       ": evaluation failed along the whole line "
+                                                                       "search: " +
+                                                                       failure_message);
+                return finish(NewtonStatus::diverged, "iteration " + std::to_string(iteration) +
+                                                          ": no finite residual along the Newton direction");
+            }
+            alpha = best_alpha;
+            u_new = u + alpha * du;
+            if (alpha == 1.0) {
+                chosen = &trial;
+            } else if (accepted || best_is_probe) {
+                chosen = &probe;
+                chosen_has_tangent = false;
+            } else {
+                evaluate(system, u_new, load_factor, false, probe, context);
+                chosen = &probe;
+                chosen_has_tangent = false;
+                if (!probe.ok)  // it evaluated fine a moment ago: a non-deterministic evaluate
+                    return finish(NewtonStatus::evaluation_failed, "iteration " + std::to_string(iteration) +
+                                                                       ": evaluation failed: " + probe.message);
+            }
+        }
+
+        const double step_size = alpha * du.lpNorm<Eigen::Infinity>();
+        u = std::move(u_new);
+        std::swap(current, *chosen);
+        have_tangent = chosen_has_tangent;
+        report.iterations = iteration;
+        if (context)
+            context->add_count("newton_iterations", 1);
+
+        r_norm = current.residual.norm();
+        rel = relative(r_norm, current.force_scale);
+        report.residual_history.push_back(rel);
+        report.residual_norm = rel;
+        if (context)
+            context->log(Verbosity::verbose, "  newton " + std::to_string(iteration) + ": relative residual " +
+                                                 format_g(rel) + ", step " + format_g(step_size) +
+                                                 (alpha < 1.0 ? ", alpha " + format_g(alpha) : std::string()) +
+                                                 (step.regularized ? ", regularized mu " + format_g(step.mu)
+                                                                   : std::string()));
+
+        if (!std::isfinite(r_norm) || r_norm > settings.divergence_factor * r_initial)
+            return finish(NewtonStatus::diverged, "iteration " + std::to_string(iteration) + ": residual grew to " +
+                                                      format_g(r_norm / r_initial) + " times the initial one");
+        if (rel <= settings.tolerance)
+            return finish(NewtonStatus::converged, "converged in " + std::to_string(iteration) +
+                                                       " iterations, relative residual " + format_g(rel));
+        if (rel <= stagnation_residual_factor * settings.tolerance &&
+            step_size <= stagnation_step * std::max(1.0, u.lpNorm<Eigen::Infinity>()))
+            return finish(NewtonStatus::converged, "converged in " + std::to_string(iteration) +
+                                                       " iterations at round-off, relative residual " +
+                                                       format_g(rel) + tolerance_text());
+    }
+    return finish(NewtonStatus::max_iterations, "no convergence in " + std::to_string(settings.max_iterations) +
+                                                    " iterations; last relative residual " + format_g(rel) +
+                                                    tolerance_text());
+}
+
+}  // namespace iga::solver

@@ -1,0 +1,104 @@
+#pragma once
+// Newton-Raphson for a nonlinear system r(u; lambda) = 0 on the free dofs, with
+// a backtracking line search on ||r||, a trust-radius cap on the step and a
+// Levenberg-Marquardt fallback for singular tangents. Physics-agnostic: the
+// system is a callback returning the residual and tangent K = dr/du (the driver
+// sums the elastic, load and contact terms); nothing here knows what they are.
+//
+// Sign convention: r = f_int - f_ext (zero at equilibrium), K = dr/du, so the
+// Newton step solves K du = -r. Shapes: u and r have n_free entries, K is
+// n_free x n_free. References: Nocedal & Wright, "Numerical Optimization", 2nd
+// ed., §3.1 (Armijo backtracking) and §11.2 (Levenberg-Marquardt), applied to
+// the merit function ||r||; physics.md §7.2 and §7.5 (why contact needs them).
+//
+// Convergence (relative residual, scale = max(force_scale, DBL_MIN)):
+//   ||r|| / scale <= tolerance, or
+//   ||r|| / scale <= 1e3 tolerance and ||step||_inf <= 1e-14 max(1, ||u||_inf):
+//   stagnation at round-off, when the residual of a stiff (penalty) system
+//   cannot drop further because ||K|| ||u|| eps is already near the target.
+//
+// Singular tangent (a body held only by contact at first touch, a frictionless
+// rigid-body mode): when the factorization or the solve reports singular, solve
+// (K + mu D) du = -r instead, D = diag(|K_ii|) with zero diagonal entries
+// replaced by the mean nonzero |K_ii| (or 1 if K has a zero diagonal), mu =
+// 1e-10, 1e-8, ... 1e0 until the solve succeeds. The residual is unchanged, so a
+// converged solution is exact; the huge steps along near-null directions are
+// tamed by max_step and the line search.
+//
+// Line search: accept alpha when ||r(u + alpha du)|| <= (1 - 1e-4 alpha) ||r(u)||,
+// else halve alpha, up to max_backtracks times. A trial whose residual is not
+// finite, or whose evaluation fails, is rejected. If no trial is accepted, the
+// finite trial with the smallest ||r|| is taken (ties go to the longer step, so
+// that Newton walks across regions where r is flat, e.g. an open contact gap,
+// instead of creeping by 2^-max_backtracks per iteration).
+//
+// On any failure status, u is restored to its value on entry.
+
+#include "core/run_context.hpp"
+#include "core/types.hpp"
+#include "solver/linear.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace iga::solver {
+
+/// What one call of the system's evaluate() produces.
+struct Evaluation {
+    Vector residual;       ///< r(u; lambda), n_free
+    SparseMatrix tangent;  ///< K = dr/du, n_free x n_free; filled only when asked for
+    /// Norm of the forces in play (e.g. ||f_ext|| + ||reactions||), the scale of
+    /// the relative residual. Zero only when no force acts at all.
+    double force_scale = 0;
+    /// false: the evaluation itself failed (a projection failed, a non-positive
+    /// Jacobian); Newton reports evaluation_failed with this message.
+    bool ok = true;
+    std::string message;
+};
+
+struct NonlinearSystem {
+    /// Fills out.residual (always) and out.tangent (when need_tangent) at state u
+    /// and load factor lambda. Newton resets out.ok = true and out.message before
+    /// each call; out.tangent keeps its previous storage, so it may be refilled in place.
+    std::function<void(const Vector& u, double load_factor, bool need_tangent, Evaluation& out)> evaluate;
+    bool linear = false;     ///< r is affine in u: one solve per increment
+    bool symmetric = true;   ///< K symmetric: Cholesky may be used, else LU is forced
+    double max_step = 0;     ///< > 0: cap on ||du||_inf (trust radius); 0: no cap
+};
+
+struct NewtonSettings {
+    double tolerance = 1e-10;  ///< on the relative residual
+    int max_iterations = 25;
+    bool line_search = true;
+    int max_backtracks = 12;
+    double divergence_factor = 1e8;  ///< ||r|| > this * ||r_0|| (or not finite): diverged
+};
+
+enum class NewtonStatus { converged, max_iterations, diverged, singular, evaluation_failed };
+
+const char* status_name(NewtonStatus status);
+
+struct NewtonReport {
+    NewtonStatus status = NewtonStatus::max_iterations;
+    int iterations = 0;             ///< Newton steps taken (linear systems: 1)
+    double residual_norm = 0;       ///< final relative residual
+    /// Relative residual at each accepted state, starting with the initial one
+    /// (size iterations + 1 unless the run stopped on a failed evaluation).
+    std::vector<double> residual_history;
+    int regularized_iterations = 0;  ///< steps that needed K + mu D
+    int line_search_cuts = 0;        ///< backtracking halvings over all steps
+    std::string message;             ///< why it stopped, human readable
+};
+
+/// Solves r(u; load_factor) = 0 starting from u. On success u holds the solution;
+/// on failure u is restored to its input value. If the system is not symmetric
+/// and the solver's kind is cholesky, the solver is switched to lu; a Cholesky
+/// factorization that fails (tangent not positive definite) also switches it to
+/// lu, for this and later calls. context may be null; when given, the time in
+/// evaluate() is added to "assembly", factorize + solve to "linear_solve", and the
+/// steps to the counter "newton_iterations".
+NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vector& u,
+                          const NewtonSettings& settings, LinearSolver& solver, RunContext* context);
+
+}  // namespace iga::solver

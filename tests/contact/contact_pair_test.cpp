@@ -1,0 +1,257 @@
+// ContactPair: tangent = finite difference of the pair residual for two curved
+// deformable sides (both formulations) and against a rigid plane; far-apart
+// pairs do no work; two-half-pass is unbiased under swapping the surfaces.
+
+#include "contact/contact_pair.hpp"
+
+#include "fixtures.hpp"
+#include "support/finite_difference.hpp"
+#include "support/tolerance.hpp"
+
+#include <gtest/gtest.h>
+#include <random>
+
+namespace iga::contact {
+namespace {
+
+using test::vec2;
+
+// Central differences, h = 1e-7 on O(1) geometry with eps = 1e3: truncation
+// ~h^2 and round-off ~eps_mach |r| / h stay near 1e-8 relative; 1e-6 still
+// exposes a missing term (O(1e-2)) or a wrong sign (O(1)).
+constexpr double fd_step = 1e-7;
+constexpr double fd_tolerance = 1e-6;
+// No Gauss point may sit closer than this to the kink of <g_N> (nor to a change
+// of active set), or the FD quotient straddles it.
+constexpr double min_gap_distance = 100 * fd_step;
+
+struct Scene {
+    DeformableSide disc;   // arc of a half disc (centre (0, 1), R = 1), 8 spans
+    DeformableSide block;  // curved rational top of a block
+};
+
+Scene make_scene()
+{
+    return {DeformableSide::make(test::refined_half_disc(8), Side::v0),
+            DeformableSide::make(test::curved_block(), Side::v1)};
+}
+
+/// Disc pushed 0.04 into the block (and a little sideways), with noise.
+std::pair<RowMatrix, RowMatrix> overlap_state(const ContactPair& pair, unsigned seed)
+{
+    std::mt19937 rng(seed);
+    const RowMatrix u1 = test::shifted(pair.n_control_points(0), vec2(0.01, -0.04), 2e-3, rng);
+    const RowMatrix u2 = test::shifted(pair.n_control_points(1), vec2(0.0, 0.0), 2e-3, rng);
+    return {u1, u2};
+}
+
+double smallest_gap_magnitude(const PairEvaluation& ev)
+{
+    double smallest = std::numeric_limits<double>::infinity();
+    for (const CarrierResult& c : ev.carriers)
+        for (Index g = 0; g < c.gap.size(); ++g)
+            if (c.state[g] == PointState::ok)
+                smallest = std::min(smallest, std::abs(c.gap(g)));
+    return smallest;
+}
+
+void expect_tangent_is_derivative(const ContactPair& pair, const RowMatrix& u1, const RowMatrix& u2,
+                                  const std::string& what)
+{
+    const int n1 = pair.n_control_points(0), n2 = pair.n_control_points(1);
+    const PairEvaluation ev = pair.evaluate(u1, u2, true);
+    ASSERT_TRUE(ev.ok) << ev.message;
+    ASSERT_GE(ev.n_active, 4) << what << ": the state must have several active Gauss points";
+    ASSERT_TRUE(test::at_least(smallest_gap_magnitude(ev), min_gap_distance)) << what;
+    const Matrix K = test::dense(ev.tangent, pair.n_local_dofs());
+    auto residual = [&](const Vector& v) {
+        const auto [a, b] = test::unstack(v, n1, n2);
+        const PairEvaluation e = pair.evaluate(a, b, false);
+        EXPECT_TRUE(e.ok) << e.message;
+        EXPECT_EQ(e.n_active, ev.n_active) << what << ": active set changed under the FD step";
+        return e.residual;
+    };
+    const Matrix K_fd = test::central_difference_jacobian(residual, test::stack(u1, u2), fd_step);
+    const double err = (K - K_fd).norm() / K_fd.norm();
+    EXPECT_TRUE(test::at_most(err, fd_tolerance)) << what;
+}
+
+TEST(ContactPair, TwoHalfPassTangentIsDerivative)
+{
+    const Scene s = make_scene();
+    const ContactPair pair({.formulation = Formulation::two_half_pass, .penalty = 1e3}, s.disc, s.block);
+    EXPECT_EQ(pair.n_carriers(), 2);
+    for (const unsigned seed : {1u, 2u}) {
+        const auto [u1, u2] = overlap_state(pair, seed);
+        expect_tangent_is_derivative(pair, u1, u2, "two_half_pass seed " + std::to_string(seed));
+    }
+}
+
+TEST(ContactPair, SinglePassTangentIsSymmetricDerivative)
+{
+    const Scene s = make_scene();
+    const ContactPair pair({.formulation = Formulation::single_pass, .penalty = 1e3}, s.disc, s.block);
+    EXPECT_EQ(pair.n_carriers(), 1);
+    const auto [u1, u2] = overlap_state(pair, 3);
+    expect_tangent_is_derivative(pair, u1, u2, "single_pass");
+    const PairEvaluation ev = pair.evaluate(u1, u2, true);
+    const Matrix K = test::dense(ev.tangent, pair.n_local_dofs());
+    constexpr double symmetry_tolerance = 1e-10;  // Hessian of Pi_c: round-off only
+    EXPECT_TRUE(test::at_most((K - K.transpose()).norm() / K.norm(), symmetry_tolerance));
+    // Action = reaction: the single pass residual sums to zero per component.
+    Vector sum = Vector::Zero(2);
+    for (int a = 0; a < pair.n_local_dofs() / 2; ++a)
+        sum += ev.residual.segment(2 * a, 2);
+    EXPECT_TRUE(test::at_most(sum.norm(), 1e-12 * ev.residual.norm()));  // round-off of the sums
+}
+
+TEST(ContactPair, TwoHalfPassTangentIsNotSymmetric)
+{
+    // Not the Hessian of one potential (physics.md 3.4): a symmetric solver would be wrong.
+    const Scene s = make_scene();
+    const ContactPair pair({.formulation = Formulation::two_half_pass, .penalty = 1e3}, s.disc, s.block);
+    const auto [u1, u2] = overlap_state(pair, 1);
+    const PairEvaluation ev = pair.evaluate(u1, u2, true);
+    const Matrix K = test::dense(ev.tangent, pair.n_local_dofs());
+    EXPECT_TRUE(test::at_least((K - K.transpose()).norm() / K.norm(), 1e-6));
+}
+
+TEST(ContactPair, TwoHalfPassIsUnbiasedUnderSwap)
+{
+    const Scene s = make_scene();
+    const PairSettings settings{.formulation = Formulation::two_half_pass, .penalty = 1e3};
+    const ContactPair ab(settings, s.disc, s.block);
+    const ContactPair ba(settings, s.block, s.disc);
+    const auto [u1, u2] = overlap_state(ab, 5);
+    const PairEvaluation e_ab = ab.evaluate(u1, u2, true);
+    const PairEvaluation e_ba = ba.evaluate(u2, u1, true);
+    ASSERT_TRUE(e_ab.ok && e_ba.ok);
+    const Index n1 = 2 * ab.n_control_points(0), n2 = 2 * ab.n_control_points(1);
+    Vector swapped(n1 + n2);
+    swapped << e_ba.residual.tail(n1), e_ba.residual.head(n2);
+    // Same Gauss points, same projections (warm starts aside): round-off only.
+    constexpr double swap_tolerance = 1e-12;
+    EXPECT_TRUE(test::at_most((swapped - e_ab.residual).norm(), swap_tolerance * e_ab.residual.norm()));
+    EXPECT_EQ(e_ab.n_active, e_ba.n_active);
+}
+
+TEST(ContactPair, RigidPlaneTangentIsDerivative)
+{
+    const DeformableSide disc = DeformableSide::make(test::refined_half_disc(8), Side::v0);
+    const RigidPlane floor = RigidPlane::make(vec2(0.0, 0.0), vec2(0.05, 1.0));
+    for (const Formulation f : {Formulation::two_half_pass, Formulation::single_pass}) {
+        const ContactPair pair({.formulation = f, .penalty = 1e3}, disc, floor);
+        EXPECT_EQ(pair.n_local_dofs(), 2 * pair.n_control_points(0));
+        std::mt19937 rng(7);
+        const RowMatrix u1 = test::shifted(pair.n_control_points(0), vec2(0.0, -0.03), 2e-3, rng);
+        expect_tangent_is_derivative(pair, u1, RowMatrix(0, 2), "rigid plane");
+        const PairEvaluation ev = pair.evaluate(u1, RowMatrix(0, 2), false);
+        EXPECT_EQ(ev.projections, 0);
+        // The plane pushes the disc up: the total force on the disc -sum r has a positive y.
+        double fy = 0.0;
+        for (int a = 0; a < pair.n_control_points(0); ++a)
+            fy -= ev.residual(2 * a + 1);
+        EXPECT_TRUE(test::at_least(fy, 0.0));
+    }
+    // The rigid obstacle may also be listed first.
+    const ContactPair flipped({.penalty = 1e3}, floor, disc);
+    EXPECT_EQ(flipped.n_control_points(0), 0);
+    std::mt19937 rng(7);
+    const RowMatrix u = test::shifted(flipped.n_control_points(1), vec2(0.0, -0.03), 2e-3, rng);
+    expect_tangent_is_derivative(flipped, RowMatrix(0, 2), u, "rigid plane first");
+}
+
+TEST(ContactPair, FarApartDoesNoWork)
+{
+    const Scene s = make_scene();
+    for (const Formulation f : {Formulation::two_half_pass, Formulation::single_pass}) {
+        const ContactPair pair({.formulation = f, .penalty = 1e3}, s.disc, s.block);
+        std::mt19937 rng(3);
+        const RowMatrix u1 = test::shifted(pair.n_control_points(0), vec2(0.0, 10.0), 1e-3, rng);
+        const RowMatrix u2 = RowMatrix::Zero(pair.n_control_points(1), 2);
+        RunContext ctx;
+        const PairEvaluation ev = pair.evaluate(u1, u2, true, &ctx);
+        ASSERT_TRUE(ev.ok);
+        EXPECT_EQ(ev.projections, 0);
+        EXPECT_EQ(ev.candidates, 0);
+        EXPECT_EQ(ev.n_active, 0);
+        EXPECT_EQ(ev.residual.size(), pair.n_local_dofs());
+        EXPECT_EQ(ev.residual.norm(), 0.0);
+        EXPECT_TRUE(ev.tangent.empty());
+        EXPECT_EQ(ctx.count("projections"), 0);
+        // Every Gauss point is reported, as far.
+        ASSERT_EQ(static_cast<int>(ev.carriers.size()), pair.n_carriers());
+        for (int c = 0; c < pair.n_carriers(); ++c) {
+            EXPECT_EQ(static_cast<int>(ev.carriers[c].state.size()), pair.n_gauss_points(c));
+            for (const PointState st : ev.carriers[c].state)
+                EXPECT_EQ(st, PointState::far);
+        }
+    }
+}
+
+TEST(ContactPair, CountersAndCarriers)
+{
+    const Scene s = make_scene();
+    const ContactPair pair({.formulation = Formulation::two_half_pass, .penalty = 1e3, .quadrature = 3}, s.disc,
+                           s.block);
+    // 8 spans x 3 points on the disc, 2 spans x 3 points on the block.
+    EXPECT_EQ(pair.n_gauss_points(0), 24);
+    EXPECT_EQ(pair.n_gauss_points(1), 6);
+    const auto [u1, u2] = overlap_state(pair, 1);
+    RunContext ctx;
+    const PairEvaluation ev = pair.evaluate(u1, u2, false, &ctx);
+    ASSERT_TRUE(ev.ok);
+    EXPECT_GT(ev.projections, 0);
+    EXPECT_EQ(ctx.count("projections"), ev.projections);
+    EXPECT_EQ(ctx.count("contact_candidates"), ev.candidates);
+    EXPECT_EQ(ctx.count("projection_iterations"), ev.projection_iterations);
+    EXPECT_GE(ev.candidates, ev.projections);
+    ASSERT_EQ(ev.carriers.size(), 2u);
+    EXPECT_EQ(ev.carriers[0].surface, 0);
+    EXPECT_EQ(ev.carriers[1].surface, 1);
+    double max_gap = 0.0;
+    for (const CarrierResult& c : ev.carriers)
+        for (Index g = 0; g < c.gap.size(); ++g) {
+            // Pressure is eps <g_N> exactly where the point was projected orthogonally.
+            const double expected = c.state[g] == PointState::ok ? 1e3 * std::max(c.gap(g), 0.0) : 0.0;
+            EXPECT_TRUE(test::near_rel(c.pressure(g), expected, 1e-15));
+            if (c.state[g] == PointState::ok)
+                max_gap = std::max(max_gap, c.gap(g));
+            EXPECT_TRUE(test::at_least(c.weight(g), 0.0));
+        }
+    EXPECT_TRUE(test::near(ev.max_penetration, max_gap, 0.0));
+    EXPECT_TRUE(test::at_least(ev.max_penetration, 0.03));  // pushed in by ~0.04
+
+    // Warm starts: a repeated evaluation converges at once and gives the same residual.
+    const PairEvaluation again = pair.evaluate(u1, u2, false);
+    EXPECT_LT(again.projection_iterations, ev.projection_iterations);
+    EXPECT_TRUE(test::at_most((again.residual - ev.residual).norm(), 1e-10 * ev.residual.norm()));
+}
+
+TEST(ContactPair, NonFiniteDisplacementIsAFailureStatus)
+{
+    const Scene s = make_scene();
+    const ContactPair pair({.penalty = 1e3}, s.disc, s.block);
+    RowMatrix u1 = RowMatrix::Zero(pair.n_control_points(0), 2);
+    u1(3, 1) = std::numeric_limits<double>::quiet_NaN();
+    const PairEvaluation ev = pair.evaluate(u1, RowMatrix::Zero(pair.n_control_points(1), 2), true);
+    EXPECT_FALSE(ev.ok);
+    EXPECT_FALSE(ev.message.empty());
+}
+
+TEST(ContactPair, UnsupportedInputsAreClearErrors)
+{
+    const Scene s = make_scene();
+    const RigidPlane floor = RigidPlane::make(vec2(0, 0), vec2(0, 1));
+    EXPECT_THROW(ContactPair({.penalty = 1e3}, floor, floor), Error);
+    EXPECT_THROW(ContactPair({.penalty = 0.0}, s.disc, floor), Error);
+    VecN p3(3), n3(3);
+    p3 << 0, 0, 0;
+    n3 << 0, 0, 1;
+    EXPECT_THROW(ContactPair({.penalty = 1e3}, s.disc, RigidPlane::make(p3, n3)), Error);
+    // A collapsed side (the half disc's u0) cannot carry contact.
+    EXPECT_THROW(ContactPair({.penalty = 1e3}, DeformableSide{nurbs::extract_side(test::refined_half_disc(2), Side::u0), 1}, floor), Error);
+}
+
+}  // namespace
+}  // namespace iga::contact

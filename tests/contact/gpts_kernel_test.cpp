@@ -1,0 +1,224 @@
+// GPTS penalty kernel: the tangent is the derivative of the residual (with the
+// projection re-solved inside the residual), the single-pass tangent is the
+// symmetric Hessian of Pi_c, forces balance, and the signs follow gap.hpp.
+
+#include "contact/gpts_kernel.hpp"
+
+#include "fixtures.hpp"
+#include "support/finite_difference.hpp"
+#include "support/tolerance.hpp"
+
+#include <gtest/gtest.h>
+#include <random>
+
+namespace iga::contact {
+namespace {
+
+using test::vec2;
+
+// Central differences with h = 1e-6 on O(1) geometry: truncation ~h^2 |r'''| and
+// round-off ~eps |r| / h give ~1e-9 relative; 1e-6 still exposes a wrong sign or
+// a missing curvature term, which are O(1e-2) or larger here.
+constexpr double fd_step = 1e-6;
+constexpr double fd_tolerance = 1e-6;
+// The single-pass tangent is a Hessian: symmetric up to round-off of its sums.
+constexpr double symmetry_tolerance = 1e-10;
+
+/// A slave curve: its reference control points and the basis values at one
+/// Gauss point eta (held fixed, as in the pair).
+struct Slave {
+    nurbs::Patch curve;
+    double eta;
+    double W;
+};
+
+Slave linear_slave()
+{
+    // A segment below the arch's crest (y ~ 0.25): penetrating by ~0.08 at eta.
+    return {test::make_curve(1, {0, 0, 1, 1}, {{0.6, 0.18}, {1.5, 0.15}}, {1.0, 1.0}), 0.45, 0.37};
+}
+
+Slave quadratic_slave()
+{
+    return {test::make_curve(2, {0, 0, 0, 1, 1, 1}, {{0.5, 0.14}, {1.1, 0.20}, {1.7, 0.10}}, {1.0, 1.4, 0.9}), 0.6,
+            0.29};
+}
+
+Vector slave_basis(const Slave& s)
+{
+    VecN eta(1);
+    eta(0) = s.eta;
+    return nurbs::rational_basis(s.curve, eta, 0).R;
+}
+
+/// Kernel at the dof vector u = [slave cp displacements ; master cp displacements].
+KernelResult evaluate_kernel(const Slave& slave, const nurbs::Patch& master, const Vector& u,
+                             const KernelSettings& settings, Projection* projection = nullptr)
+{
+    const Index n_s = slave.curve.n_control_points(), n_m = master.n_control_points();
+    RowMatrix xs = slave.curve.control_points(), xm = master.control_points();
+    for (Index a = 0; a < n_s; ++a)
+        xs.row(a) += u.segment(2 * a, 2).transpose();
+    for (Index b = 0; b < n_m; ++b)
+        xm.row(b) += u.segment(2 * (n_s + b), 2).transpose();
+    const Vector N = slave_basis(slave);
+    VecN x = VecN::Zero(2);
+    for (Index a = 0; a < n_s; ++a)
+        x += N(a) * xs.row(a).transpose();
+    const Projection p = project_to_curve(master.with_control_points(xm), test::rational_arch_sign, x);
+    EXPECT_EQ(p.status, Projection::Status::ok);
+    EXPECT_EQ(p.basis.indices.size(), static_cast<std::size_t>(n_m));  // one span: local = global numbering
+    if (projection)
+        *projection = p;
+    return gpts_kernel(N, slave.W, p, settings);
+}
+
+Vector random_state(Index n, unsigned seed)
+{
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    Vector u(n);
+    for (Index i = 0; i < n; ++i)
+        u(i) = 2e-3 * unit(rng);
+    return u;
+}
+
+double relative_error(const Matrix& K, const Matrix& K_ref) { return (K - K_ref).norm() / K_ref.norm(); }
+
+class KernelFd : public ::testing::TestWithParam<int> {};
+
+TEST_P(KernelFd, SinglePassTangentIsSymmetricDerivative)
+{
+    const Slave slave = GetParam() == 1 ? linear_slave() : quadratic_slave();
+    const nurbs::Patch master = test::rational_arch();
+    const KernelSettings settings{.penalty = 1e3, .master_rows = true, .need_tangent = true};
+    const Index n = 2 * (slave.curve.n_control_points() + master.n_control_points());
+    for (const unsigned seed : {1u, 2u, 3u}) {
+        const Vector u = random_state(n, seed);
+        Projection p;
+        const KernelResult k = evaluate_kernel(slave, master, u, settings, &p);
+        ASSERT_TRUE(k.ok);
+        ASSERT_GT(p.gap, 0.02) << "the state must penetrate clearly (seed " << seed << ")";
+        ASSERT_GT(std::abs(p.curvature), 0.1) << "the master must be curved here";
+        const Matrix K_fd = test::central_difference_jacobian(
+            [&](const Vector& v) { return evaluate_kernel(slave, master, v, settings).residual; }, u, fd_step);
+        const double err = relative_error(k.tangent, K_fd);
+        EXPECT_TRUE(test::at_most(err, fd_tolerance)) << "seed " << seed;
+        const double asym = (k.tangent - k.tangent.transpose()).norm() / k.tangent.norm();
+        EXPECT_TRUE(test::at_most(asym, symmetry_tolerance)) << "seed " << seed;
+
+        // The geometric (p-weighted) terms matter: dropping them is visibly wrong,
+        // so this test would catch their absence.
+        Vector Nn(n);
+        const Vector N = slave_basis(slave);
+        const Index n_s = slave.curve.n_control_points();
+        for (Index a = 0; a < n_s; ++a)
+            Nn.segment(2 * a, 2) = N(a) * p.normal;
+        for (Index b = 0; b < master.n_control_points(); ++b)
+            Nn.segment(2 * (n_s + b), 2) = -p.basis.R(b) * p.normal;
+        const Matrix K_main = settings.penalty * slave.W * Nn * Nn.transpose();
+        EXPECT_TRUE(test::at_least(relative_error(K_main, K_fd), 1e-2)) << "seed " << seed;
+    }
+}
+
+TEST_P(KernelFd, HalfPassTangentIsDerivativeOfSlaveRows)
+{
+    const Slave slave = GetParam() == 1 ? linear_slave() : quadratic_slave();
+    const nurbs::Patch master = test::rational_arch();
+    const KernelSettings settings{.penalty = 1e3, .master_rows = false, .need_tangent = true};
+    const Index n_s = 2 * slave.curve.n_control_points();
+    const Index n = n_s + 2 * master.n_control_points();
+    for (const unsigned seed : {4u, 5u}) {
+        const Vector u = random_state(n, seed);
+        const KernelResult k = evaluate_kernel(slave, master, u, settings);
+        ASSERT_TRUE(k.ok);
+        EXPECT_TRUE(test::at_most(k.residual.tail(n - n_s).norm(), 0.0));  // master rows are not assembled
+        EXPECT_TRUE(test::at_most(k.tangent.bottomRows(n - n_s).norm(), 0.0));
+        const Matrix K_fd = test::central_difference_jacobian(
+            [&](const Vector& v) { return evaluate_kernel(slave, master, v, settings).residual; }, u, fd_step);
+        EXPECT_TRUE(test::at_most(relative_error(k.tangent.topRows(n_s), K_fd.topRows(n_s)), fd_tolerance))
+            << "seed " << seed;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(SlaveDegree, KernelFd, ::testing::Values(1, 2));
+
+TEST(Kernel, ForcesPushTheSlaveOutAndBalance)
+{
+    const Slave slave = quadratic_slave();
+    const nurbs::Patch master = test::rational_arch();
+    const KernelSettings settings{.penalty = 2e3, .master_rows = true, .need_tangent = false};
+    const Index n = 2 * (slave.curve.n_control_points() + master.n_control_points());
+    Projection p;
+    const KernelResult k = evaluate_kernel(slave, master, Vector::Zero(n), settings, &p);
+    ASSERT_GT(p.gap, 0.0);
+    EXPECT_TRUE(test::near_rel(k.pressure, settings.penalty * p.gap, 1e-15));
+    EXPECT_TRUE(k.tangent.size() == 0);
+    // Force on the slave = -(sum of slave rows) = p W n (partition of unity), along
+    // the master's outward normal (up, out of the arch's body).
+    VecN slave_force = VecN::Zero(2), total = VecN::Zero(2);
+    for (Index a = 0; a < slave.curve.n_control_points(); ++a)
+        slave_force -= k.residual.segment(2 * a, 2);
+    for (Index i = 0; i < n / 2; ++i)
+        total += k.residual.segment(2 * i, 2);
+    constexpr double sum_tolerance = 1e-12;  // round-off of sums of O(p W) terms
+    EXPECT_TRUE(test::at_most((slave_force - k.pressure * slave.W * p.normal).norm(), sum_tolerance * k.pressure));
+    EXPECT_TRUE(test::at_least(slave_force(1), 0.0));
+    EXPECT_TRUE(test::at_most(total.norm(), sum_tolerance * k.pressure));  // action = reaction
+}
+
+TEST(Kernel, OpenGapGivesNothing)
+{
+    const Slave slave = linear_slave();
+    const nurbs::Patch master = test::rational_arch();
+    const Index n = 2 * (slave.curve.n_control_points() + master.n_control_points());
+    Vector u = Vector::Zero(n);
+    for (Index a = 0; a < slave.curve.n_control_points(); ++a)
+        u(2 * a + 1) = 0.5;  // lift the slave well above the arch
+    Projection p;
+    const KernelResult k =
+        evaluate_kernel(slave, master, u, {.penalty = 1e3, .master_rows = true, .need_tangent = true}, &p);
+    EXPECT_LT(p.gap, 0.0);
+    EXPECT_EQ(k.pressure, 0.0);
+    EXPECT_EQ(k.residual.norm(), 0.0);
+    EXPECT_EQ(k.tangent.norm(), 0.0);
+}
+
+TEST(Kernel, RigidPlaneTangentIsDerivative)
+{
+    const Slave slave = quadratic_slave();
+    const RigidPlane plane = RigidPlane::make(vec2(0.0, 0.0), vec2(0.1, -1.0));  // obstacle above, tilted
+    const KernelSettings settings{.penalty = 5e2, .master_rows = false, .need_tangent = true};
+    const Vector N = slave_basis(slave);
+    const Index n = 2 * slave.curve.n_control_points();
+    auto kernel = [&](const Vector& u) {
+        VecN x = VecN::Zero(2);
+        for (Index a = 0; a < slave.curve.n_control_points(); ++a)
+            x += N(a) * (slave.curve.control_points().row(a).transpose() + u.segment(2 * a, 2));
+        return gpts_rigid_kernel(N, slave.W, plane.normal, plane.gap(x), settings);
+    };
+    const Vector u = random_state(n, 9) + Vector::Constant(n, 0.05);  // pushed up into the obstacle
+    const KernelResult k = kernel(u);
+    ASSERT_GT(k.pressure, 0.0);
+    const Matrix K_fd = test::central_difference_jacobian([&](const Vector& v) { return kernel(v).residual; }, u,
+                                                          fd_step);
+    EXPECT_TRUE(test::at_most(relative_error(k.tangent, K_fd), fd_tolerance));
+    // Force on the slave points along the plane normal, out of the obstacle.
+    VecN force = VecN::Zero(2);
+    for (Index a = 0; a < n / 2; ++a)
+        force -= k.residual.segment(2 * a, 2);
+    EXPECT_TRUE(test::at_least(force.dot(plane.normal), 0.0));
+    EXPECT_TRUE(test::near_rel(force.norm(), k.pressure * slave.W, 1e-12));
+}
+
+TEST(RigidPlane, GapSign)
+{
+    const RigidPlane floor = RigidPlane::make(vec2(0, 0), vec2(0, 2));  // normalized by make
+    EXPECT_TRUE(test::near(floor.normal.norm(), 1.0, 1e-15));
+    EXPECT_TRUE(test::near(floor.gap(vec2(3, 0.5)), -0.5, 1e-15));  // above: open
+    EXPECT_TRUE(test::near(floor.gap(vec2(3, -0.2)), 0.2, 1e-15));  // inside: penetration
+    EXPECT_THROW(RigidPlane::make(vec2(0, 0), vec2(0, 0)), Error);
+}
+
+}  // namespace
+}  // namespace iga::contact

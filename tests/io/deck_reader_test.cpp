@@ -1,0 +1,234 @@
+// Tests of io::read_deck / read_deck_text and write_resolved_yaml against
+// shared/spec/deck.md: the values and defaults of valid decks, paths, and the
+// read -> write -> read round trip of the resolved deck.
+
+#include "deck_test_support.hpp"
+
+#include "io/deck_writer.hpp"
+#include "io/yaml_cursor.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace iga::io {
+namespace {
+
+using test::cube_deck_3d;
+using test::hertz_deck;
+using test::minimal_deck;
+using test::read;
+using test::replaced;
+using test::two_cylinders_deck;
+
+// ---------------------------------------------------------------------------
+// Valid decks
+
+TEST(DeckReader, ReadsEveryValueOfACompleteHertzDeck)
+{
+    const Deck d = read(hertz_deck);
+    EXPECT_EQ(d.format, 1);
+    EXPECT_EQ(d.title, "Hertz cylinder on a rigid plane");
+    EXPECT_EQ(d.analysis.dimension, 2);
+    EXPECT_EQ(d.analysis.plane, PlaneMode::strain);
+    EXPECT_EQ(d.analysis.kinematics, Kinematics::finite);
+
+    ASSERT_EQ(d.materials.size(), 1u);
+    EXPECT_EQ(d.materials[0], (Material{"rubber", MaterialModel::neo_hookean, 1000.0, 0.3}));
+
+    ASSERT_EQ(d.bodies.size(), 2u);
+    const Body& cyl = d.bodies[0];
+    EXPECT_EQ(cyl.name, "cylinder");
+    EXPECT_FALSE(cyl.rigid);
+    EXPECT_EQ(cyl.material, "rubber");
+    ASSERT_TRUE(cyl.nurbs.has_value());
+    EXPECT_FALSE(cyl.shape.has_value());
+    EXPECT_EQ(cyl.nurbs->degrees, (std::vector<int>{2, 1}));
+    EXPECT_EQ(cyl.nurbs->knots,
+              (std::vector<std::vector<double>>{{0, 0, 0, 1, 1, 1}, {0, 0, 1, 1}}));
+    ASSERT_EQ(cyl.nurbs->control_points.size(), 6u);
+    EXPECT_EQ(cyl.nurbs->control_points[1], (std::vector<double>{1.0, 0.0, 0.7071067811865476}));
+    EXPECT_EQ(cyl.nurbs->control_points[4], (std::vector<double>{0.5, 1.0, 0.7071067811865476}));
+    EXPECT_EQ(cyl.refine.elevate, (std::vector<int>{1, 1}));
+    EXPECT_EQ(cyl.refine.spans, (std::vector<int>{32, 16}));
+    EXPECT_EQ(cyl.refine.insert, (std::vector<std::vector<double>>{{0.05, 0.1}, {}}));
+
+    const Body& floor = d.bodies[1];
+    EXPECT_TRUE(floor.rigid);
+    ASSERT_TRUE(floor.plane.has_value());
+    EXPECT_EQ(floor.plane->point, (std::vector<double>{0.0, -0.5}));
+    // [0, 2] normalized: exact, since 2 is a power of two.
+    EXPECT_EQ(floor.plane->normal, (std::vector<double>{0.0, 1.0}));
+
+    ASSERT_EQ(d.constraints.size(), 1u);
+    EXPECT_EQ(d.constraints[0], (Constraint{"cylinder", Side::u0, {true, false}, {0.0, 0.0}}));
+    ASSERT_EQ(d.loads.size(), 1u);
+    EXPECT_EQ(d.loads[0].body, "cylinder");
+    EXPECT_EQ(d.loads[0].side, Side::v1);
+    EXPECT_EQ(d.loads[0].kind, LoadKind::force);
+    EXPECT_EQ(d.loads[0].vector, (std::vector<double>{0.0, -5.0}));
+
+    ASSERT_EQ(d.contact.size(), 1u);
+    const ContactPair& pair = d.contact[0];
+    EXPECT_EQ(pair.name, "cyl_floor");
+    EXPECT_EQ(pair.first, (ContactSurface{"cylinder", Side::v0}));
+    EXPECT_EQ(pair.second, (ContactSurface{"floor", std::nullopt}));
+    EXPECT_EQ(pair.formulation, Formulation::two_half_pass);
+    EXPECT_EQ(pair.penalty, 1.0e6);
+    EXPECT_EQ(pair.quadrature, 4);
+
+    EXPECT_EQ(d.steps, (Steps{10, true, 4}));
+    EXPECT_EQ(d.newton, (Newton{1.0e-9, 30, false}));
+    EXPECT_EQ(d.output.file, "inputs/results/hertz_run.h5");  // relative to the deck's folder
+    EXPECT_FALSE(d.output.every_step);
+    EXPECT_EQ(d.output.samples_per_span, 8);
+    EXPECT_TRUE(d.output.paraview);
+    ASSERT_TRUE(d.output.reference.has_value());
+    EXPECT_EQ(*d.output.reference, (Reference{"cyl_floor", ReferenceType::hertz_cylinder_plane, 1.0, {}, 10.0}));
+
+    EXPECT_EQ(d.source_file, "hertz.yaml");
+    EXPECT_EQ(d.resolved_yaml, write_resolved_yaml(d));
+}
+
+TEST(DeckReader, Reads3dDeckWithEveryLoadAndConstraintKind)
+{
+    const Deck d = read(cube_deck_3d);
+    EXPECT_EQ(d.analysis.dimension, 3);
+    EXPECT_EQ(d.bodies[0].nurbs->control_points.size(), 8u);
+    EXPECT_EQ(d.bodies[0].refine.spans, (std::vector<int>{2, 2, 2}));
+    // Unit length up to round-off (0.36 + 0.64 in floating point): kept as written.
+    EXPECT_EQ(d.bodies[1].plane->normal, (std::vector<double>{0.6, 0.0, 0.8}));
+    EXPECT_EQ(d.constraints[0], (Constraint{"cube", Side::w1, {true, true, true}, {0.0, 0.0, -0.2}}));
+    EXPECT_EQ(d.constraints[1], (Constraint{"cube", Side::u0, {true, false, true}, {0.0, 0.0, 0.0}}));
+    EXPECT_EQ(d.loads[0].kind, LoadKind::gravity);
+    EXPECT_FALSE(d.loads[0].side.has_value());
+    EXPECT_EQ(d.loads[0].vector, (std::vector<double>{0.0, 0.0, -9.81}));
+    EXPECT_EQ(d.loads[0].density, 7800.0);
+    EXPECT_EQ(d.loads[1].kind, LoadKind::pressure);
+    EXPECT_EQ(d.loads[1].side, Side::v1);
+    EXPECT_EQ(d.loads[1].pressure, 2.5);
+    EXPECT_EQ(d.contact[0].first, (ContactSurface{"table", std::nullopt}));
+    EXPECT_EQ(d.contact[0].second, (ContactSurface{"cube", Side::w0}));
+    EXPECT_EQ(d.contact[0].formulation, Formulation::single_pass);
+}
+
+TEST(DeckReader, NormalizesTheRigidPlaneNormal)
+{
+    const Deck d = read(replaced(minimal_deck, "normal: [0, 1]", "normal: [3, 4]"));
+    // 3/5 and 4/5 are each one correctly rounded division.
+    EXPECT_EQ(d.bodies[1].plane->normal, (std::vector<double>{3.0 / 5.0, 4.0 / 5.0}));
+}
+
+TEST(DeckReader, OmittedOptionalSectionsTakeTheDocumentedDefaults)
+{
+    const Deck d = read(minimal_deck);
+    // The values of the deck.md tables, written out (not taken from the structs).
+    EXPECT_EQ(d.title, "");
+    EXPECT_EQ(d.analysis.plane, PlaneMode::strain);
+    EXPECT_EQ(d.analysis.kinematics, Kinematics::small);
+    EXPECT_EQ(d.materials[0].model, MaterialModel::linear_elastic);
+    EXPECT_EQ(d.contact[0].formulation, Formulation::two_half_pass);
+    EXPECT_EQ(d.contact[0].quadrature, 0);  // 0 = degree + 2 of each side
+    EXPECT_EQ(d.steps.count, 1);
+    EXPECT_TRUE(d.steps.adaptive);
+    EXPECT_EQ(d.steps.max_cutbacks, 8);
+    EXPECT_EQ(d.newton.tolerance, 1e-10);
+    EXPECT_EQ(d.newton.max_iterations, 25);
+    EXPECT_TRUE(d.newton.line_search);
+    EXPECT_EQ(d.output.file, "inputs/hertz.h5");  // deck name with .h5, in the deck's folder
+    EXPECT_TRUE(d.output.every_step);
+    EXPECT_EQ(d.output.samples_per_span, 16);
+    EXPECT_FALSE(d.output.reference.has_value());
+    EXPECT_FALSE(d.output.paraview);
+    EXPECT_TRUE(d.bodies[0].refine == Refine{});
+
+    // ... and they agree with the defaults of the structs in io/deck.hpp.
+    EXPECT_EQ(d.steps, Steps{});
+    EXPECT_EQ(d.newton, Newton{});
+    EXPECT_EQ(d.analysis, Analysis{});
+
+    // Empty or null optional sections mean the same as leaving them out.
+    const Deck e = read(minimal_deck + "steps: {}\nnewton:\noutput: {}\n");
+    EXPECT_EQ(e, d);
+}
+
+TEST(DeckReader, ReadsADeckFileAndResolvesPathsAgainstItsFolder)
+{
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::path(::testing::TempDir()) / "igacontact_deck_reader_test";
+    fs::create_directories(dir);
+    const fs::path deck_path = dir / "contact.case.yaml";
+    std::ofstream(deck_path) << minimal_deck;
+
+    const Deck d = read_deck(deck_path.string(), {});
+    EXPECT_EQ(d.source_file, deck_path.string());
+    EXPECT_EQ(d.output.file, (dir / "contact.case.h5").string());  // only the last extension is replaced
+
+    const Deck relative = read_deck(deck_path.string(), {"output.file=out/run.h5"});
+    EXPECT_EQ(relative.output.file, (dir / "out" / "run.h5").string());
+    const Deck absolute = read_deck(deck_path.string(), {"output.file=/tmp/run.h5"});
+    EXPECT_EQ(absolute.output.file, "/tmp/run.h5");
+    fs::remove_all(dir);
+}
+
+// ---------------------------------------------------------------------------
+// Resolved deck
+
+void expect_round_trip(const std::string& text)
+{
+    const Deck first = read(text);
+    const std::string yaml = write_resolved_yaml(first);
+    Deck second;
+    ASSERT_NO_THROW(second = read_deck_text(yaml, "resolved.yaml", "")) << yaml;
+    EXPECT_EQ(second.resolved_yaml, yaml) << "writing is not idempotent";
+    second.source_file = first.source_file;
+    EXPECT_TRUE(second == first) << yaml;
+}
+
+TEST(ResolvedDeck, RoundTripGivesAnEqualDeck)
+{
+    expect_round_trip(hertz_deck);
+    expect_round_trip(cube_deck_3d);
+    expect_round_trip(two_cylinders_deck);
+    expect_round_trip(minimal_deck);
+}
+
+TEST(ResolvedDeck, MakesDefaultsExplicit)
+{
+    const std::string yaml = read(minimal_deck).resolved_yaml;
+    for (const char* line : {"title: \"\"", "  plane: strain", "  kinematics: small", "    model: linear_elastic",
+                             "    formulation: two_half_pass", "  count: 1", "  adaptive: true", "  max_cutbacks: 8",
+                             "  tolerance: 1.0e-10", "  max_iterations: 25", "  line_search: true",
+                             "  file: inputs/hertz.h5", "  every_step: true", "  samples_per_span: 16",
+                             "  paraview: false"})
+        EXPECT_NE(yaml.find(std::string("\n") + line + "\n"), std::string::npos) << line << "\n" << yaml;
+    EXPECT_EQ(yaml.find("quadrature"), std::string::npos) << "the degree-dependent default is left out";
+}
+
+TEST(ResolvedDeck, NumbersAreShortestExactFloats)
+{
+    EXPECT_EQ(format_number(1000.0), "1000.0");
+    EXPECT_EQ(format_number(0.3), "0.3");
+    EXPECT_EQ(format_number(1e-10), "1.0e-10");
+    EXPECT_EQ(format_number(-2.5e20), "-2.5e+20");
+    EXPECT_EQ(format_number(0.1 + 0.2), "0.30000000000000004");
+    for (double x : {0.1 + 0.2, 1.0 / 3.0, 6.02214076e23, -1e-300, 0.7071067811865476})
+        EXPECT_EQ(parse_number(format_number(x)), x) << format_number(x);
+}
+
+// ---------------------------------------------------------------------------
+// Did you mean
+
+TEST(DidYouMean, EditDistanceAndThreshold)
+{
+    EXPECT_EQ(edit_distance("penalti", "penalty"), 1u);
+    EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);
+    EXPECT_EQ(edit_distance("", "abc"), 3u);
+    EXPECT_EQ(did_you_mean("penalti", {"name", "penalty", "quadrature"}), " (did you mean 'penalty'?)");
+    EXPECT_EQ(did_you_mean("samples", {"samples_per_span", "every_step"}), "");  // 9 edits: not a typo
+    EXPECT_EQ(did_you_mean("max_iteration", {"tolerance", "max_iterations"}), " (did you mean 'max_iterations'?)");
+}
+
+}  // namespace
+}  // namespace iga::io

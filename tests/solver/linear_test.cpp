@@ -1,0 +1,243 @@
+// Tests for solver/linear.hpp: UMFPACK and CHOLMOD against dense Eigen, status
+// on singular and non-positive-definite input, reuse of the symbolic analysis.
+
+#include "solver/linear.hpp"
+#include "support/tolerance.hpp"
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+namespace iga::solver {
+namespace {
+
+// Matrices below are strictly diagonally dominant by rows and columns with
+// margin >= 2 and a few random entries per row, so cond(K) is O(10); a
+// backward-stable solve errs by ~cond * eps ~ 1e-14.
+constexpr double solve_tolerance = 1e-12;
+constexpr unsigned seed = 20240611;
+
+// n x n sparse matrix: random off-diagonal entries in [-1, 1] on a random
+// pattern (about 4 per row), diagonal = 2 + row index % 3 + the sum of the
+// off-diagonal magnitudes of its row and column (dominant both ways; SPD when symmetric).
+SparseMatrix dominant_matrix(int n, bool symmetric, std::mt19937& rng)
+{
+    std::uniform_real_distribution<double> value(-1.0, 1.0);
+    std::uniform_int_distribution<int> column(0, n - 1);
+    Matrix dense = Matrix::Zero(n, n);
+    for (int i = 0; i < n; ++i) {
+        for (int k = 0; k < 2; ++k) {
+            const int j = column(rng);
+            if (j == i)
+                continue;
+            const double v = value(rng);
+            dense(i, j) += v;
+            if (symmetric)
+                dense(j, i) += v;
+            else
+                dense(j, i) += value(rng);
+        }
+    }
+    for (int i = 0; i < n; ++i)
+        dense(i, i) = 2.0 + i % 3 + dense.row(i).cwiseAbs().sum() + dense.col(i).cwiseAbs().sum();
+    return dense.sparseView();
+}
+
+Vector random_vector(int n, std::mt19937& rng)
+{
+    std::uniform_real_distribution<double> value(-1.0, 1.0);
+    Vector v(n);
+    for (int i = 0; i < n; ++i)
+        v(i) = value(rng);
+    return v;
+}
+
+double relative_error(const Vector& x, const Vector& reference)
+{
+    return (x - reference).norm() / reference.norm();
+}
+
+TEST(LinearSolver, CholeskyMatchesDenseOnSpdSystem)
+{
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937 rng(seed);
+    const SparseMatrix K = dominant_matrix(60, true, rng);
+    const Vector b = random_vector(60, rng);
+    const Vector reference = Matrix(K).ldlt().solve(b);
+
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+    Vector x;
+    ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+    EXPECT_TRUE(test::at_most(relative_error(x, reference), solve_tolerance));
+}
+
+TEST(LinearSolver, LuMatchesDenseOnNonSymmetricSystem)
+{
+    SCOPED_TRACE("seed " + std::to_string(seed));
+    std::mt19937 rng(seed + 1);
+    const SparseMatrix K = dominant_matrix(60, false, rng);
+    ASSERT_GT((Matrix(K) - Matrix(K).transpose()).norm(), 1.0) << "the test matrix should be non-symmetric";
+    const Vector b = random_vector(60, rng);
+    const Vector reference = Matrix(K).partialPivLu().solve(b);
+
+    LinearSolver solver(LinearSolver::Kind::lu);
+    ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+    Vector x;
+    ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+    EXPECT_TRUE(test::at_most(relative_error(x, reference), solve_tolerance));
+}
+
+TEST(LinearSolver, SingularMatrixIsReportedNotSolved)
+{
+    // A floating two-node spring: rigid translation [1, 1] is a null vector.
+    Matrix dense(3, 3);
+    dense << 1, -1, 0, -1, 1, 0, 0, 0, 2;
+    const SparseMatrix K = dense.sparseView();
+
+    LinearSolver lu(LinearSolver::Kind::lu);
+    EXPECT_EQ(lu.factorize(K), LinearStatus::singular);
+
+    LinearSolver cholesky(LinearSolver::Kind::cholesky);
+    EXPECT_EQ(cholesky.factorize(K), LinearStatus::failed);
+
+    // A structurally zero column.
+    Matrix zero_column = Matrix::Identity(3, 3);
+    zero_column(1, 1) = 0;
+    LinearSolver lu2(LinearSolver::Kind::lu);
+    EXPECT_EQ(lu2.factorize(zero_column.sparseView()), LinearStatus::singular);
+}
+
+TEST(LinearSolver, EmptyPatternIsSingularNotACrash)
+{
+    // A tangent with no stored entry at all: an open contact gap, nothing else.
+    const SparseMatrix K(2, 2);
+    LinearSolver lu(LinearSolver::Kind::lu);
+    EXPECT_EQ(lu.factorize(K), LinearStatus::singular);
+    LinearSolver cholesky(LinearSolver::Kind::cholesky);
+    EXPECT_EQ(cholesky.factorize(K), LinearStatus::failed);
+}
+
+TEST(LinearSolver, NoUnknownsIsATrivialSolve)
+{
+    for (auto kind : {LinearSolver::Kind::lu, LinearSolver::Kind::cholesky}) {
+        LinearSolver solver(kind);
+        ASSERT_EQ(solver.factorize(SparseMatrix(0, 0)), LinearStatus::ok);
+        Vector x = Vector::Ones(3);
+        EXPECT_EQ(solver.solve(Vector(0), x), LinearStatus::ok);
+        EXPECT_EQ(x.size(), 0);
+    }
+}
+
+TEST(LinearSolver, CholeskyRefusesIndefiniteMatrix)
+{
+    Matrix dense(2, 2);
+    dense << 1, 2, 2, 1;  // eigenvalues 3 and -1
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    EXPECT_EQ(solver.factorize(dense.sparseView()), LinearStatus::failed);
+
+    // The same matrix is fine for LU, and the solve is correct.
+    LinearSolver lu(LinearSolver::Kind::lu);
+    ASSERT_EQ(lu.factorize(dense.sparseView()), LinearStatus::ok);
+    Vector x;
+    ASSERT_EQ(lu.solve(Vector::Ones(2), x), LinearStatus::ok);
+    EXPECT_TRUE(test::at_most((x - Vector::Constant(2, 1.0 / 3.0)).norm(), solve_tolerance));
+}
+
+TEST(LinearSolver, NonFiniteInputIsNeverOk)
+{
+    Matrix dense = Matrix::Identity(3, 3);
+    dense(2, 2) = std::numeric_limits<double>::quiet_NaN();
+    for (auto kind : {LinearSolver::Kind::lu, LinearSolver::Kind::cholesky}) {
+        LinearSolver solver(kind);
+        EXPECT_NE(solver.factorize(dense.sparseView()), LinearStatus::ok) << kind_name(kind);
+    }
+
+    LinearSolver solver(LinearSolver::Kind::lu);
+    ASSERT_EQ(solver.factorize(SparseMatrix(Matrix::Identity(3, 3).sparseView())), LinearStatus::ok);
+    Vector b = Vector::Ones(3);
+    b(1) = std::numeric_limits<double>::quiet_NaN();
+    Vector x;
+    EXPECT_NE(solver.solve(b, x), LinearStatus::ok);
+}
+
+TEST(LinearSolver, CholeskyOnNonSymmetricMatrixFailsTheBackwardErrorCheck)
+{
+    // CHOLMOD reads the lower triangle only; the backward-error check uses all of K.
+    Matrix dense(2, 2);
+    dense << 4, 3, 0, 4;  // lower triangle is SPD diag(4, 4)
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    ASSERT_EQ(solver.factorize(dense.sparseView()), LinearStatus::ok);
+    Vector x;
+    EXPECT_EQ(solver.solve(Vector::Ones(2), x), LinearStatus::singular);
+}
+
+TEST(LinearSolver, SymbolicAnalysisIsReusedWhileThePatternIsUnchanged)
+{
+    std::mt19937 rng(seed + 2);
+    for (auto kind : {LinearSolver::Kind::lu, LinearSolver::Kind::cholesky}) {
+        SCOPED_TRACE(kind_name(kind));
+        SparseMatrix K = dominant_matrix(40, true, rng);
+        const Vector b = random_vector(40, rng);
+        LinearSolver solver(kind);
+        ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+
+        // New values, same pattern: numeric only, and the new values are used.
+        for (Index k = 0; k < K.nonZeros(); ++k)
+            K.valuePtr()[k] *= 1.0 + 0.1 * (k % 5);
+        SparseMatrix K_symmetric = SparseMatrix(0.5 * (K + SparseMatrix(K.transpose())));
+        ASSERT_EQ(solver.factorize(K_symmetric), LinearStatus::ok);
+        Vector x;
+        ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+        EXPECT_TRUE(test::at_most(relative_error(x, Matrix(K_symmetric).ldlt().solve(b)), solve_tolerance));
+        EXPECT_EQ(solver.n_symbolic(), 1);
+        EXPECT_EQ(solver.n_numeric(), 2);
+
+        // An uncompressed copy with the same pattern is still the same pattern.
+        SparseMatrix uncompressed = K_symmetric;
+        uncompressed.uncompress();
+        ASSERT_EQ(solver.factorize(uncompressed), LinearStatus::ok);
+        EXPECT_EQ(solver.n_symbolic(), 1);
+
+        // A new entry changes the pattern: a new analysis.
+        const Matrix dense = Matrix(K_symmetric);
+        int gi = 0, gj = 1;
+        while (dense(gi, gj) != 0.0) {  // first structural zero above the diagonal
+            if (++gj == 40)
+                gj = ++gi + 1;
+        }
+        SparseMatrix grown = K_symmetric;
+        grown.coeffRef(gi, gj) += 0.01;
+        grown.coeffRef(gj, gi) += 0.01;
+        grown.makeCompressed();
+        ASSERT_NE(grown.nonZeros(), K_symmetric.nonZeros()) << "the test needs an entry outside the pattern";
+        ASSERT_EQ(solver.factorize(grown), LinearStatus::ok);
+        EXPECT_EQ(solver.n_symbolic(), 2);
+        EXPECT_EQ(solver.n_numeric(), 4);
+
+        // Switching the kind also needs a new analysis.
+        solver.set_kind(kind == LinearSolver::Kind::lu ? LinearSolver::Kind::cholesky : LinearSolver::Kind::lu);
+        ASSERT_EQ(solver.factorize(grown), LinearStatus::ok);
+        EXPECT_EQ(solver.n_symbolic(), 3);
+    }
+}
+
+TEST(LinearSolver, CallerMayChangeTheMatrixBetweenFactorizeAndSolve)
+{
+    Matrix dense(2, 2);
+    dense << 2, 1, 1, 3;
+    SparseMatrix K = dense.sparseView();
+    LinearSolver solver(LinearSolver::Kind::lu);
+    ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+    K.coeffs().setConstant(std::numeric_limits<double>::quiet_NaN());  // the solver holds its own copy
+    Vector x;
+    ASSERT_EQ(solver.solve(Vector::Ones(2), x), LinearStatus::ok);
+    EXPECT_TRUE(test::at_most((x - dense.partialPivLu().solve(Vector::Ones(2))).norm(), solve_tolerance));
+}
+
+}  // namespace
+}  // namespace iga::solver

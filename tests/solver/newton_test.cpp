@@ -1,0 +1,457 @@
+// Tests for solver/newton.hpp on small algebraic systems with exact tangents:
+// quadratic convergence, line search, trust-radius cap, singular tangents at
+// first contact, linear systems, failure statuses and the restored state.
+
+#include "solver/newton.hpp"
+#include "support/tolerance.hpp"
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace iga::solver {
+namespace {
+
+SparseMatrix sparse(const Matrix& dense)
+{
+    return dense.sparseView();
+}
+
+// The smallest convergence target the default tolerance 1e-10 guarantees is
+// ||u - u*|| <= ||K^-1|| * 1e-10 * scale; for the O(1) problems below that is
+// <= 1e-9, and Newton's last quadratic step usually lands far below it.
+constexpr double solution_tolerance = 1e-8;
+
+// ---------------------------------------------------------------------------
+// r(u) = A u + c u.^3 - lambda f, A = tridiag(-1, 4, -1) (SPD, lambda_min >= 2),
+// with f chosen so that u* is the exact solution at lambda = 1.
+struct CubicSystem {
+    Matrix A;
+    double c = 1.0;
+    Vector u_star;
+    Vector f;
+    double tangent_factor = 1.0;  // != 1: a deliberately wrong tangent
+    std::vector<Vector> evaluated;
+
+    CubicSystem()
+    {
+        const int n = 4;
+        A = Matrix::Zero(n, n);
+        for (int i = 0; i < n; ++i) {
+            A(i, i) = 4.0;
+            if (i + 1 < n)
+                A(i, i + 1) = A(i + 1, i) = -1.0;
+        }
+        u_star.resize(n);
+        u_star << 1.0, -0.5, 2.0, 0.3;
+        f = A * u_star + c * u_star.array().cube().matrix();
+    }
+
+    NonlinearSystem system()
+    {
+        NonlinearSystem s;
+        s.evaluate = [this](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+            evaluated.push_back(u);
+            out.residual = A * u + c * u.array().cube().matrix() - lambda * f;
+            out.force_scale = lambda * f.norm();
+            if (need_tangent) {
+                Matrix K = A;
+                K.diagonal() += 3.0 * c * u.array().square().matrix();
+                out.tangent = sparse(tangent_factor * K);
+            }
+        };
+        return s;
+    }
+};
+
+// Exact Taylor expansion of the cubic: e_{k+1} = K(u_k)^-1 [3c u_k e_k^2 + c e_k^3]
+// componentwise, with ||K^-1||_2 <= 1/lambda_min(A) (3c u^2 >= 0 only adds), so
+// ||e_{k+1}|| <= C_k ||e_k||^2 with C_k = (3c ||u_k||_inf + c ||e_k||_inf) / lambda_min(A):
+// a bound, not a fit.
+double quadratic_bound(const CubicSystem& cubic, const Vector& u_k)
+{
+    constexpr double lambda_min_A = 2.0;  // Gershgorin for tridiag(-1, 4, -1): >= 4 - 2
+    const Vector e = u_k - cubic.u_star;
+    return (3.0 * cubic.c * u_k.lpNorm<Eigen::Infinity>() + cubic.c * e.lpNorm<Eigen::Infinity>()) / lambda_min_A;
+}
+
+// Below 1e-12 the error is round-off, no longer Newton's.
+constexpr double round_off_floor = 1e-12;
+
+TEST(Newton, ConvergesQuadraticallyWithExactTangent)
+{
+    CubicSystem cubic;
+    NonlinearSystem system = cubic.system();
+    NewtonSettings settings;
+    settings.line_search = false;  // every evaluation is then a Newton iterate
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    Vector u = Vector::Zero(4);
+    const NewtonReport report = solve_newton(system, 1.0, u, settings, solver, nullptr);
+
+    ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
+    EXPECT_TRUE(test::at_most((u - cubic.u_star).norm(), solution_tolerance));
+    ASSERT_EQ(static_cast<int>(report.residual_history.size()), report.iterations + 1);
+    ASSERT_EQ(cubic.evaluated.size(), report.residual_history.size());
+
+    // The bound holds exactly up to the rounding of the iterates.
+    constexpr double bound_slack = 1.0 + 1e-9;
+    // "Asymptotic regime": errors this small, where only the quadratic term matters.
+    constexpr double asymptotic_error = 1e-2;
+    int checked = 0, asymptotic = 0;
+    for (std::size_t k = 0; k + 1 < cubic.evaluated.size(); ++k) {
+        const double e = (cubic.evaluated[k] - cubic.u_star).norm();
+        const double e_next = (cubic.evaluated[k + 1] - cubic.u_star).norm();
+        if (e_next < round_off_floor)
+            break;
+        EXPECT_TRUE(test::at_most(e_next / (e * e), bound_slack * quadratic_bound(cubic, cubic.evaluated[k])))
+            << "iteration " << k;
+        ++checked;
+        if (e < asymptotic_error)
+            ++asymptotic;
+    }
+    EXPECT_GE(checked, 3);
+    EXPECT_GE(asymptotic, 1) << "the test must reach the asymptotic regime above round-off";
+}
+
+TEST(Newton, WrongTangentIsCaughtByTheQuadraticBound)
+{
+    // Control for the test above: a tangent scaled by 1.3 converges only
+    // linearly (rate ~0.23), which must violate e_{k+1} <= C e_k^2 once e_k is small.
+    CubicSystem cubic;
+    cubic.tangent_factor = 1.3;
+    NonlinearSystem system = cubic.system();
+    NewtonSettings settings;
+    settings.line_search = false;
+    settings.max_iterations = 60;
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    Vector u = Vector::Zero(4);
+    const NewtonReport report = solve_newton(system, 1.0, u, settings, solver, nullptr);
+    ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
+    bool violated = false;
+    for (std::size_t k = 0; k + 1 < cubic.evaluated.size(); ++k) {
+        const double e = (cubic.evaluated[k] - cubic.u_star).norm();
+        const double e_next = (cubic.evaluated[k + 1] - cubic.u_star).norm();
+        if (e_next > round_off_floor && e_next > quadratic_bound(cubic, cubic.evaluated[k]) * e * e)
+            violated = true;
+    }
+    EXPECT_TRUE(violated);
+}
+
+TEST(Newton, AlreadyConvergedStartTakesNoIteration)
+{
+    CubicSystem cubic;
+    NonlinearSystem system = cubic.system();
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    Vector u = cubic.u_star;
+    const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
+    EXPECT_EQ(report.status, NewtonStatus::converged);
+    EXPECT_EQ(report.iterations, 0);
+    EXPECT_EQ(cubic.evaluated.size(), 1u);
+    EXPECT_EQ(solver.n_numeric(), 0);
+}
+
+TEST(Newton, RecordsTimersAndIterationCount)
+{
+    CubicSystem cubic;
+    NonlinearSystem system = cubic.system();
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    RunContext context;
+    Vector u = Vector::Zero(4);
+    const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, &context);
+    ASSERT_EQ(report.status, NewtonStatus::converged);
+    EXPECT_EQ(context.count("newton_iterations"), report.iterations);
+    EXPECT_EQ(context.timers().count("assembly"), 1u);
+    EXPECT_EQ(context.timers().count("linear_solve"), 1u);
+    EXPECT_EQ(solver.n_symbolic(), 1) << "the tangent pattern never changes here";
+    EXPECT_EQ(solver.n_numeric(), report.iterations);
+}
+
+// ---------------------------------------------------------------------------
+// r(u) = atan(u - shift): plain Newton diverges when started more than ~1.39 from the root.
+NonlinearSystem arctan_system(double shift, std::vector<double>* evaluated = nullptr,
+                              double fail_below = -std::numeric_limits<double>::infinity())
+{
+    NonlinearSystem system;
+    system.evaluate = [=](const Vector& u, double, bool need_tangent, Evaluation& out) {
+        if (evaluated)
+            evaluated->push_back(u(0));
+        if (u(0) < fail_below) {
+            out.ok = false;
+            out.message = "projection left the patch";
+            return;
+        }
+        out.residual = Vector::Constant(1, std::atan(u(0) - shift));
+        out.force_scale = 1.0;
+        if (need_tangent)
+            out.tangent = sparse(Matrix::Constant(1, 1, 1.0 / (1.0 + (u(0) - shift) * (u(0) - shift))));
+    };
+    return system;
+}
+
+TEST(Newton, LineSearchRescuesOvershootingStep)
+{
+    const double shift = 1.0;
+    const Vector start = Vector::Constant(1, shift + 4.0);
+    NewtonSettings settings;
+    LinearSolver solver(LinearSolver::Kind::lu);
+
+    Vector u = start;
+    settings.line_search = false;
+    const NewtonReport plain = solve_newton(arctan_system(shift), 1.0, u, settings, solver, nullptr);
+    EXPECT_NE(plain.status, NewtonStatus::converged);
+    EXPECT_EQ(u(0), start(0)) << "a failed solve restores u";
+
+    settings.line_search = true;
+    const NewtonReport searched = solve_newton(arctan_system(shift), 1.0, u, settings, solver, nullptr);
+    ASSERT_EQ(searched.status, NewtonStatus::converged) << searched.message;
+    EXPECT_GT(searched.line_search_cuts, 0);
+    EXPECT_TRUE(test::near(u(0), shift, solution_tolerance));
+    // Armijo backtracking on ||r||: the residual decreases monotonically.
+    for (std::size_t k = 1; k < searched.residual_history.size(); ++k)
+        EXPECT_LT(searched.residual_history[k], searched.residual_history[k - 1]) << "iteration " << k;
+}
+
+TEST(Newton, FailedEvaluationAtATrialPointIsBacktracked)
+{
+    // From u = 3 the full step lands at -9.5, where evaluate() fails (think: the
+    // projection leaves the patch); the line search must treat it as rejected.
+    Vector u = Vector::Constant(1, 3.0);
+    LinearSolver solver(LinearSolver::Kind::lu);
+    NewtonSettings settings;
+    const NewtonReport report = solve_newton(arctan_system(0.0, nullptr, -5.0), 1.0, u, settings, solver, nullptr);
+    ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
+    EXPECT_TRUE(test::near(u(0), 0.0, solution_tolerance));
+
+    settings.line_search = false;
+    u(0) = 3.0;
+    const NewtonReport plain = solve_newton(arctan_system(0.0, nullptr, -5.0), 1.0, u, settings, solver, nullptr);
+    EXPECT_EQ(plain.status, NewtonStatus::evaluation_failed);
+    EXPECT_NE(plain.message.find("projection left the patch"), std::string::npos) << plain.message;
+    EXPECT_EQ(u(0), 3.0);
+}
+
+TEST(Newton, EvaluationFailureAtStartIsReported)
+{
+    Vector u = Vector::Constant(1, -10.0);
+    LinearSolver solver(LinearSolver::Kind::lu);
+    const NewtonReport report =
+        solve_newton(arctan_system(0.0, nullptr, -5.0), 1.0, u, NewtonSettings{}, solver, nullptr);
+    EXPECT_EQ(report.status, NewtonStatus::evaluation_failed);
+    EXPECT_NE(report.message.find("projection left the patch"), std::string::npos) << report.message;
+    EXPECT_EQ(u(0), -10.0);
+}
+
+TEST(Newton, NonFiniteResidualNeverEntersTheState)
+{
+    // r(u) = log(u) - 1: the full step from u = 10 lands at u < 0, where r is NaN.
+    NonlinearSystem system;
+    system.evaluate = [](const Vector& u, double, bool need_tangent, Evaluation& out) {
+        out.residual = Vector::Constant(1, std::log(u(0)) - 1.0);
+        out.force_scale = 1.0;
+        if (need_tangent)
+            out.tangent = sparse(Matrix::Constant(1, 1, 1.0 / u(0)));
+    };
+    LinearSolver solver(LinearSolver::Kind::lu);
+    NewtonSettings settings;
+    Vector u = Vector::Constant(1, 10.0);
+    const NewtonReport searched = solve_newton(system, 1.0, u, settings, solver, nullptr);
+    ASSERT_EQ(searched.status, NewtonStatus::converged) << searched.message;
+    EXPECT_TRUE(test::near(u(0), std::exp(1.0), solution_tolerance));
+
+    settings.line_search = false;
+    u(0) = 10.0;
+    const NewtonReport plain = solve_newton(system, 1.0, u, settings, solver, nullptr);
+    EXPECT_EQ(plain.status, NewtonStatus::diverged);
+    EXPECT_EQ(u(0), 10.0);
+}
+
+TEST(Newton, MaxStepCapsTheUpdate)
+{
+    // r(u) = u - 10 (affine, but solved as nonlinear): with a trust radius of 1 and
+    // no line search, the iterates are exactly 1, 2, ..., 10.
+    std::vector<double> evaluated;
+    NonlinearSystem system;
+    system.max_step = 1.0;
+    system.evaluate = [&](const Vector& u, double, bool need_tangent, Evaluation& out) {
+        evaluated.push_back(u(0));
+        out.residual = Vector::Constant(1, u(0) - 10.0);
+        out.force_scale = 10.0;
+        if (need_tangent)
+            out.tangent = sparse(Matrix::Identity(1, 1));
+    };
+    NewtonSettings settings;
+    settings.line_search = false;
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    Vector u = Vector::Zero(1);
+    const NewtonReport report = solve_newton(system, 1.0, u, settings, solver, nullptr);
+    ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
+    EXPECT_EQ(report.iterations, 10);
+    ASSERT_EQ(evaluated.size(), 11u);
+    for (int k = 0; k <= 10; ++k)
+        EXPECT_EQ(evaluated[k], static_cast<double>(k));
+}
+
+// ---------------------------------------------------------------------------
+// First touch: one dof, r(u) = k <u - gap>_+ - lambda f. The tangent k H(u - gap)
+// is exactly zero until contact, so the first factorizations are singular.
+TEST(Newton, FirstTouchWithZeroTangentConvergesViaRegularization)
+{
+    const double k = 100.0, gap = 1.0, f = 1.0;
+    NonlinearSystem system;
+    system.max_step = 0.4;
+    system.evaluate = [&](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+        const double penetration = std::max(u(0) - gap, 0.0);
+        out.residual = Vector::Constant(1, k * penetration - lambda * f);
+        out.force_scale = lambda * f + k * penetration;
+        if (need_tangent)
+            out.tangent = sparse(Matrix::Constant(1, 1, u(0) > gap ? k : 0.0));
+    };
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    Vector u = Vector::Zero(1);
+    const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
+    ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
+    EXPECT_GE(report.regularized_iterations, 1);
+    // The gap of 1 cannot be crossed in fewer than 3 steps of at most 0.4.
+    EXPECT_GE(report.iterations, 3);
+    EXPECT_TRUE(test::near(u(0), gap + f / k, solution_tolerance));
+}
+
+TEST(Newton, FloatingBodyHeldOnlyByContactConverges)
+{
+    // Two nodes joined by a spring kb, pushed by f toward a wall at distance gap
+    // that acts on node 2 through a penalty spring kc. Until contact the tangent
+    // has the rigid translation [1, 1] as null vector.
+    const double kb = 1e3, kc = 1e4, gap = 0.1, f = 5.0;
+    NonlinearSystem system;
+    system.max_step = 0.05;
+    system.evaluate = [&](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+        const double penetration = std::max(u(1) - gap, 0.0);
+        out.residual.resize(2);
+        out.residual << kb * (u(0) - u(1)) - lambda * f, kb * (u(1) - u(0)) + kc * penetration;
+        out.force_scale = lambda * f + kc * penetration;
+        if (need_tangent) {
+            Matrix K(2, 2);
+            K << kb, -kb, -kb, kb + (u(1) > gap ? kc : 0.0);
+            out.tangent = sparse(K);
+        }
+    };
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    Vector u = Vector::Zero(2);
+    const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
+    ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
+    EXPECT_GE(report.regularized_iterations, 1);
+    const double u2 = gap + f / kc;
+    EXPECT_TRUE(test::near(u(1), u2, solution_tolerance));
+    EXPECT_TRUE(test::near(u(0), u2 + f / kb, solution_tolerance));
+}
+
+// ---------------------------------------------------------------------------
+TEST(Newton, LinearSystemIsOneSolve)
+{
+    CubicSystem cubic;
+    int n_evaluations = 0;
+    NonlinearSystem system;
+    system.linear = true;
+    system.evaluate = [&](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+        ++n_evaluations;
+        EXPECT_TRUE(need_tangent);
+        out.residual = cubic.A * u - lambda * cubic.f;
+        out.force_scale = lambda * cubic.f.norm();
+        out.tangent = sparse(cubic.A);
+    };
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    Vector u = Vector::Ones(4);  // any start: the affine system is solved exactly
+    const NewtonReport report = solve_newton(system, 0.5, u, NewtonSettings{}, solver, nullptr);
+    ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
+    EXPECT_EQ(report.iterations, 1);
+    EXPECT_EQ(n_evaluations, 1);
+    EXPECT_EQ(solver.n_numeric(), 1);
+    ASSERT_EQ(report.residual_history.size(), 2u);
+    EXPECT_TRUE(test::at_most(report.residual_norm, NewtonSettings{}.tolerance));
+    const Vector reference = cubic.A.ldlt().solve(0.5 * cubic.f);
+    EXPECT_TRUE(test::at_most((u - reference).norm(), solution_tolerance));
+}
+
+TEST(Newton, InconsistentSingularLinearSystemFails)
+{
+    // Floating spring pushed along its rigid mode: no solution exists.
+    NonlinearSystem system;
+    system.linear = true;
+    system.evaluate = [](const Vector& u, double lambda, bool, Evaluation& out) {
+        Matrix K(2, 2);
+        K << 1, -1, -1, 1;
+        out.residual = K * u - lambda * Vector::Ones(2);
+        out.force_scale = lambda * std::sqrt(2.0);
+        out.tangent = sparse(K);
+    };
+    LinearSolver solver(LinearSolver::Kind::lu);
+    Vector u = Vector::Zero(2);
+    const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
+    EXPECT_NE(report.status, NewtonStatus::converged);
+    EXPECT_TRUE(u.isZero(0.0)) << "a failed solve restores u";
+    EXPECT_FALSE(report.message.empty());
+}
+
+TEST(Newton, NonSymmetricSystemNeverUsesCholesky)
+{
+    Matrix K(2, 2);
+    K << 2, 1, 0, 3;
+    const Vector f(Vector::Ones(2));
+    NonlinearSystem system;
+    system.symmetric = false;
+    system.evaluate = [&](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+        out.residual = K * u - lambda * f;
+        out.force_scale = lambda * f.norm();
+        if (need_tangent)
+            out.tangent = sparse(K);
+    };
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    Vector u = Vector::Zero(2);
+    const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
+    ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
+    EXPECT_EQ(solver.kind(), LinearSolver::Kind::lu);
+    EXPECT_TRUE(test::at_most((u - K.partialPivLu().solve(f)).norm(), solution_tolerance));
+}
+
+TEST(Newton, IndefiniteTangentSwitchesCholeskyToLu)
+{
+    Matrix K(2, 2);
+    K << 1, 0, 0, -2;  // symmetric, indefinite
+    const Vector f(Vector::Ones(2));
+    NonlinearSystem system;
+    system.evaluate = [&](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+        out.residual = K * u - lambda * f;
+        out.force_scale = lambda * f.norm();
+        if (need_tangent)
+            out.tangent = sparse(K);
+    };
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    Vector u = Vector::Zero(2);
+    const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
+    ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
+    EXPECT_EQ(solver.kind(), LinearSolver::Kind::lu);
+    EXPECT_EQ(report.regularized_iterations, 0);
+    EXPECT_TRUE(test::near(u(1), -0.5, solution_tolerance));
+}
+
+TEST(Newton, MaxIterationsReportsTheLastResidual)
+{
+    CubicSystem cubic;
+    NonlinearSystem system = cubic.system();
+    NewtonSettings settings;
+    settings.max_iterations = 2;
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    Vector u = Vector::Zero(4);
+    const NewtonReport report = solve_newton(system, 1.0, u, settings, solver, nullptr);
+    EXPECT_EQ(report.status, NewtonStatus::max_iterations);
+    EXPECT_EQ(report.iterations, 2);
+    EXPECT_TRUE(u.isZero(0.0));
+    EXPECT_NE(report.message.find("tolerance 1e-10"), std::string::npos) << report.message;
+}
+
+}  // namespace
+}  // namespace iga::solver
