@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/run_context.hpp"
 #include "io/deck_reader.hpp"
+#include "io/deck_writer.hpp"
 #include "io/results_compare.hpp"
 #include "version.hpp"
 
@@ -112,8 +113,10 @@ int run_command(int argc, char** argv)
         return code;
 
     io::Deck deck = io::read_deck(deck_path, overrides);
-    if (!output.empty())
+    if (!output.empty()) {
         deck.output.file = output;
+        deck.resolved_yaml = io::write_resolved_yaml(deck);  // /deck shows the file actually written
+    }
 
     const Verbosity verbosity = quiet ? Verbosity::quiet : (verbose ? Verbosity::verbose : Verbosity::normal);
     RunContext context([](Verbosity, const std::string& line) { std::cerr << line << '\n'; }, verbosity);
@@ -186,7 +189,7 @@ int compare_command(int argc, char** argv)
         std::cerr << "igacontact compare: " << e.what() << '\n';
         return exit_bad_input;
     }
-    std::cout << io::format_report(report, verbose);
+    std::cout << io::format_report(report, verbose) << '\n';
     return report.same() ? exit_ok : exit_failed;
 }
 

@@ -8,17 +8,24 @@
 // local matrices only.
 // Run: bin/assembly_benchmark (set OMP_NUM_THREADS to vary the threads).
 //
-// Measured on the project machine (2 cores shared with other jobs, Release,
-// GCC 12), per assembly of the full matrix:
-//   element + triplets + setFromTriplets   ~ 13 ms
-//   element + indexed add, natural order   ~ 7.7 ms
-//   element + indexed add, colored serial  ~ 7.7 ms
-//   element + indexed add, colored, 2 thr  ~ 4.4 ms   (1.75x)
-//   scatter only, serial                   ~ 1.0 ms
-//   scatter only, colored, 2 threads       ~ 0.6 ms
-// The indexed add is ~2x faster than triplets even with the element work, and
-// the colored parallel loop scales with the threads once each block does real
-// work; coloring costs nothing measurable in the serial loop.
+// Measured on the project machine (2 cores, Release, GCC 12) while other builds
+// kept the load average at 8-11, so wall times are ~2.5x the CPU times and only
+// the CPU times compare the serial kernels (medians, per full assembly):
+//                                            wall      CPU (main thread)
+//   element + triplets + setFromTriplets     98 ms     38.5 ms
+//   element + indexed add, natural order     59 ms     23.1 ms
+//   element + indexed add, colored serial    65 ms     25.5 ms
+//   element + colored, 2 threads            115 ms     22.5 ms  (OMP_WAIT_POLICY=passive: 62 ms, 12.2 ms)
+//   scatter only, colored serial             7.0 ms     2.8 ms
+//   scatter only, colored, 2 threads        39 ms       9.5 ms  (passive: 6.7 ms, 1.3 ms)
+//   build the pattern (once per run)         66 ms     26 ms
+// Findings: the indexed add is 1.7x cheaper than triplets; coloring costs ~10%
+// in the serial loop (less cache reuse). The colored loop splits the work
+// evenly (main-thread CPU halves with passive waiting), but on this
+// oversubscribed machine the spin-waiting at the ~10 color barriers costs more
+// than it saves: 2 threads were slower in wall time by default and only tied
+// with OMP_WAIT_POLICY=passive. A speed-up on idle cores could not be measured
+// here; on shared machines run with OMP_NUM_THREADS=1 (or Execution::serial).
 
 #include "assembly/dof_map.hpp"
 #include "assembly/sparse_pattern.hpp"

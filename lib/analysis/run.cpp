@@ -92,6 +92,9 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         solver::run_load_steps(nonlinear, u, stepping_settings(deck.steps), newton_settings(deck.newton), linear,
                                callbacks, &context);
 
+    context.add_count("symbolic_factorizations", linear.n_symbolic());
+    context.add_count("numeric_factorizations", linear.n_numeric());
+
     if (!deck.output.every_step && last_step) {
         ScopedTimer t(&context, "output");
         writer->write_step(*last_step);

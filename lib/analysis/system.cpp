@@ -98,7 +98,7 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
                     element_stiffness_[static_cast<std::size_t>(block)] = std::move(response.K);
                 }
             },
-            assembly::Execution::parallel);
+            assembly::Execution::serial);  // once per run; not worth threads
         small_stiffness_ = std::move(K0);
     }
 
@@ -141,7 +141,9 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
                     pattern.add(block, response.K, K);
             }
         },
-        assembly::Execution::parallel);
+        // Small kinematics only multiplies cached K_e u_e: too little work per block to
+        // pay for threads (measured slower, and far slower on a loaded machine).
+        small ? assembly::Execution::serial : assembly::Execution::parallel);
     if (failed.load()) {
         out.ok = false;
         out.message = failure;

@@ -143,7 +143,8 @@ void SparsePattern::add(int block, std::span<const int> local, const Matrix& K_s
     const int* pos = positions_.data() + position_offset_[block];
     double* values = K.valuePtr();
     for (Index b = 0; b < m; ++b) {
-        IGA_ASSERT(local[b] >= 0 && static_cast<std::size_t>(local[b]) < n, "SparsePattern::add: local index out of range");
+        IGA_ASSERT(local[b] >= 0 && static_cast<std::size_t>(local[b]) < n,
+                   "SparsePattern::add: local index out of range");
         const int* column = pos + static_cast<std::size_t>(local[b]) * n;
         for (Index a = 0; a < m; ++a) {
             const int p = column[local[a]];

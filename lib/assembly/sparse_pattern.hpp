@@ -22,11 +22,13 @@
 // other and the blocks of a color in parallel (OpenMP), so threads never write
 // the same entry. The serial path visits the blocks in the same order, so both
 // give bitwise identical results. Measured with benchmarks/assembly_benchmark.cpp
-// (2D grid of 64 x 64 quadratic spans, 18-dof blocks, a B^T D B kernel on 9
-// points; 2-core machine shared with other jobs): see the numbers in the header
-// comment of that file; the indexed scatter is several times faster than
-// triplets + setFromTriplets, and the parallel colored loop pays whenever the
-// per-block kernel dominates the scatter, which it does for real elements.
+// (64 x 64 quadratic 2D spans, 18-dof blocks, a B^T D B kernel on 9 points): the
+// indexed add costs 0.6x the CPU time of triplets + setFromTriplets; coloring
+// costs ~10% serially; 2 threads split the work evenly, but on the 2-core
+// project machine, loaded by other jobs, the spin-waiting at the color barriers
+// made the parallel loop slower in wall time (a tie with OMP_WAIT_POLICY=passive).
+// So parallel pays only on idle cores: use OMP_NUM_THREADS=1 or
+// Execution::serial on shared machines (numbers in the benchmark's header).
 
 #include "assembly/dof_map.hpp"
 #include "core/types.hpp"
@@ -78,7 +80,9 @@ public:
 
     /// Calls kernel(block) once per block, color by color; with Execution::parallel
     /// the blocks of a color run on OpenMP threads (serial when OpenMP is absent).
-    /// The kernel may add() and add_vector() for its own block only. An exception
+    /// The kernel may add() and add_vector() for its own block only. Colors
+    /// separate free dofs only: writes indexed by constrained dofs (e.g. reactions
+    /// in a full-length vector) may race and must be done outside. An exception
     /// thrown by the kernel is rethrown here, after all blocks ran (the first one caught).
     void for_each_block(const std::function<void(int block)>& kernel, Execution execution) const;
 

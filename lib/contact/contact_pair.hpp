@@ -25,6 +25,7 @@
 // Warm starts: evaluate() remembers each Gauss point's last foot point as a
 // trial state; commit() keeps the trial state (call it after a converged
 // increment), rollback() returns to the last committed one (after a cutback).
+// Because of this cache, evaluate() is const but not thread-safe on one pair.
 // 3D (surface sides, planes in 3D) is not supported: the constructor throws
 // iga::Error.
 

@@ -52,6 +52,13 @@ SideQuadrature side_quadrature(const nurbs::Patch& parent, Side side, int n_per_
         n = p + 1;
     }
 
+    // A collapsed side (all control points on one point, up to rounding relative to the
+    // patch size) has a tangent that is round-off, not geometry: it carries nothing.
+    const RowMatrix& P = parent.control_points();
+    const double extent = (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
+    constexpr double collapse_tolerance = 1e-12;
+    const bool collapsed = nurbs::is_collapsed(sp, collapse_tolerance * extent);
+
     SideQuadrature out{side, d, {}};
     for (const nurbs::Element& e : sp.patch.elements()) {
         const quadrature::TensorRule rule = quadrature::element_rule(sp.patch, e, n);
@@ -70,7 +77,7 @@ SideQuadrature side_quadrature(const nurbs::Patch& parent, Side side, int n_per_
             for (int dir = 0, k = 0; dir < d; ++dir)
                 xi_parent(dir) = dir == fixed ? fixed_value : s(k++);
             const nurbs::PointDerivatives across = nurbs::evaluate(parent, xi_parent, 1);
-            const double measure = n_raw.norm();
+            const double measure = collapsed ? 0.0 : n_raw.norm();
             const double orientation = measure > 0.0 ? outward * sign(n_raw.dot(across.dx.col(fixed))) : 0.0;
 
             element.points.push_back({s, x.x, basis.R, basis.dR, x.dx, rule.weights(q), measure, orientation});

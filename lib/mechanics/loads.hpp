@@ -16,8 +16,10 @@
 // 2D and X_s x X_t in 3D; orientation * n_raw points OUT of the patch, the sign
 // being fixed in the reference configuration from the parent's derivative across
 // the side, dX/dxi_fixed: outward normals have n . dX/dxi_fixed < 0 on u0/v0/w0 and
-// > 0 on u1/v1/w1. On a collapsed side (zero length) the measure and orientation
-// are 0 and the side carries nothing.
+// > 0 on u1/v1/w1. On a collapsed side (nurbs::is_collapsed to 1e-12 of the patch's
+// bounding-box diagonal, e.g. the corners of the built-in half_disc) the measure and
+// orientation are 0 and the side carries nothing: reference_measure is then 0, and the
+// driver should reject a `force` or `pressure` on such a side as bad input.
 //
 // Loads (units per unit thickness in 2D):
 //  - dead traction t per unit reference length (area): f_ai = int R_a t_i dA_0;
@@ -51,7 +53,7 @@ struct SidePoint {
     Matrix dX;           ///< d x (d - 1): reference tangents dX/ds
     double weight;       ///< parametric Gauss weight (span lengths included)
     double measure;      ///< reference line (area) element, >= 0
-    double orientation;  ///< +1 or -1 (0 on a collapsed point): orientation * n_raw is outward
+    double orientation;  ///< +1 or -1 (0 on a collapsed side): orientation * n_raw is outward
 };
 
 struct SideElement {

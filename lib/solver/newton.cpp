@@ -26,6 +26,7 @@ constexpr double stagnation_step = 1e-14;
 constexpr double first_mu = 1e-10;
 constexpr double mu_growth = 100.0;
 constexpr int max_regularizations = 6;
+double largest_mu() { return first_mu * std::pow(mu_growth, max_regularizations - 1); }
 // Linear systems: extra solves with the same factorization (iterative refinement)
 // while the algebraic residual is above the tolerance.
 constexpr int max_refinements = 2;
@@ -184,6 +185,63 @@ const char* status_name(NewtonStatus status)
     return "unknown";
 }
 
+/// Line search on the directional residual s(alpha) = du . r(u + alpha du)
+/// (Crisfield, "Non-linear Finite Element Analysis of Solids and Structures",
+/// vol. 1, §9.3): for a potential problem s is the slope of the energy along du,
+/// and its root is the energy minimum on the line. This is what a penalty contact
+/// step needs: at first touch or when many Gauss points enter contact, the full
+/// step overshoots into a deep penetration whose residual norm is huge, and
+/// halving alpha on ||r|| crawls; the root of s is where the contact forces
+/// balance the load along du. Regula falsi with the Illinois modification, within
+/// settings.max_backtracks evaluations; accepts |s(alpha)| <= 0.5 |s(0)|.
+/// Returns false (caller falls back to backtracking on ||r||) when du is not a
+/// descent direction (s(0) >= 0) or s(1) is not finite. On success `alpha` is set
+/// and, when alpha != 1, `probe` holds the evaluation at u + alpha du.
+static bool directional_search(const NonlinearSystem& system, const Vector& u, const Vector& du, double load_factor,
+                        const Evaluation& current, const Evaluation& trial, Evaluation& probe,
+                        const NewtonSettings& settings, RunContext* context, NewtonReport& report, double& alpha)
+{
+    const double s0 = du.dot(current.residual);
+    if (!(s0 < 0.0) || !trial.ok || !trial.residual.allFinite())
+        return false;
+    const double s1 = du.dot(trial.residual);
+    if (!std::isfinite(s1))
+        return false;
+    if (s1 <= 0.0) {
+        alpha = 1.0;  // still downhill at the full step: take it
+        return true;
+    }
+    constexpr double slope_reduction = 0.5;  // Crisfield's acceptance |s| <= 0.5 |s0|
+    double a = 0.0, sa = s0, b = 1.0, sb = s1;
+    int retained = 0;  // which end was kept last: -1 left, +1 right
+    for (int k = 0; k < settings.max_backtracks; ++k) {
+        const double c = b - sb * (b - a) / (sb - sa);
+        ++report.line_search_cuts;
+        evaluate(system, u + c * du, load_factor, false, probe, context);
+        if (!probe.ok || !probe.residual.allFinite())
+            return false;
+        const double sc = du.dot(probe.residual);
+        if (std::abs(sc) <= slope_reduction * std::abs(s0)) {
+            alpha = c;
+            return true;
+        }
+        if (sc > 0.0) {
+            b = c;
+            sb = sc;
+            if (retained == -1)
+                sa *= 0.5;  // Illinois: the left end was kept twice
+            retained = -1;
+        } else {
+            a = c;
+            sa = sc;
+            if (retained == +1)
+                sb *= 0.5;
+            retained = +1;
+        }
+    }
+    return false;
+}
+
 NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vector& u,
                           const NewtonSettings& settings, LinearSolver& solver, RunContext* context)
 {
@@ -228,7 +286,7 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         if (step.status != LinearStatus::ok)
             return finish(NewtonStatus::singular, std::string("linear solve failed (") + status_name(step.status) +
                                                       "), even with regularization up to mu = " +
-                                                      format_g(first_mu * std::pow(mu_growth, max_regularizations - 1)));
+                                                      format_g(largest_mu()));
         report.regularized_iterations = step.regularized ? 1 : 0;
         // Algebraic residual of the affine system; refine with the same factorization.
         Vector algebraic = current.residual + current.tangent * du;
@@ -254,7 +312,7 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
             return finish(NewtonStatus::converged,
                           "linear solve, relative residual " + format_g(rel) + " at round-off" + tolerance_text());
         return finish(NewtonStatus::max_iterations, "linear solve left a relative residual " + format_g(rel) +
-                                                        tolerance_text() + ": the tangent is ill-conditioned");
+                                                        tolerance_text() + ": the tangent is singular or ill-conditioned");
     }
 
     for (int iteration = 1; iteration <= settings.max_iterations; ++iteration) {
@@ -272,7 +330,7 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
             return finish(NewtonStatus::singular,
                           "iteration " + std::to_string(iteration) + ": tangent singular (" +
                               status_name(step.status) + ") even with regularization up to mu = " +
-                              format_g(first_mu * std::pow(mu_growth, max_regularizations - 1)) +
+                              format_g(largest_mu()) +
                               "; last relative residual " + format_g(rel) + tolerance_text());
         if (step.regularized)
             ++report.regularized_iterations;
@@ -298,6 +356,16 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
             if (!std::isfinite(new_norm))
                 return finish(NewtonStatus::diverged,
                               "iteration " + std::to_string(iteration) + ": residual is not finite");
+        } else if (!(new_norm <= (1.0 - armijo) * r_norm) &&
+                   directional_search(system, u, du, load_factor, current, trial, probe, settings, context,
+                                      report, alpha)) {
+            // The root of s(alpha) = du . r(u + alpha du) was found (or the full step is still
+            // downhill): the step length that balances the forces along du.
+            u_new = u + alpha * du;
+            if (alpha != 1.0) {
+                chosen = &probe;
+                chosen_has_tangent = false;
+            }
         } else if (!(new_norm <= (1.0 - armijo) * r_norm)) {
             double best_alpha = std::isfinite(new_norm) ? 1.0 : 0.0;
             double best_norm = new_norm;

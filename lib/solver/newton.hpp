@@ -32,6 +32,12 @@
 // that Newton walks across regions where r is flat, e.g. an open contact gap,
 // instead of creeping by 2^-max_backtracks per iteration).
 //
+// Linear systems (NonlinearSystem::linear): one evaluation with the tangent, one
+// factorization, the solve plus at most 2 refinement solves with the same
+// factors; the reported residual is algebraic, ||r + K du|| / scale, accepted up
+// to 1e3 tolerance (round-off, as above). max_step and the line search do not
+// apply.
+//
 // On any failure status, u is restored to its value on entry.
 
 #include "core/run_context.hpp"

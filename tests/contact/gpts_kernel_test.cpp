@@ -23,6 +23,13 @@ constexpr double fd_step = 1e-6;
 constexpr double fd_tolerance = 1e-6;
 // The single-pass tangent is a Hessian: symmetric up to round-off of its sums.
 constexpr double symmetry_tolerance = 1e-10;
+// Closed-form identities (p = eps g, sums of a few O(p W) terms): round-off.
+constexpr double round_off = 1e-12;
+// Dropping the p-weighted geometric terms changes the tangent by percents here
+// (physics.md 3.3 reports 13 % for a similar set-up).
+constexpr double geometric_term_share = 1e-2;
+// Random state: control points moved by up to this, small against the 0.08 penetration.
+constexpr double noise = 2e-3;
 
 /// A slave curve: its reference control points and the basis values at one
 /// Gauss point eta (held fixed, as in the pair).
@@ -79,7 +86,7 @@ Vector random_state(Index n, unsigned seed)
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     Vector u(n);
     for (Index i = 0; i < n; ++i)
-        u(i) = 2e-3 * unit(rng);
+        u(i) = noise * unit(rng);
     return u;
 }
 
@@ -117,7 +124,7 @@ TEST_P(KernelFd, SinglePassTangentIsSymmetricDerivative)
         for (Index b = 0; b < master.n_control_points(); ++b)
             Nn.segment(2 * (n_s + b), 2) = -p.basis.R(b) * p.normal;
         const Matrix K_main = settings.penalty * slave.W * Nn * Nn.transpose();
-        EXPECT_TRUE(test::at_least(relative_error(K_main, K_fd), 1e-2)) << "seed " << seed;
+        EXPECT_TRUE(test::at_least(relative_error(K_main, K_fd), geometric_term_share)) << "seed " << seed;
     }
 }
 
@@ -152,7 +159,7 @@ TEST(Kernel, ForcesPushTheSlaveOutAndBalance)
     Projection p;
     const KernelResult k = evaluate_kernel(slave, master, Vector::Zero(n), settings, &p);
     ASSERT_GT(p.gap, 0.0);
-    EXPECT_TRUE(test::near_rel(k.pressure, settings.penalty * p.gap, 1e-15));
+    EXPECT_TRUE(test::near_rel(k.pressure, settings.penalty * p.gap, round_off));
     EXPECT_TRUE(k.tangent.size() == 0);
     // Force on the slave = -(sum of slave rows) = p W n (partition of unity), along
     // the master's outward normal (up, out of the arch's body).
@@ -161,10 +168,9 @@ TEST(Kernel, ForcesPushTheSlaveOutAndBalance)
         slave_force -= k.residual.segment(2 * a, 2);
     for (Index i = 0; i < n / 2; ++i)
         total += k.residual.segment(2 * i, 2);
-    constexpr double sum_tolerance = 1e-12;  // round-off of sums of O(p W) terms
-    EXPECT_TRUE(test::at_most((slave_force - k.pressure * slave.W * p.normal).norm(), sum_tolerance * k.pressure));
+    EXPECT_TRUE(test::at_most((slave_force - k.pressure * slave.W * p.normal).norm(), round_off * k.pressure));
     EXPECT_TRUE(test::at_least(slave_force(1), 0.0));
-    EXPECT_TRUE(test::at_most(total.norm(), sum_tolerance * k.pressure));  // action = reaction
+    EXPECT_TRUE(test::at_most(total.norm(), round_off * k.pressure));  // action = reaction
 }
 
 TEST(Kernel, OpenGapGivesNothing)
@@ -208,15 +214,15 @@ TEST(Kernel, RigidPlaneTangentIsDerivative)
     for (Index a = 0; a < n / 2; ++a)
         force -= k.residual.segment(2 * a, 2);
     EXPECT_TRUE(test::at_least(force.dot(plane.normal), 0.0));
-    EXPECT_TRUE(test::near_rel(force.norm(), k.pressure * slave.W, 1e-12));
+    EXPECT_TRUE(test::near_rel(force.norm(), k.pressure * slave.W, round_off));
 }
 
 TEST(RigidPlane, GapSign)
 {
     const RigidPlane floor = RigidPlane::make(vec2(0, 0), vec2(0, 2));  // normalized by make
-    EXPECT_TRUE(test::near(floor.normal.norm(), 1.0, 1e-15));
-    EXPECT_TRUE(test::near(floor.gap(vec2(3, 0.5)), -0.5, 1e-15));  // above: open
-    EXPECT_TRUE(test::near(floor.gap(vec2(3, -0.2)), 0.2, 1e-15));  // inside: penetration
+    EXPECT_TRUE(test::near(floor.normal.norm(), 1.0, round_off));
+    EXPECT_TRUE(test::near(floor.gap(vec2(3, 0.5)), -0.5, round_off));  // above: open
+    EXPECT_TRUE(test::near(floor.gap(vec2(3, -0.2)), 0.2, round_off));  // inside: penetration
     EXPECT_THROW(RigidPlane::make(vec2(0, 0), vec2(0, 0)), Error);
 }
 

@@ -25,6 +25,10 @@ constexpr double distance_tolerance = 1e-12;
 // Normal and curvature come from derivatives at the foot point: a few ulps times
 // the condition of the rational evaluation.
 constexpr double derivative_tolerance = 1e-11;
+// A parameter from a converged projection: foot point accuracy / |x_xi| (~1).
+constexpr double parameter_tolerance = 1e-11;
+// One combination sum R_b P_b: round-off.
+constexpr double combination_tolerance = 1e-14;
 
 TEST(Projection, QuarterCircleMatchesAnalyticFootPoint)
 {
@@ -48,7 +52,7 @@ TEST(Projection, QuarterCircleMatchesAnalyticFootPoint)
             VecN from_basis = VecN::Zero(2);
             for (std::size_t b = 0; b < p.basis.indices.size(); ++b)
                 from_basis += p.basis.R(static_cast<Index>(b)) * arc.control_points().row(p.basis.indices[b]).transpose();
-            EXPECT_TRUE(test::at_most((from_basis - p.point).norm(), 1e-14 * R));  // round-off of one combination
+            EXPECT_TRUE(test::at_most((from_basis - p.point).norm(), combination_tolerance * R));
         }
 }
 
@@ -80,7 +84,7 @@ TEST(Projection, WarmStartNeedsFewerIterations)
     const Projection warm = project_to_curve(arc, +1, x, options);
     ASSERT_EQ(warm.status, Projection::Status::ok);
     EXPECT_LE(warm.iterations, 1);  // already converged at the start
-    EXPECT_TRUE(test::near(warm.xi, cold.xi, 1e-11));
+    EXPECT_TRUE(test::near(warm.xi, cold.xi, parameter_tolerance));
 
     // A slightly moved point from the old foot point: quadratic convergence.
     const VecN moved = x + vec2(1e-3, -2e-3);
@@ -112,7 +116,7 @@ TEST(Projection, SmoothDoubleKnotIsNotAKink)
     const nurbs::Patch half = test::two_quarter_half_circle(R);
     const Projection p = project_to_curve(half, +1, vec2(0.0, 0.9));
     ASSERT_EQ(p.status, Projection::Status::ok);
-    EXPECT_TRUE(test::near(p.xi, 0.5, 1e-12));
+    EXPECT_TRUE(test::near(p.xi, 0.5, parameter_tolerance));
     EXPECT_TRUE(test::near(p.gap, 0.1, distance_tolerance));
 }
 
@@ -152,7 +156,7 @@ TEST(Projection, C0KinkPicksTheNearerSpanWithoutChattering)
         ProjectionOptions other;
         other.start = on_first_span ? 0.75 : 0.25;
         const Projection q = project_to_curve(kinked, +1, x, other);
-        EXPECT_TRUE(test::near(q.xi, p.xi, 1e-11)) << "x " << xs;
+        EXPECT_TRUE(test::near(q.xi, p.xi, parameter_tolerance)) << "x " << xs;
         if (previous_left && *previous_left != on_first_span)
             ++switches;
         if (previous_gap) {

@@ -323,6 +323,11 @@ TEST(DeckReaderErrors, BuiltInShapes)
                                         "hertz.yaml:11:12: error: bodies.block.shape: missing required key 'center'"}));
     EXPECT_EQ(issue_of(replaced(minimal_deck, "    shape: {type: rectangle, corner: [0, 0], size: [2, 1]}\n", "")),
               "hertz.yaml:9:5: error: bodies.block: needs 'nurbs' or 'shape' (or 'rigid' for an obstacle)");
+    EXPECT_EQ(issue_of(replaced(cube_deck_3d, "bodies:\n",
+                                "bodies:\n  - {name: ball, material: steel, shape: {type: half_disc, center: [0, 0, "
+                                "0], radius: 1}}\n")),
+              "hertz.yaml:6:42: error: bodies.ball.shape: built-in shapes are 2D only; describe a 3D body with "
+              "'nurbs'");
     EXPECT_EQ(issue_of(replaced(cube_deck_3d, "refine: {spans: [2, 2, 2]}",
                                 "shape: {type: rectangle, corner: [0, 0], size: [1, 1]}")),
               "hertz.yaml:6:5: error: bodies.cube: takes 'nurbs' or 'shape', not both");

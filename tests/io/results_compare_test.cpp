@@ -297,10 +297,14 @@ TEST_F(ResultsCompareTest, WrongShapeIsShapeMismatch)
 
 TEST_F(ResultsCompareTest, StringsCompareExactly)
 {
-    const CompareReport report = compare_changed([](SampleRun& run) {
-        run.deck.replace(run.deck.find("1e6"), 3, "1e7");
-        run.summary.status = "failed";
-    });
+    CompareOptions all;
+    all.include_volatile = true;  // /deck is volatile by default (its output path differs between runs)
+    const CompareReport report = compare_changed(
+        [](SampleRun& run) {
+            run.deck.replace(run.deck.find("1e6"), 3, "1e7");
+            run.summary.status = "failed";
+        },
+        all);
     EXPECT_EQ(paths_not_same(report), (std::vector<std::string>{"/@status", "/deck"}));
     EXPECT_EQ(find_entry(report, "/deck")->detail, "first difference at line 5: '  penalty: 1e6' vs '  penalty: 1e7'");
 }

@@ -2,6 +2,7 @@
 // reference area, non-positive Jacobians are rejected with their location.
 
 #include "mechanics/element_geometry.hpp"
+#include "nurbs/shapes.hpp"
 #include "support/tolerance.hpp"
 #include "test_patches.hpp"
 
@@ -52,6 +53,26 @@ TEST(ElementGeometry, WeightsSumToReferenceArea)
             for (const QuadraturePoint& q : g.points)
                 area += q.weight;
         EXPECT_TRUE(test::near_rel(area, exact, tolerance)) << n << " points";
+    }
+}
+
+TEST(ElementGeometry, BuiltInDiscShapesArePositivelyOriented)
+{
+    // The built-in shapes are right-handed (det J > 0 at every interior Gauss point,
+    // else element_geometry throws) and their areas are pi R^2 / 2 and pi R^2 / 4,
+    // integrated to round-off by 32 points per direction (smooth rational integrands; the
+    // cubic arc with weights 1/3 needs more than 16 points for 1e-12).
+    constexpr double fine_rule_error = 1e-12;
+    const double R = 1.5;
+    const VecN center = (VecN(2) << 0.5, 1.0).finished();
+    for (const auto& [patch, exact] : {std::pair{nurbs::half_disc(center, R), 0.5 * std::numbers::pi * R * R},
+                                       std::pair{nurbs::quarter_disc(center, R), 0.25 * std::numbers::pi * R * R}}) {
+        double area = 0.0;
+        for (const ElementGeometry& g : patch_geometry(patch, 32))
+            for (const QuadraturePoint& q : g.points)
+                area += q.weight;
+        EXPECT_TRUE(test::near_rel(area, exact, fine_rule_error));
+        EXPECT_NO_THROW(patch_geometry(patch));
     }
 }
 

@@ -1,0 +1,288 @@
+// The command-line contract of `igacontact` (app/main.cpp, shared/spec/deck.md,
+// shared/spec/results.md), tested on the built executable:
+//   exit codes 0 ok, 1 solve failed / files differ, 2 bad input or usage;
+//   deck errors as "file:line:col: error: path = value: reason", and a deck error
+//   never creates or touches a results file;
+//   `check` lists the side names; `compare` tells equal from perturbed files;
+//   `--summary json` prints one machine-readable line.
+// Runs inputs/lame_cylinder_2d.yaml (one linear solve, ~0.1 s) where a results
+// file is needed.
+
+#include "cli_support.hpp"
+#include "io/h5_file.hpp"
+#include "support/tolerance.hpp"
+#include "version.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <vector>
+
+namespace iga::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string source_path(const std::string& relative)
+{
+    return std::string(IGA_SOURCE_DIR) + "/" + relative;
+}
+
+fs::path scratch_dir(const std::string& name)
+{
+    const fs::path dir = fs::path(IGA_BINARY_DIR) / "test_scratch" / "app" / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+std::string lame_deck()
+{
+    return source_path("inputs/lame_cylinder_2d.yaml");
+}
+
+/// Runs the Lame deck quietly into `file`; the file must then exist.
+void run_lame(const fs::path& file, const fs::path& dir)
+{
+    const CliResult r = run_cli(shell_quote(lame_deck()) + " -q -o " + shell_quote(file.string()), dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_TRUE(fs::exists(file));
+}
+
+/// Writes a copy of the Lame deck with one line replaced (the line must exist).
+fs::path lame_variant(const fs::path& dir, const std::string& name, const std::string& from, const std::string& to)
+{
+    std::string text = read_text(lame_deck());
+    const auto pos = text.find(from);
+    EXPECT_NE(pos, std::string::npos) << "the Lame deck no longer contains: " << from;
+    if (pos != std::string::npos)
+        text.replace(pos, from.size(), to);
+    const fs::path path = dir / name;
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+}
+
+/// 1-based line of the first occurrence of `needle` in `text`.
+int line_of(const std::string& text, const std::string& needle)
+{
+    const auto pos = text.find(needle);
+    return pos == std::string::npos ? -1 : 1 + static_cast<int>(std::count(text.begin(), text.begin() + pos, '\n'));
+}
+
+/// Files in `dir` whose name starts with `prefix`.
+std::vector<std::string> files_starting_with(const fs::path& dir, const std::string& prefix)
+{
+    std::vector<std::string> out;
+    for (const auto& entry : fs::directory_iterator(dir))
+        if (entry.path().filename().string().rfind(prefix, 0) == 0)
+            out.push_back(entry.path().filename().string());
+    return out;
+}
+
+TEST(Cli, HelpExitsZeroAndShowsUsage)
+{
+    const auto dir = scratch_dir("help");
+    const CliResult r = run_cli("--help", dir);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("igacontact"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("--set"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("compare"), std::string::npos) << "the footer lists the other commands:\n" << r.out;
+}
+
+TEST(Cli, VersionPrintsTheProgramVersion)
+{
+    const auto dir = scratch_dir("version");
+    const CliResult r = run_cli("--version", dir);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE((r.out + r.err).find(std::string("igacontact ") + program_version), std::string::npos)
+        << r.out << r.err;
+}
+
+TEST(Cli, UsageErrorsExitTwo)
+{
+    const auto dir = scratch_dir("usage");
+    const CliResult unknown = run_cli(shell_quote(lame_deck()) + " --no-such-option", dir);
+    EXPECT_EQ(unknown.exit_code, 2) << unknown.err;
+    EXPECT_NE(unknown.err.find("no-such-option"), std::string::npos) << unknown.err;
+    EXPECT_FALSE(fs::exists(dir / "lame_cylinder_2d.h5"));
+
+    const CliResult no_deck = run_cli("", dir);
+    EXPECT_EQ(no_deck.exit_code, 2) << no_deck.err;
+
+    const CliResult bad_compare = run_cli("compare a.h5 b.h5 --rtol", dir);
+    EXPECT_EQ(bad_compare.exit_code, 2) << bad_compare.err;
+
+    const CliResult missing_deck = run_cli(shell_quote((dir / "no_such_deck.yaml").string()), dir);
+    EXPECT_EQ(missing_deck.exit_code, 2) << missing_deck.err;
+    EXPECT_NE(missing_deck.err.find("no_such_deck.yaml"), std::string::npos) << missing_deck.err;
+}
+
+// A deck error (found by the reader, by --set, or late while building the
+// geometry) exits 2 with a located message, creates no results file (nor a
+// temporary one) and leaves an existing results file byte-identical.
+TEST(Cli, DeckErrorsExitTwoAndTouchNoResults)
+{
+    const auto dir = scratch_dir("deck_error");
+    const fs::path existing = dir / "existing.h5";
+    run_lame(existing, dir);
+    if (HasFatalFailure())
+        return;
+    const std::string before = read_text(existing);
+
+    // Reader error: Poisson's ratio out of range, at a known line and column.
+    const fs::path bad = lame_variant(dir, "bad.yaml", "E: 1000.0, nu: 0.3", "E: 1000.0, nu: 0.6");
+    const int bad_line = line_of(read_text(bad), "nu: 0.6");
+    {
+        const CliResult r = run_cli(shell_quote(bad.string()), dir);
+        EXPECT_EQ(r.exit_code, 2) << r.err;
+        std::smatch m;
+        const std::regex located("bad\\.yaml:([0-9]+):([0-9]+): error: materials\\.steel\\.nu");
+        ASSERT_TRUE(std::regex_search(r.err, m, located)) << r.err;
+        EXPECT_EQ(std::stoi(m[1].str()), bad_line) << r.err;
+        EXPECT_GT(std::stoi(m[2].str()), 0) << r.err;
+        EXPECT_TRUE(files_starting_with(dir, "bad.h5").empty()) << "no results file, not even a temporary one";
+    }
+    {
+        const CliResult r = run_cli(shell_quote(bad.string()) + " -o " + shell_quote(existing.string()), dir);
+        EXPECT_EQ(r.exit_code, 2) << r.err;
+        EXPECT_EQ(read_text(existing), before) << "an existing results file must be left untouched";
+    }
+
+    // --set error on a good deck.
+    {
+        const CliResult r = run_cli(shell_quote(lame_deck()) + " --set materials.steel.nu=0.6 -o " +
+                                        shell_quote(existing.string()),
+                                    dir);
+        EXPECT_EQ(r.exit_code, 2) << r.err;
+        EXPECT_NE(r.err.find("error: materials.steel.nu"), std::string::npos) << r.err;
+        EXPECT_EQ(read_text(existing), before);
+    }
+
+    // Late error: the radial direction reversed makes the parametrization
+    // left-handed (det dX/dxi < 0), found when the scene is built.
+    {
+        const fs::path inverted = lame_variant(dir, "inverted.yaml",
+                                               "        - [1.0, 0.0, 1.0]\n        - [2.0, 0.0, 1.0]\n"
+                                               "        - [1.0, 1.0, 0.7071067811865476]\n"
+                                               "        - [2.0, 2.0, 0.7071067811865476]\n"
+                                               "        - [0.0, 1.0, 1.0]\n        - [0.0, 2.0, 1.0]\n",
+                                               "        - [2.0, 0.0, 1.0]\n        - [1.0, 0.0, 1.0]\n"
+                                               "        - [2.0, 2.0, 0.7071067811865476]\n"
+                                               "        - [1.0, 1.0, 0.7071067811865476]\n"
+                                               "        - [0.0, 2.0, 1.0]\n        - [0.0, 1.0, 1.0]\n");
+        const CliResult r = run_cli(shell_quote(inverted.string()) + " -o " + shell_quote(existing.string()), dir);
+        EXPECT_EQ(r.exit_code, 2) << r.err;
+        EXPECT_NE(r.err.find("inverted.yaml"), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("error: bodies.tube"), std::string::npos) << r.err;
+        EXPECT_EQ(read_text(existing), before);
+        EXPECT_EQ(files_starting_with(dir, "existing.h5").size(), 1u) << "no temporary file left behind";
+        EXPECT_TRUE(files_starting_with(dir, "inverted.h5").empty());
+    }
+}
+
+TEST(Cli, CheckListsTheSideNamesOfTheHertzDeck)
+{
+    const auto dir = scratch_dir("check");
+    const CliResult r = run_cli("check " + shell_quote(source_path("inputs/hertz.yaml")), dir);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    for (const char* side : {"cylinder.u0", "cylinder.u1", "cylinder.v0", "cylinder.v1"})
+        EXPECT_NE(r.out.find(side), std::string::npos) << side << " missing in:\n" << r.out;
+    // The contact side of the quarter disc is its arc (hertz.yaml: between [cylinder.v0, floor]).
+    std::smatch m;
+    EXPECT_TRUE(std::regex_search(r.out, m, std::regex("cylinder\\.v0:[^\n]*arc"))) << r.out;
+    EXPECT_NE(r.out.find("floor"), std::string::npos) << r.out;
+    // The resolved deck comes first (with defaults filled in).
+    EXPECT_NE(r.out.find("penalty"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(dir / "hertz.h5"));
+}
+
+/// Multiplies every value of a real dataset by (1 + relative) in place (also
+/// seen through hard links such as /results).
+void perturb_dataset(const fs::path& file, const std::string& path, double relative)
+{
+    io::h5::ErrorSilencer silence;
+    io::h5::Handle f(H5Fopen(file.string().c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "open " + file.string());
+    const io::h5::Array a = io::h5::read_dataset(f.id(), path);
+    ASSERT_EQ(a.type, io::h5::Array::Type::real);
+    std::vector<double> values = a.reals;
+    for (double& v : values)
+        v *= 1.0 + relative;
+    const io::h5::Handle dataset = io::h5::open_object(f.id(), path);
+    ASSERT_GE(H5Dwrite(dataset.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
+}
+
+TEST(Cli, CompareTellsEqualFromPerturbedFiles)
+{
+    const auto dir = scratch_dir("compare");
+    const fs::path run = dir / "run.h5", perturbed = dir / "perturbed.h5";
+    run_lame(run, dir);
+    if (HasFatalFailure())
+        return;
+
+    const CliResult same = run_cli("compare " + shell_quote(run.string()) + " " + shell_quote(run.string()), dir);
+    EXPECT_EQ(same.exit_code, 0) << same.out << same.err;
+    EXPECT_NE(same.out.find("compare: "), std::string::npos) << same.out;
+    EXPECT_TRUE(!same.out.empty() && same.out.back() == '\n') << "the report ends its last line:\n" << same.out;
+
+    // 1e-3 relative: far outside compare's default rtol (1e-6), inside an explicit 1e-2.
+    constexpr double perturbation = 1e-3;
+    fs::copy_file(run, perturbed);
+    perturb_dataset(perturbed, "steps/0001/displacement/tube", perturbation);
+    if (HasFatalFailure())
+        return;
+    const CliResult differ =
+        run_cli("compare " + shell_quote(run.string()) + " " + shell_quote(perturbed.string()), dir);
+    EXPECT_EQ(differ.exit_code, 1) << differ.out << differ.err;
+    EXPECT_NE(differ.out.find("displacement/tube"), std::string::npos) << differ.out;
+
+    const CliResult loose = run_cli(
+        "compare --rtol 1e-2 " + shell_quote(run.string()) + " " + shell_quote(perturbed.string()), dir);
+    EXPECT_EQ(loose.exit_code, 0) << loose.out << loose.err;
+
+    const CliResult only_other = run_cli("compare --only /bodies " + shell_quote(run.string()) + " " +
+                                             shell_quote(perturbed.string()),
+                                         dir);
+    EXPECT_EQ(only_other.exit_code, 0) << "--only /bodies skips the perturbed displacement\n" << only_other.out;
+
+    const CliResult missing = run_cli(
+        "compare " + shell_quote(run.string()) + " " + shell_quote((dir / "missing.h5").string()), dir);
+    EXPECT_EQ(missing.exit_code, 2) << missing.out << missing.err;
+    EXPECT_NE(missing.err.find("missing.h5"), std::string::npos) << missing.err;
+}
+
+TEST(Cli, SummaryJsonIsOneParsableLine)
+{
+    const auto dir = scratch_dir("summary");
+    const fs::path file = dir / "lame.h5";
+    const CliResult r =
+        run_cli(shell_quote(lame_deck()) + " -q --summary json -o " + shell_quote(file.string()), dir);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_FALSE(r.out.empty());
+    const std::string line = r.out.back() == '\n' ? r.out.substr(0, r.out.size() - 1) : r.out;
+    EXPECT_EQ(line.find('\n'), std::string::npos) << "exactly one line on stdout:\n" << r.out;
+    ASSERT_GE(line.size(), 2u);
+    EXPECT_EQ(line.front(), '{');
+    EXPECT_EQ(line.back(), '}');
+
+    std::smatch m;
+    EXPECT_TRUE(std::regex_search(line, m, std::regex("\"status\": *\"completed\""))) << line;
+    ASSERT_TRUE(std::regex_search(line, m, std::regex("\"increments\": *([0-9]+)"))) << line;
+    EXPECT_EQ(std::stoi(m[1].str()), 1) << "the Lame deck has one step";
+    ASSERT_TRUE(std::regex_search(line, m, std::regex("\"newton_iterations\": *([0-9]+)"))) << line;
+    EXPECT_EQ(std::stoi(m[1].str()), 1) << "a linear scene is one solve";
+    ASSERT_TRUE(std::regex_search(line, m, std::regex("\"wall_s\": *([-+0-9.eE]+)"))) << line;
+    const double wall_s = std::stod(m[1].str());
+    EXPECT_TRUE(at_least(wall_s, 0.0));
+    // A generous ceiling for a ~0.1 s run on a loaded 2-core machine: a wall time
+    // in the wrong unit (ms) or an uninitialised value fails it.
+    constexpr double max_wall_s = 60.0;
+    EXPECT_TRUE(at_most(wall_s, max_wall_s));
+    ASSERT_TRUE(std::regex_search(line, m, std::regex("\"results\": *\"([^\"]*)\""))) << line;
+    EXPECT_TRUE(fs::equivalent(fs::path(m[1].str()), file)) << line;
+}
+
+}  // namespace
+}  // namespace iga::test
