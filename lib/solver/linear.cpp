@@ -1,5 +1,7 @@
 #include "solver/linear.hpp"
 
+#include "solver/condensation.hpp"
+
 #include "core/error.hpp"
 
 #include <Eigen/CholmodSupport>
@@ -56,6 +58,12 @@ LinearSolver::~LinearSolver() = default;
 LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
 LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
 
+void LinearSolver::set_condensed_dofs(std::vector<int> dofs)
+{
+    condensation_ = dofs.empty() ? nullptr : std::make_unique<Condensation>(std::move(dofs));
+    factorized_ = false;
+}
+
 void LinearSolver::set_kind(Kind kind)
 {
     if (kind != kind_) {
@@ -98,6 +106,13 @@ LinearStatus LinearSolver::factorize(const SparseMatrix& K)
     if (K_.nonZeros() == 0)  // the backends reject an empty pattern (CHOLMOD would crash)
         return kind_ == Kind::lu ? LinearStatus::singular : LinearStatus::failed;
 
+    if (condensation_) {
+        ++n_numeric_;
+        const LinearStatus status = condensation_->factorize(K_);
+        factorized_ = status == LinearStatus::ok;
+        return status;
+    }
+
     Backend& b = *backend_;
     if (!analysed_) {
         ++n_symbolic_;
@@ -138,7 +153,10 @@ LinearStatus LinearSolver::solve(const Vector& b, Vector& x) const
         return LinearStatus::ok;
     }
 
-    if (kind_ == Kind::lu) {
+    if (condensation_) {
+        if (condensation_->solve(b, x) != LinearStatus::ok)
+            return LinearStatus::singular;
+    } else if (kind_ == Kind::lu) {
         x = backend_->lu.solve(b);
     } else {
         x = backend_->llt.solve(b);

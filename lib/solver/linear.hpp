@@ -28,6 +28,8 @@ enum class LinearStatus {
 
 const char* status_name(LinearStatus status);
 
+class Condensation;
+
 class LinearSolver {
 public:
     enum class Kind {
@@ -54,6 +56,12 @@ public:
     /// Precondition: the last factorize() returned ok.
     LinearStatus solve(const Vector& b, Vector& x) const;
 
+    /// Static condensation onto these dofs (solver/condensation.hpp): for tangents
+    /// that change only in these rows/columns between calls (contact under small
+    /// kinematics). Empty: off (the default).
+    void set_condensed_dofs(std::vector<int> dofs);
+    bool condensed() const { return condensation_ != nullptr; }
+
     /// Switches the backend; the next factorize() does a new symbolic analysis.
     void set_kind(Kind kind);
 
@@ -64,6 +72,7 @@ public:
 
 private:
     struct Backend;  // the Eigen/SuiteSparse objects, kept out of this header
+    std::unique_ptr<Condensation> condensation_;
 
     bool same_pattern(const SparseMatrix& K) const;
 
