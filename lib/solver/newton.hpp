@@ -13,7 +13,7 @@
 //
 // Convergence (relative residual, scale = max(force_scale, DBL_MIN)):
 //   ||r|| / scale <= tolerance, or
-//   ||r|| / scale <= 1e3 tolerance and ||step||_inf <= 1e-14 max(1, ||u||_inf):
+//   ||r|| / scale <= 1e3 tolerance and ||step||_inf <= 1e-9 ||u||_inf:
 //   stagnation at round-off, when the residual of a stiff (penalty) system
 //   cannot drop further because ||K|| ||u|| eps is already near the target.
 //
