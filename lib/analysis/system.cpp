@@ -210,7 +210,7 @@ void SceneSystem::evaluate(const Vector& u_free, double load_factor, bool need_t
     // Contact pairs.
     double contact_norm = 0.0;
     int active = 0;
-    {
+    if (scene_.has_contact()) {  // no pairs: not even a timer runs
         ScopedTimer timer(&context_, "contact");
         for (std::size_t p = 0; p < scene_.pairs.size(); ++p) {
             PairModel& pair = scene_.pairs[p];
