@@ -3,7 +3,9 @@
 #include "analysis/output.hpp"
 #include "analysis/scene.hpp"
 #include "analysis/system.hpp"
+#include "analysis/tessellation.hpp"
 #include "io/results_writer.hpp"
+#include "io/xdmf_writer.hpp"
 #include "solver/linear.hpp"
 #include "solver/load_stepping.hpp"
 #include "version.hpp"
@@ -59,10 +61,34 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     } catch (const Error& e) {
         throw DeckError(DeckIssue{{deck.source_file, 0, 0}, "output.file", deck.output.file, e.what()});
     }
+    // ParaView: tessellated bodies (4 cells per span and direction) and an XDMF index.
+    constexpr int tessellation_cells_per_span = 4;
+    std::vector<TessellatedBody> tessellations;
+    std::vector<io::XdmfStep> xdmf_steps;
     {
         ScopedTimer t(&context, "output");
         writer->write_bodies(body_geometry(deck, scene));
+        if (deck.output.paraview) {
+            std::vector<io::Tessellation> meshes;
+            for (const BodyModel& body : scene.bodies) {
+                tessellations.push_back(tessellate(body, tessellation_cells_per_span));
+                meshes.push_back(tessellations.back().mesh);
+            }
+            writer->write_tessellation(meshes);
+        }
     }
+    auto xdmf_step = [&](const io::StepData& step) {
+        io::XdmfStep x;
+        x.index = step.index;
+        x.load_factor = step.load_factor;
+        for (const io::ContactPairResult& pair : step.contact)
+            for (const io::ContactSideResult& side : pair.sides)
+                x.sides.push_back({"/steps/" + io::step_group_name(step.index) + "/contact/" + pair.name + "/" +
+                                       side.side_name,
+                                   pair.name + " " + side.side_name, side.gauss_points.coordinates.rows(),
+                                   side.postprocessed.coordinates.rows(), scene.dim});
+        return x;
+    };
 
     const solver::NonlinearSystem nonlinear = system.nonlinear_system();
     solver::LinearSolver linear(nonlinear.symmetric ? solver::LinearSolver::Kind::cholesky
@@ -96,8 +122,14 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         for (std::size_t k = 0; k < record.report.residual_history.size(); ++k)
             convergence.push_back({static_cast<double>(record.index), static_cast<double>(k),
                                    record.report.residual_history[k], record.load_factor});
-        if (deck.output.every_step)
+        for (std::size_t b = 0; b < tessellations.size(); ++b)
+            step.tessellation_displacement.emplace_back(
+                scene.bodies[b].name, tessellation_displacement(tessellations[b], step.displacement[b].second));
+        if (deck.output.every_step) {
             writer->write_step(step);
+            if (deck.output.paraview)
+                xdmf_steps.push_back(xdmf_step(step));
+        }
         if (scene.has_contact())
             context.log(Verbosity::verbose, fmt::format("  active Gauss points: {}", system.last_active()));
         last_step = std::move(step);
@@ -113,6 +145,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     if (!deck.output.every_step && last_step) {
         ScopedTimer t(&context, "output");
         writer->write_step(*last_step);
+        if (deck.output.paraview)
+            xdmf_steps.push_back(xdmf_step(*last_step));
     }
 
     RunOutcome outcome;
@@ -159,6 +193,19 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     summary.counters["contact_gauss_points"] = gauss_points;
 
     writer->finish(summary);
+    if (deck.output.paraview) {
+        std::vector<io::XdmfMesh> meshes;
+        for (const TessellatedBody& t : tessellations)
+            meshes.push_back({t.mesh.body, t.mesh.points.rows(),
+                              static_cast<long long>(t.mesh.cells.size()) / t.mesh.nodes_per_cell, t.mesh.nodes_per_cell});
+        const std::string& file = deck.output.file;
+        const std::size_t slash = file.find_last_of('/');
+        const std::string name = slash == std::string::npos ? file : file.substr(slash + 1);
+        const std::size_t dot = file.rfind(".h5");
+        const std::string xdmf_path = (dot != std::string::npos && dot + 3 == file.size() ? file.substr(0, dot) : file) + ".xdmf";
+        io::write_xdmf(xdmf_path, io::xdmf_text(name, meshes, xdmf_steps));
+        outcome.numbers["paraview"] = 1;
+    }
     outcome.wall_s = total.elapsed();
     outcome.numbers["dofs"] = scene.dofs->n_full();
     outcome.numbers["contact_gauss_points"] = static_cast<double>(gauss_points);

@@ -319,6 +319,12 @@ void write_dataset(hid_t location, const std::string& name, std::span<const int>
                       values.data());
 }
 
+void write_dataset(hid_t location, const std::string& name, std::span<const int> values,
+                   const std::vector<hsize_t>& dims)
+{
+    write_raw_dataset(location, name, H5T_STD_I32LE, H5T_NATIVE_INT, dims, values.data());
+}
+
 void write_string_dataset(hid_t location, const std::string& name, const std::string& text)
 {
     Handle type = string_type();

@@ -104,6 +104,8 @@ void write_dataset(hid_t location, const std::string& name, const Vector& values
 void write_dataset(hid_t location, const std::string& name, std::span<const double> values,
                    const std::vector<hsize_t>& dims);                                        ///< any shape
 void write_dataset(hid_t location, const std::string& name, std::span<const int> values);   ///< (n,) int32
+void write_dataset(hid_t location, const std::string& name, std::span<const int> values,
+                   const std::vector<hsize_t>& dims);                                        ///< int32, any shape
 void write_string_dataset(hid_t location, const std::string& name, const std::string& text);  ///< scalar
 /// Variable-length string array of the given shape (row-major, product(dims) == values.size()).
 void write_string_dataset(hid_t location, const std::string& name, const std::vector<std::string>& values,

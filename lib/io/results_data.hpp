@@ -62,6 +62,14 @@ struct ContactPairResult {
     std::map<std::string, double> attributes;  ///< extra numbers (candidates, projections, ...)
 };
 
+/// A body tessellated for visualization (ParaView, output.paraview): /paraview/<body>/.
+struct Tessellation {
+    std::string body;
+    RowMatrix points;        ///< n_t x d, reference configuration
+    std::vector<int> cells;  ///< n_cells * nodes_per_cell point indices (quads in 2D, hexahedra in 3D)
+    int nodes_per_cell = 4;
+};
+
 /// One converged increment: /steps/<kkkk>/.
 struct StepData {
     int index = 0;  ///< 1-based; the group name is index with at least 4 digits
@@ -72,6 +80,8 @@ struct StepData {
     double wall_s = 0.0;
     std::vector<std::pair<std::string, RowMatrix>> displacement;  ///< (body, n_cp x d) per deformable body
     std::vector<ContactPairResult> contact;
+    /// Displacements at the tessellation points (output.paraview): steps/<kkkk>/paraview/<body>/displacement.
+    std::vector<std::pair<std::string, RowMatrix>> tessellation_displacement;
 };
 
 /// An analytic reference curve and this run's errors against it: /reference/<pair>/.

@@ -37,6 +37,9 @@ std::string folder_problem(const std::string& path)
         return "'" + folder.string() + "' is not a folder";
     if (::access(folder.c_str(), W_OK) != 0)
         return "folder '" + folder.string() + "' is not writable";
+    // Found here, not at the final rename: else a whole solve would be lost to it.
+    if (fs::is_directory(path, error))
+        return "'" + path + "' is a folder, not a file";
     return {};
 }
 
@@ -196,6 +199,24 @@ void ResultsWriter::write_bodies(const std::vector<BodyGeometry>& bodies)
     flush(file, temp_path_);
 }
 
+void ResultsWriter::write_tessellation(const std::vector<Tessellation>& bodies)
+{
+    IGA_CHECK(is_open(), "results file " + final_path_ + " is already closed");
+    h5::ErrorSilencer silence;
+    const hid_t file = state_->file.id();
+    h5::Handle group = h5::create_group(file, "paraview");
+    for (const Tessellation& t : bodies) {
+        IGA_CHECK(t.nodes_per_cell > 0 && t.cells.size() % static_cast<std::size_t>(t.nodes_per_cell) == 0,
+                  "tessellation cells do not match nodes_per_cell");
+        h5::Handle body = h5::create_group(group.id(), t.body);
+        h5::write_dataset(body.id(), "points", t.points);
+        h5::write_dataset(body.id(), "cells", std::span<const int>(t.cells),
+                          {static_cast<hsize_t>(t.cells.size() / static_cast<std::size_t>(t.nodes_per_cell)),
+                           static_cast<hsize_t>(t.nodes_per_cell)});
+    }
+    flush(file, temp_path_);
+}
+
 void ResultsWriter::write_step(const StepData& step)
 {
     IGA_CHECK(is_open(), "results file " + final_path_ + " is already closed");
@@ -222,6 +243,13 @@ void ResultsWriter::write_step(const StepData& step)
                 h5::write_attribute(pair_group.id(), attribute, value);
             for (const ContactSideResult& side : pair.sides)
                 write_side(pair_group.id(), side);
+        }
+        if (!step.tessellation_displacement.empty()) {
+            h5::Handle paraview = h5::create_group(group.id(), "paraview");
+            for (const auto& [body, values] : step.tessellation_displacement) {
+                h5::Handle body_group = h5::create_group(paraview.id(), body);
+                h5::write_dataset(body_group.id(), "displacement", values);
+            }
         }
     }
     h5::replace_hard_link(file, "steps/" + name, "results");

@@ -39,6 +39,9 @@ public:
     /// /bodies/<body>/{degrees, knots/u, knots/v(, knots/w), control_points(, side_names)}.
     void write_bodies(const std::vector<BodyGeometry>& bodies);
 
+    /// /paraview/<body>/{points (n_t x d), cells (n_cells x nodes_per_cell, int32)}.
+    void write_tessellation(const std::vector<Tessellation>& bodies);
+
     /// /steps/<kkkk>/ (kkkk = index, zero-padded to 4 digits) with its attributes,
     /// displacement/<body> and contact/<pair>/<body.side>/...; then points the
     /// hard link /results at it and flushes the file.

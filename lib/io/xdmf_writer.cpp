@@ -1,0 +1,111 @@
+#include "io/xdmf_writer.hpp"
+
+#include "core/error.hpp"
+#include "io/results_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <fstream>
+#include <unistd.h>
+
+namespace iga::io {
+
+namespace {
+
+std::string item(const std::string& h5, const std::string& path, const std::string& dims, bool integer)
+{
+    return fmt::format("<DataItem Dimensions=\"{}\" NumberType=\"{}\" Precision=\"{}\" Format=\"HDF\">{}:{}</DataItem>",
+                       dims, integer ? "Int" : "Float", integer ? 4 : 8, h5, path);
+}
+
+std::string escape(const std::string& s)
+{
+    std::string out;
+    for (char c : s) {
+        switch (c) {
+        case '&': out += "&amp;"; break;
+        case '<': out += "&lt;"; break;
+        case '>': out += "&gt;"; break;
+        case '"': out += "&quot;"; break;
+        default: out += c;
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+std::string xdmf_text(const std::string& h5_name, const std::vector<XdmfMesh>& meshes,
+                      const std::vector<XdmfStep>& steps)
+{
+    const std::string h5 = escape(h5_name);
+    std::string out = "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n"
+                      "  <Grid Name=\"increments\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (const XdmfStep& step : steps) {
+        const std::string group = "/steps/" + step_group_name(step.index);
+        out += fmt::format("   <Grid Name=\"increment {}\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
+                           "    <Time Value=\"{:.17g}\"/>\n",
+                           step.index, step.load_factor);
+        for (const XdmfMesh& mesh : meshes) {
+            const std::string body = escape(mesh.body);
+            out += fmt::format("    <Grid Name=\"{}\" GridType=\"Uniform\">\n", body);
+            out += fmt::format("     <Topology TopologyType=\"{}\" NumberOfElements=\"{}\">\n      {}\n     </Topology>\n",
+                               mesh.nodes_per_cell == 8 ? "Hexahedron" : "Quadrilateral", mesh.n_cells,
+                               item(h5, "/paraview/" + body + "/cells",
+                                    fmt::format("{} {}", mesh.n_cells, mesh.nodes_per_cell), true));
+            out += fmt::format("     <Geometry GeometryType=\"XYZ\">\n      {}\n     </Geometry>\n",
+                               item(h5, "/paraview/" + body + "/points", fmt::format("{} 3", mesh.n_points), false));
+            out += fmt::format("     <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n"
+                               "      {}\n     </Attribute>\n    </Grid>\n",
+                               item(h5, group + "/paraview/" + body + "/displacement",
+                                    fmt::format("{} 3", mesh.n_points), false));
+        }
+        for (const XdmfContactSide& side : step.sides) {
+            const std::string g = escape(side.group);
+            const std::string geometry = side.dim == 3 ? "XYZ" : "XY";
+            out += fmt::format("    <Grid Name=\"{} gauss points\" GridType=\"Uniform\">\n", escape(side.label));
+            out += fmt::format("     <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{}\" NodesPerElement=\"1\"/>\n",
+                               side.n_gauss);
+            out += fmt::format("     <Geometry GeometryType=\"{}\">\n      {}\n     </Geometry>\n", geometry,
+                               item(h5, g + "/gauss_points/coordinates", fmt::format("{} {}", side.n_gauss, side.dim),
+                                    false));
+            for (const char* name : {"pressure", "gap"})
+                out += fmt::format("     <Attribute Name=\"{}\" AttributeType=\"Scalar\" Center=\"Node\">\n      {}\n"
+                                   "     </Attribute>\n",
+                                   name, item(h5, g + "/gauss_points/" + name, std::to_string(side.n_gauss), false));
+            out += "    </Grid>\n";
+            out += fmt::format("    <Grid Name=\"{} post-processed\" GridType=\"Uniform\">\n", escape(side.label));
+            out += fmt::format("     <Topology TopologyType=\"Polyline\" NumberOfElements=\"1\" NodesPerElement=\"{}\"/>\n",
+                               side.n_samples);
+            out += fmt::format("     <Geometry GeometryType=\"{}\">\n      {}\n     </Geometry>\n", geometry,
+                               item(h5, g + "/postprocessed/coordinates",
+                                    fmt::format("{} {}", side.n_samples, side.dim), false));
+            out += fmt::format("     <Attribute Name=\"pressure\" AttributeType=\"Scalar\" Center=\"Node\">\n      {}\n"
+                               "     </Attribute>\n    </Grid>\n",
+                               item(h5, g + "/postprocessed/pressure", std::to_string(side.n_samples), false));
+        }
+        out += "   </Grid>\n";
+    }
+    out += "  </Grid>\n </Domain>\n</Xdmf>\n";
+    return out;
+}
+
+void write_xdmf(const std::string& path, const std::string& text)
+{
+    const std::string temp = path + ".tmp-" + std::to_string(::getpid());
+    {
+        std::ofstream file(temp, std::ios::binary | std::ios::trunc);
+        if (!file)
+            throw Error("cannot write the ParaView file " + path);
+        file << text;
+        if (!file.flush())
+            throw Error("cannot write the ParaView file " + path);
+    }
+    if (std::rename(temp.c_str(), path.c_str()) != 0) {
+        std::remove(temp.c_str());
+        throw Error("cannot rename the ParaView file onto " + path);
+    }
+}
+
+}  // namespace iga::io

@@ -1,0 +1,50 @@
+#pragma once
+// XDMF (version 2) index of a results file, for ParaView (output.paraview).
+//
+// The XDMF file holds no data: it points into the HDF5 results file (by file
+// name, so the two must sit in the same folder) and describes a temporal
+// collection with one spatial collection per stored increment:
+//   - each body: its tessellation (/paraview/<body>/points, n_t x 3; cells,
+//     quadrilaterals in 2D, hexahedra in 3D) with the node attribute
+//     "displacement" (/steps/<kkkk>/paraview/<body>/displacement, n_t x 3):
+//     apply ParaView's "Warp By Vector" to see the deformed shape;
+//   - each contact side carrying Gauss points: the Gauss points (a
+//     polyvertex at gauss_points/coordinates, current configuration) with
+//     "pressure" and "gap", and the post-processed curve (a polyline at
+//     postprocessed/coordinates) with "pressure".
+
+#include <string>
+#include <vector>
+
+namespace iga::io {
+
+struct XdmfMesh {
+    std::string body;
+    long long n_points = 0;
+    long long n_cells = 0;
+    int nodes_per_cell = 4;  ///< 4: quadrilaterals (2D), 8: hexahedra (3D)
+};
+
+struct XdmfContactSide {
+    std::string group;  ///< e.g. "/steps/0001/contact/cyl_floor/cylinder.v0"
+    std::string label;  ///< e.g. "cyl_floor cylinder.v0"
+    long long n_gauss = 0;
+    long long n_samples = 0;
+    int dim = 2;        ///< columns of the coordinate datasets
+};
+
+struct XdmfStep {
+    int index = 0;  ///< 1-based increment number (group /steps/<kkkk>)
+    double load_factor = 0.0;
+    std::vector<XdmfContactSide> sides;
+};
+
+/// The XDMF text; `h5_name` is the results file's name as seen from the XDMF file's folder.
+std::string xdmf_text(const std::string& h5_name, const std::vector<XdmfMesh>& meshes,
+                      const std::vector<XdmfStep>& steps);
+
+/// Writes the text to `path` through a temporary file and rename (never half a file).
+/// Throws iga::Error when it cannot.
+void write_xdmf(const std::string& path, const std::string& text);
+
+}  // namespace iga::io
