@@ -2,6 +2,7 @@
 
 #include "analysis/run.hpp"
 #include "analysis/describe.hpp"
+#include "analysis/scene.hpp"
 #include "core/error.hpp"
 #include "core/run_context.hpp"
 #include "io/deck_reader.hpp"
@@ -24,9 +25,12 @@ namespace {
 
 std::atomic<bool> interrupt_requested{false};
 
-extern "C" void on_interrupt(int)
+extern "C" void on_interrupt(int signal)
 {
     interrupt_requested.store(true);
+    // The run stops cleanly at the next increment; a second Ctrl-C ends it at once
+    // (the temporary results file is flushed after each increment, so stays readable).
+    std::signal(signal, SIG_DFL);
 }
 
 /// Parses with CLI11; returns -1 when parsing succeeded, else the exit code
@@ -155,6 +159,7 @@ int check_command(int argc, char** argv)
 
     const io::Deck deck = io::read_deck(deck_path, overrides);
     const std::string bodies = analysis::describe_bodies(deck);  // also builds the geometry: may throw DeckError
+    analysis::build_scene(deck);  // everything a run checks before solving (Jacobians, pairs, constraints)
     std::cout << "# resolved deck: " << deck_path << '\n' << deck.resolved_yaml;
     if (!deck.resolved_yaml.empty() && deck.resolved_yaml.back() != '\n')
         std::cout << '\n';

@@ -1,12 +1,28 @@
 #!/usr/bin/env bash
 # Set up, build and run all tests through CTest (the README's test command; .ci/run calls it).
-# Usage: scripts/test.sh [ctest options...]     e.g. scripts/test.sh -R nurbs
+# Usage: scripts/test.sh [--sanitize] [ctest options...]     e.g. scripts/test.sh -R nurbs
+#   --sanitize  build with AddressSanitizer + UBSan (RelWithDebInfo) in build-sanitize/
+#               (or $IGACONTACT_SANITIZE_BUILD_DIR) and run the fast tests (not labelled slow).
 # Environment: IGACONTACT_BUILD_DIR (default build/), IGACONTACT_JOBS (default nproc).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${IGACONTACT_BUILD_DIR:-$root/build}"
 jobs="${IGACONTACT_JOBS:-$(nproc 2>/dev/null || echo 2)}"
 
+if [ "${1:-}" = "--sanitize" ]; then
+  shift
+  build="${IGACONTACT_SANITIZE_BUILD_DIR:-$root/build-sanitize}"
+  "$root/scripts/setup.sh"
+  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DIGACONTACT_SANITIZE=ON >&2
+  cmake --build "$build" -j "$jobs" >&2
+  # Any report fails the test that caused it; leaks are reported at exit.
+  export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1}"
+  export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+  cd "$build"
+  ctest --output-on-failure -j "$jobs" -LE slow "$@"
+  exit
+fi
+
+build="${IGACONTACT_BUILD_DIR:-$root/build}"
 "$root/scripts/build.sh"
 cd "$build"
 ctest --output-on-failure -j "$jobs" "$@"

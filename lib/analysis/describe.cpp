@@ -1,6 +1,7 @@
 #include "analysis/describe.hpp"
 
 #include "analysis/geometry.hpp"
+#include "io/locate.hpp"
 #include "nurbs/shapes.hpp"
 #include "nurbs/side_patch.hpp"
 
@@ -41,8 +42,8 @@ std::string describe_bodies(const io::Deck& deck)
             try {
                 return build_patch(body, d);
             } catch (const Error& e) {
-                throw DeckError(DeckIssue{{deck.source_file, 0, 0}, "bodies." + body.name, "",
-                                          std::string("cannot build the patch: ") + e.what()});
+                throw DeckError(io::located_issue(deck.source_file, "bodies." + body.name, "",
+                                                  std::string("cannot build the patch: ") + e.what()));
             }
         }();
         std::string degrees, spans;

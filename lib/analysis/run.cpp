@@ -4,6 +4,7 @@
 #include "analysis/scene.hpp"
 #include "analysis/system.hpp"
 #include "analysis/tessellation.hpp"
+#include "io/locate.hpp"
 #include "io/results_writer.hpp"
 #include "io/xdmf_writer.hpp"
 #include "solver/linear.hpp"
@@ -59,7 +60,7 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     try {
         writer.emplace(deck.output.file, program_version, deck.resolved_yaml);
     } catch (const Error& e) {
-        throw DeckError(DeckIssue{{deck.source_file, 0, 0}, "output.file", deck.output.file, e.what()});
+        throw DeckError(io::located_issue(deck.source_file, "output.file", deck.output.file, e.what()));
     }
     // ParaView: tessellated bodies (4 cells per span and direction) and an XDMF index.
     constexpr int tessellation_cells_per_span = 4;

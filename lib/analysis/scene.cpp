@@ -1,6 +1,7 @@
 #include "analysis/scene.hpp"
 
 #include "analysis/geometry.hpp"
+#include "io/locate.hpp"
 #include "nurbs/side_patch.hpp"
 
 #include <fmt/format.h>
@@ -38,7 +39,7 @@ VecN to_vec(const std::vector<double>& v)
 
 DeckIssue body_issue(const io::Deck& deck, const std::string& path, const std::string& reason)
 {
-    return DeckIssue{{deck.source_file, 0, 0}, path, "", reason};
+    return io::located_issue(deck.source_file, path, "", reason);
 }
 
 std::string format_vec(const VecN& v)
@@ -162,7 +163,8 @@ Scene build_scene(const io::Deck& deck)
         for (std::size_t k = 0; k < full.size(); ++k)
             scene.f_ext(full[k]) += f(static_cast<Index>(k));
     };
-    for (const io::Load& load : deck.loads) {
+    for (std::size_t load_index = 0; load_index < deck.loads.size(); ++load_index) {
+        const io::Load& load = deck.loads[load_index];
         const int b = body_index(load.body);
         IGA_CHECK(b >= 0, "the deck reader let a load on a rigid or unknown body through");
         const BodyModel& body = scene.bodies[b];
@@ -179,7 +181,7 @@ Scene build_scene(const io::Deck& deck)
             if (load.kind == io::LoadKind::force) {
                 const double measure = mechanics::reference_measure(side);
                 if (!(measure > 0.0))
-                    throw DeckError(body_issue(deck, fmt::format("loads (body {}, side {})", load.body, side_name(*load.side)),
+                    throw DeckError(body_issue(deck, fmt::format("loads.{}", load_index),
                                                "a force on a collapsed side (zero length) cannot be spread"));
                 traction /= measure;
             }
@@ -227,10 +229,24 @@ Scene build_scene(const io::Deck& deck)
             parent[k] = side.side.parent_index;
             return side;
         };
-        contact::Surface first = make_surface(c.first, 0);
-        contact::Surface second = make_surface(c.second, 1);
-        PairModel model{c.name, contact::ContactPair(settings, std::move(first), std::move(second)), body, parent,
-                        label, {}, static_cast<int>(blocks.size())};
+        if (d != 2)
+            throw DeckError(body_issue(deck, "contact." + c.name,
+                                       "contact is implemented for 2D decks only in this version (3D sides are "
+                                       "surfaces; planned)"));
+        auto pair = [&]() {
+            try {
+                contact::Surface first = make_surface(c.first, 0);
+                contact::Surface second = make_surface(c.second, 1);
+                return contact::ContactPair(settings, std::move(first), std::move(second));
+            } catch (const Error& e) {
+                std::string reason = e.what();
+                if (reason.rfind("contact: ", 0) == 0)
+                    reason = reason.substr(9);
+                throw DeckError(body_issue(deck, "contact." + c.name + ".between",
+                                           "cannot use this pair: " + reason));
+            }
+        }();
+        PairModel model{c.name, std::move(pair), body, parent, label, {}, static_cast<int>(blocks.size())};
         for (int k = 0; k < 2; ++k)
             if (body[k] >= 0) {
                 const std::vector<int> full = dofs_of(dofs, body[k], parent[k]);
@@ -240,6 +256,25 @@ Scene build_scene(const io::Deck& deck)
                   "contact pair local numbering does not match its sides");
         blocks.push_back(model.local_to_full);
         scene.pairs.push_back(std::move(model));
+    }
+
+    // An analytic reference must fit its pair (checked now, not after the solve).
+    if (const auto& ref = deck.output.reference) {
+        for (const PairModel& p : scene.pairs) {
+            if (p.name != ref->pair)
+                continue;
+            const int n_rigid = (p.body[0] < 0) + (p.body[1] < 0);
+            if (d != 2)
+                throw DeckError(body_issue(deck, "output.reference", "the Hertz references are 2D line contacts"));
+            if (ref->type == io::ReferenceType::hertz_cylinder_plane && n_rigid != 1)
+                throw DeckError(body_issue(deck, "output.reference.type",
+                                           "hertz_cylinder_plane needs a pair of a deformable side and a rigid plane; "
+                                           "use hertz_two_cylinders for two deformable sides"));
+            if (ref->type == io::ReferenceType::hertz_two_cylinders && n_rigid != 0)
+                throw DeckError(body_issue(deck, "output.reference.type",
+                                           "hertz_two_cylinders needs two deformable sides; use hertz_cylinder_plane "
+                                           "against a rigid plane"));
+        }
     }
 
     scene.pattern = std::make_unique<assembly::SparsePattern>(dofs, std::move(blocks));

@@ -225,7 +225,11 @@ void ResultsWriter::write_step(const StepData& step)
     const std::string name = step_group_name(step.index);
     IGA_CHECK(!h5::exists(file, "steps/" + name), "step " + name + " written twice");
     {
-        h5::Handle group = h5::create_group(file, "steps/" + name);
+        // Built unlinked and flushed before it is linked into /steps: HDF5 is not
+        // crash-safe, and a run killed while writing a linked group left a /steps
+        // entry pointing past the end of the file. Now a kill leaves at most an
+        // unreachable group, and /steps lists complete increments only.
+        h5::Handle group(H5Gcreate_anon(file, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "cannot create steps/" + name);
         h5::write_attribute(group.id(), "load_factor", step.load_factor);
         h5::write_attribute(group.id(), "newton_iterations", step.newton_iterations);
         h5::write_attribute(group.id(), "residual_norm", step.residual_norm);
@@ -251,6 +255,9 @@ void ResultsWriter::write_step(const StepData& step)
                 h5::write_dataset(body_group.id(), "displacement", values);
             }
         }
+        flush(file, temp_path_);
+        if (H5Olink(group.id(), file, ("steps/" + name).c_str(), H5P_DEFAULT, H5P_DEFAULT) < 0)
+            h5::throw_error("cannot link steps/" + name + " in results file " + temp_path_);
     }
     h5::replace_hard_link(file, "steps/" + name, "results");
     flush(file, temp_path_);

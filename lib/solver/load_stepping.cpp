@@ -51,8 +51,9 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
     while (lambda < 1.0) {
         const int index = static_cast<int>(result.increments.size()) + 1;
         if (callbacks.stop_requested && callbacks.stop_requested()) {
-            result.message = index == 1 ? std::string("stopped on request before the first increment")
-                                        : "stopped on request after increment " + std::to_string(index - 1) +
+            // Worded for the user who pressed Ctrl-C: the app's stop request is SIGINT/SIGTERM.
+            result.message = index == 1 ? std::string("interrupted (SIGINT/SIGTERM) before the first increment")
+                                        : "interrupted (SIGINT/SIGTERM) after increment " + std::to_string(index - 1) +
                                               " (load factor " + format_g(lambda, 6) + ")";
             return result;
         }

@@ -25,18 +25,20 @@
 // converged solution is exact; the huge steps along near-null directions are
 // tamed by max_step and the line search.
 //
-// Line search: accept alpha when ||r(u + alpha du)|| <= (1 - 1e-4 alpha) ||r(u)||,
+// Line search: the full step is taken when ||r(u + du)|| <= (1 - 1e-4) ||r(u)||.
+// Otherwise, first the directional search of Crisfield (Non-linear FE Analysis
+// of Solids and Structures, vol. 1, §9.3): the root of s(alpha) = du . r(u + alpha du)
+// by Illinois regula falsi, accepted at |s| <= 0.5 |s(0)| — for a potential
+// problem the energy minimum along du, and for penalty contact the step length
+// at which the contact forces balance the load (a full step that dives deep into
+// the obstacle is cut back to the right depth in a few evaluations). If du is
+// not a descent direction (s(0) >= 0) or the search fails: backtracking on ||r||,
+// accept alpha when ||r(u + alpha du)|| <= (1 - 1e-4 alpha) ||r(u)||,
 // else halve alpha, up to max_backtracks times. A trial whose residual is not
 // finite, or whose evaluation fails, is rejected. If no trial is accepted, the
 // finite trial with the smallest ||r|| is taken (ties go to the longer step, so
 // that Newton walks across regions where r is flat, e.g. an open contact gap,
 // instead of creeping by 2^-max_backtracks per iteration).
-//
-// Linear systems (NonlinearSystem::linear): one evaluation with the tangent, one
-// factorization, the solve plus at most 2 refinement solves with the same
-// factors; the reported residual is algebraic, ||r + K du|| / scale, accepted up
-// to 1e3 tolerance (round-off, as above). max_step and the line search do not
-// apply.
 //
 // On any failure status, u is restored to its value on entry.
 

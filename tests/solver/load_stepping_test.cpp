@@ -248,7 +248,7 @@ TEST(LoadStepping, StopRequestEndsTheRunAfterTheCurrentIncrement)
         run_load_steps(failing_beyond(2.0), u, stepping, newton, solver, callbacks, nullptr);
     EXPECT_FALSE(result.completed);
     EXPECT_EQ(result.increments.size(), 2u);
-    EXPECT_NE(result.message.find("stopped on request after increment 2"), std::string::npos) << result.message;
+    EXPECT_NE(result.message.find("after increment 2"), std::string::npos) << result.message;
     EXPECT_TRUE(test::near(u(0), 0.4, solution_tolerance));
 }
 

@@ -1,0 +1,262 @@
+// An interrupted run never leaves a corrupt or lost results file
+// (shared/spec/results.md, last paragraph), tested on the built executable:
+//   SIGINT: the run stops cleanly after the current increment, exits 1 and leaves
+//     the final results file, readable, with status "failed", a message naming the
+//     interruption, and only complete increments 0001..k;
+//   SIGKILL: nothing can run, so the previous results file at that path is
+//     untouched, and the temporary file (if any) is readable with status "running"
+//     and complete increments.
+// Runs inputs/block_stretch_finite_2d.yaml with 400 fixed increments (2 to 20 s
+// depending on the load), long enough to be interrupted part-way.
+
+#include "cli_support.hpp"
+#include "io/h5_file.hpp"
+#include "io/results_writer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace iga::test {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+// Increments that must have converged before the signal: the run must be interrupted
+// part-way, not before it starts (5 increments take a few tens of milliseconds).
+constexpr int increments_before_signal = 5;
+// The long run has 400 increments; it must not reach the end before the signal.
+constexpr int total_increments = 400;
+// Longest wait for the run to start, to count increments, and to end after a
+// signal: generous for a loaded 2-core machine; a healthy run needs well under 1 s each.
+constexpr auto patience = 60s;
+
+fs::path scratch_dir(const std::string& name)
+{
+    const fs::path dir = fs::path(IGA_BINARY_DIR) / "test_scratch" / "app" / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+/// A running `igacontact`, its stderr going to a file.
+struct Child {
+    pid_t pid = -1;
+    fs::path err;
+};
+
+Child start_long_run(const fs::path& out, const fs::path& dir)
+{
+    const std::string deck = std::string(IGA_SOURCE_DIR) + "/inputs/block_stretch_finite_2d.yaml";
+    std::vector<std::string> args = {cli_path(), deck, "-o", out.string(),
+                                     "--set", "steps.count=" + std::to_string(total_increments),
+                                     "--set", "steps.adaptive=false"};
+    Child child;
+    child.err = dir / "stderr.txt";
+    child.pid = ::fork();
+    if (child.pid == 0) {
+        const int err = ::open(child.err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        const int null = ::open("/dev/null", O_RDWR);
+        ::dup2(null, STDIN_FILENO);
+        ::dup2(null, STDOUT_FILENO);
+        ::dup2(err, STDERR_FILENO);
+        std::vector<char*> argv;
+        for (std::string& a : args)
+            argv.push_back(a.data());
+        argv.push_back(nullptr);
+        ::execv(argv[0], argv.data());
+        ::_exit(127);
+    }
+    return child;
+}
+
+/// The number of "increment k:" lines the child has logged so far.
+int logged_increments(const Child& child)
+{
+    const std::string text = read_text(child.err);
+    int n = 0;
+    for (std::size_t pos = text.find("increment "); pos != std::string::npos; pos = text.find("increment ", pos + 1))
+        if (pos == 0 || text[pos - 1] == '\n')
+            ++n;
+    return n;
+}
+
+/// Waits until the child has logged `n` increments; false if it ended or took too long.
+bool wait_for_increments(const Child& child, int n)
+{
+    const auto end = std::chrono::steady_clock::now() + patience;
+    while (std::chrono::steady_clock::now() < end) {
+        if (logged_increments(child) >= n)
+            return true;
+        int status = 0;
+        if (::waitpid(child.pid, &status, WNOHANG) == child.pid)
+            return false;
+        std::this_thread::sleep_for(5ms);
+    }
+    return false;
+}
+
+/// Waits for the child to end; the raw wait status, or nullopt (and kills it) on timeout.
+std::optional<int> wait_for_end(const Child& child)
+{
+    const auto end = std::chrono::steady_clock::now() + patience;
+    while (std::chrono::steady_clock::now() < end) {
+        int status = 0;
+        if (::waitpid(child.pid, &status, WNOHANG) == child.pid)
+            return status;
+        std::this_thread::sleep_for(10ms);
+    }
+    ::kill(child.pid, SIGKILL);
+    ::waitpid(child.pid, nullptr, 0);
+    return std::nullopt;
+}
+
+std::string string_attribute(hid_t object, const std::string& name)
+{
+    const io::h5::Array a = io::h5::read_attribute(object, name);
+    return a.type == io::h5::Array::Type::string && a.strings.size() == 1 ? a.strings[0] : "<not a string>";
+}
+
+double real_attribute(hid_t object, const std::string& name)
+{
+    const io::h5::Array a = io::h5::read_attribute(object, name);
+    return a.type == io::h5::Array::Type::real && a.reals.size() == 1 ? a.reals[0] : std::nan("");
+}
+
+/// Opens a results file read-only and checks that its increments are complete:
+/// groups 0001..k, each with its attributes and a finite displacement of every
+/// control point of the block, load factors k/400. Returns k (-1 if unreadable).
+int check_complete_increments(const fs::path& file, std::string& status, std::string& message)
+{
+    io::h5::ErrorSilencer silence;
+    const hid_t id = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (id < 0) {
+        ADD_FAILURE() << "cannot open " << file << ": " << io::h5::last_error_description();
+        return -1;
+    }
+    io::h5::Handle f(id, H5Fclose, "open " + file.string());
+    status = string_attribute(f.id(), "status");
+    message = string_attribute(f.id(), "message");
+    const io::h5::Array control_points = io::h5::read_dataset(f.id(), "bodies/block/control_points");
+    EXPECT_EQ(control_points.dims.size(), 2u);
+    const hsize_t n_cp = control_points.dims.empty() ? 0 : control_points.dims[0];
+    EXPECT_GT(n_cp, 0u);
+
+    const io::h5::Handle steps = io::h5::open_object(f.id(), "steps");
+    const std::vector<std::string> names = io::h5::link_names(steps.id());
+    for (std::size_t k = 0; k < names.size(); ++k) {
+        const std::string name = io::step_group_name(static_cast<int>(k) + 1);
+        EXPECT_EQ(names[k], name) << "increments must be numbered 0001, 0002, ... without gaps";
+        const io::h5::Handle step = io::h5::open_object(steps.id(), name);
+        // The load factor of a fixed step k is k/400 up to the sum's round-off.
+        constexpr double load_factor_tolerance = 1e-12;
+        EXPECT_NEAR(real_attribute(step.id(), "load_factor"), (k + 1.0) / total_increments, load_factor_tolerance)
+            << name;
+        for (const char* attribute : {"newton_iterations", "residual_norm", "cutbacks", "wall_s"})
+            EXPECT_TRUE(io::h5::read_attribute(step.id(), attribute).dims.empty())
+                << name << ": " << attribute << " is not a scalar";
+        const io::h5::Array u = io::h5::read_dataset(step.id(), "displacement/block");
+        EXPECT_EQ(u.dims, (std::vector<hsize_t>{n_cp, 2})) << name;
+        for (double x : u.reals)
+            EXPECT_TRUE(std::isfinite(x)) << name;
+    }
+    return static_cast<int>(names.size());
+}
+
+std::vector<fs::path> temp_files(const fs::path& dir, const std::string& stem)
+{
+    std::vector<fs::path> out;
+    for (const auto& entry : fs::directory_iterator(dir))
+        if (entry.path().filename().string().rfind(stem + ".tmp-", 0) == 0)
+            out.push_back(entry.path());
+    return out;
+}
+
+TEST(Interrupt, SigintStopsCleanlyWithAFailedReadableFile)
+{
+    const fs::path dir = scratch_dir("interrupt_sigint");
+    const fs::path out = dir / "stretch.h5";
+    const Child child = start_long_run(out, dir);
+    ASSERT_GT(child.pid, 0);
+    ASSERT_TRUE(wait_for_increments(child, increments_before_signal))
+        << "the run ended or stalled before " << increments_before_signal << " increments:\n" << read_text(child.err);
+    ::kill(child.pid, SIGINT);
+    const std::optional<int> status = wait_for_end(child);
+    ASSERT_TRUE(status.has_value()) << "the run did not stop after SIGINT";
+    ASSERT_TRUE(WIFEXITED(*status)) << "killed by signal " << WTERMSIG(*status) << ":\n" << read_text(child.err);
+    EXPECT_EQ(WEXITSTATUS(*status), 1) << read_text(child.err);
+
+    ASSERT_TRUE(fs::exists(out)) << read_text(child.err);
+    EXPECT_TRUE(temp_files(dir, "stretch.h5").empty()) << "the temporary file was not renamed";
+    std::string file_status, message;
+    const int k = check_complete_increments(out, file_status, message);
+    EXPECT_EQ(file_status, "failed");
+    EXPECT_GE(k, increments_before_signal);
+    EXPECT_LT(k, total_increments);
+    // The message names the interruption and the last increment actually stored.
+    std::smatch m;
+    const std::regex interrupted("interrupted \\(SIGINT/SIGTERM\\) after increment ([0-9]+)");
+    ASSERT_TRUE(std::regex_search(message, m, interrupted)) << message;
+    EXPECT_EQ(std::stoi(m[1]), k) << message;
+    const std::string log = read_text(child.err);
+    EXPECT_TRUE(std::regex_search(log, interrupted)) << "the interruption is reported on stderr too:\n" << log;
+}
+
+TEST(Interrupt, SigkillLeavesThePreviousResultsUntouched)
+{
+    const fs::path dir = scratch_dir("interrupt_sigkill");
+    const fs::path out = dir / "stretch.h5";
+    // The previous results at that path: a completed run of another deck.
+    const CliResult previous =
+        run_cli(shell_quote(std::string(IGA_SOURCE_DIR) + "/inputs/lame_cylinder_2d.yaml") + " -q -o " +
+                    shell_quote(out.string()),
+                dir);
+    ASSERT_EQ(previous.exit_code, 0) << previous.err;
+    const std::string previous_bytes = read_text(out);
+    ASSERT_FALSE(previous_bytes.empty());
+
+    const Child child = start_long_run(out, dir);
+    ASSERT_GT(child.pid, 0);
+    ASSERT_TRUE(wait_for_increments(child, increments_before_signal)) << read_text(child.err);
+    ::kill(child.pid, SIGKILL);
+    const std::optional<int> status = wait_for_end(child);
+    ASSERT_TRUE(status.has_value());
+    EXPECT_TRUE(WIFSIGNALED(*status) && WTERMSIG(*status) == SIGKILL);
+
+    EXPECT_EQ(read_text(out), previous_bytes) << "the previous results file changed";
+    {
+        io::h5::ErrorSilencer silence;
+        const hid_t id = H5Fopen(out.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+        ASSERT_GE(id, 0) << "the previous results file is no longer readable";
+        io::h5::Handle f(id, H5Fclose, "open");
+        EXPECT_EQ(string_attribute(f.id(), "status"), "completed");
+    }
+
+    // The temporary file of the killed run, if any: readable, still "running",
+    // with complete increments (it is flushed after each one).
+    const std::vector<fs::path> temps = temp_files(dir, "stretch.h5");
+    EXPECT_LE(temps.size(), 1u);
+    for (const fs::path& temp : temps) {
+        EXPECT_EQ(temp.filename().string(), "stretch.h5.tmp-" + std::to_string(child.pid));
+        std::string file_status, message;
+        const int k = check_complete_increments(temp, file_status, message);
+        EXPECT_EQ(file_status, "running");
+        EXPECT_GE(k, 1) << "at least the increments flushed before the kill";
+    }
+}
+
+}  // namespace
+}  // namespace iga::test
