@@ -123,13 +123,23 @@ int run_command(int argc, char** argv)
     }
 
     const Verbosity verbosity = quiet ? Verbosity::quiet : (verbose ? Verbosity::verbose : Verbosity::normal);
-    RunContext context([](Verbosity, const std::string& line) { std::cerr << line << '\n'; }, verbosity);
+    // On a terminal the progress line (k/N, load factor, iterations, active Gauss
+    // points) replaces the solver's per-increment log line; in files and pipes
+    // (not a TTY) the log lines stay, and -q silences both.
+    const bool terminal = !quiet && !verbose && isatty(STDERR_FILENO);
+    RunContext context(
+        [terminal](Verbosity level, const std::string& line) {
+            if (!(terminal && level == Verbosity::normal))
+                std::cerr << line << '\n';
+        },
+        verbosity);
 
     std::signal(SIGINT, on_interrupt);
     std::signal(SIGTERM, on_interrupt);
     analysis::RunOptions options;
     options.stop_requested = [] { return interrupt_requested.load(); };
-    options.progress = !quiet && isatty(STDERR_FILENO);
+    if (terminal)
+        options.progress = [](const std::string& line) { std::cerr << line << '\n'; };
 
     const analysis::RunOutcome outcome = analysis::run(deck, options, context);
 

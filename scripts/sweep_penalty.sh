@@ -40,7 +40,9 @@ fi
 # One line per value: "VALUE"; xargs runs `run_one VALUE` $jobs at a time. A failed run
 # (exit 1) still leaves its results file and summary; the table reports its status.
 export exe deck pair out
-export sets_joined="$(printf '%q ' "${sets[@]+"${sets[@]}"}")"
+sets_joined=""
+[ ${#sets[@]} -eq 0 ] || sets_joined="$(printf '%q ' "${sets[@]}")"
+export sets_joined
 run_one() {
   local v="$1"
   eval "local extra=($sets_joined)"

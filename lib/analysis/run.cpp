@@ -133,6 +133,16 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         }
         if (scene.has_contact())
             context.log(Verbosity::verbose, fmt::format("  active Gauss points: {}", system.last_active()));
+        if (options.progress) {
+            std::string line = fmt::format("increment {}/{}: load factor {:.4g}, {} Newton iteration(s)", record.index,
+                                           std::max(deck.steps.count, record.index), record.load_factor,
+                                           record.report.iterations);
+            if (record.cutbacks > 0)
+                line += fmt::format(", {} cutback(s)", record.cutbacks);
+            if (scene.has_contact())
+                line += fmt::format(", {} active Gauss points", system.last_active());
+            options.progress(line);
+        }
         last_step = std::move(step);
     };
 

@@ -20,7 +20,9 @@ namespace iga::analysis {
 
 struct RunOptions {
     std::function<bool()> stop_requested;  ///< polled between increments (SIGINT)
-    bool progress = false;                 ///< a progress line per increment (terminal)
+    /// Called after each converged increment with a one-line summary (k/N, load
+    /// factor, iterations, active Gauss points); the app prints it on a terminal.
+    std::function<void(const std::string&)> progress;
 };
 
 struct RunOutcome {
