@@ -56,10 +56,10 @@ TEST(ContactPatchTest, TwoHalfPassGivesTheExactUniformPressure)
     ASSERT_EQ(outcome.status, "completed") << outcome.message;
     const Results results(file);
 
-    // Round-off of the penalty pressure: p = eps g with g = p/eps ~ 1e-5 the
-    // difference of displacements ~1e-2, so g carries ~1e-16 * 1e-2/1e-5 = 1e-13
-    // relative error per unit of the system's condition (~1e2 here); measured
-    // 2e-11. 1e-9 keeps a factor 50, while the single-pass bias on this mesh is
+    // Round-off of the penalty pressure: p = eps g, and the gap g = p/eps ~ 1e-5 is
+    // a difference of displacements ~1e-2, so it loses three digits to cancellation
+    // and the penalty system (eps/E = 1e3) a few more: ~1e-11 expected, 2e-11
+    // measured. 1e-9 keeps a factor 50, while the single-pass bias on this mesh is
     // 5e-3 and a wrong Gauss weight or a missing basis function is O(1e-2).
     constexpr double uniform_tolerance = 1e-9;
     for (const std::string side : {"upper.v0", "lower.v1"}) {
