@@ -5,19 +5,20 @@ namespace iga {
 std::string DeckIssue::format() const
 {
     std::string out = where.file.empty() ? std::string("<deck>") : where.file;
+    // append() rather than operator+ on temporaries: GCC 12 warns falsely (-Wrestrict) on the latter.
     if (where.line > 0) {
-        out += ":" + std::to_string(where.line);
+        out.append(":").append(std::to_string(where.line));
         if (where.column > 0)
-            out += ":" + std::to_string(where.column);
+            out.append(":").append(std::to_string(where.column));
     }
-    out += ": error: ";
+    out.append(": error: ");
     if (!path.empty()) {
-        out += path;
+        out.append(path);
         if (!value.empty())
-            out += " = " + value;
-        out += ": ";
+            out.append(" = ").append(value);
+        out.append(": ");
     }
-    out += reason;
+    out.append(reason);
     return out;
 }
 
