@@ -26,7 +26,7 @@ for line in sys.stdin:
         print(json.loads(line).get("results", ""))' 2>/dev/null || true)"
 
 if [ -n "$results" ] && [ -f "$results" ]; then
-  echo "results:       $results"
+  :  # the app itself printed "results: <file>"
   has_contact="$(/usr/bin/python3 -c 'import h5py,sys
 f = h5py.File(sys.argv[1], "r")
 print("yes" if "results" in f and "contact" in f["results"] else "no")' "$results" 2>/dev/null || echo no)"

@@ -24,6 +24,13 @@ constexpr double armijo = 1e-4;
 // decides there (measured on the Hertz deck at eps_N = 1e8: floor 2e-10, corrections 1e-12 for u ~ 1e-2).
 constexpr double stagnation_residual_factor = 1e3;
 constexpr double stagnation_step = 1e-9;
+// No force at all: when the solution is a stress-free rigid motion imposed by
+// Dirichlet values (a block slid along a plane at gap 0, a body lifted off), every
+// force, and so the force scale, is round-off of K u and the relative residual
+// stays O(1). A force scale and residual below 1e3 eps max|K_ij| ||u||_inf sqrt(n)
+// (the assembly's round-off in r = K u) with a correction at round-off of u is
+// that state: converged.
+constexpr double zero_force_factor = 1e3 * DBL_EPSILON;
 // Levenberg-Marquardt: mu = 1e-10 perturbs K at the level of its round-off for
 // a well-scaled K; x100 per retry up to mu = 1 (6 tries).
 constexpr double first_mu = 1e-10;
@@ -285,6 +292,7 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
 
     if (system.linear) {
         Vector du;
+        const double tangent_max = current.tangent.nonZeros() > 0 ? current.tangent.coeffs().cwiseAbs().maxCoeff() : 0.0;
         const StepResult step = newton_step(current.tangent, current.residual, solver, context, du);
         if (step.status != LinearStatus::ok)
             return finish(NewtonStatus::singular, std::string("linear solve failed (") + status_name(step.status) +
@@ -328,6 +336,7 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         }
 
         Vector du;
+        const double tangent_max = current.tangent.nonZeros() > 0 ? current.tangent.coeffs().cwiseAbs().maxCoeff() : 0.0;
         const StepResult step = newton_step(current.tangent, current.residual, solver, context, du);
         if (step.status != LinearStatus::ok)
             return finish(NewtonStatus::singular,
@@ -453,6 +462,13 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
             return finish(NewtonStatus::converged, "converged in " + std::to_string(iteration) +
                                                        " iterations at round-off, relative residual " +
                                                        format_g(rel) + tolerance_text());
+        const double round_off_force = zero_force_factor * tangent_max * u.lpNorm<Eigen::Infinity>() *
+                                       std::sqrt(static_cast<double>(u.size()));
+        if (step_size <= stagnation_step * u.lpNorm<Eigen::Infinity>() && current.force_scale <= round_off_force &&
+            r_norm <= round_off_force)
+            return finish(NewtonStatus::converged, "converged in " + std::to_string(iteration) +
+                                                       " iterations: no force acts (force scale " +
+                                                       format_g(current.force_scale) + " is round-off of K u)");
     }
     return finish(NewtonStatus::max_iterations, "no convergence in " + std::to_string(settings.max_iterations) +
                                                     " iterations; last relative residual " + format_g(rel) +
