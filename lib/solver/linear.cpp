@@ -85,6 +85,10 @@ bool LinearSolver::same_pattern(const SparseMatrix& K) const
 LinearStatus LinearSolver::factorize(const SparseMatrix& K)
 {
     IGA_CHECK(K.rows() == K.cols(), "LinearSolver::factorize: the matrix must be square");
+    // The same matrix again (a linear scene's next increment): keep the factorization.
+    if (factorized_ && K.isCompressed() && same_pattern(K) &&
+        std::equal(K.valuePtr(), K.valuePtr() + K.nonZeros(), K_.valuePtr()))
+        return LinearStatus::ok;
     factorized_ = false;
 
     if (analysed_ && K.isCompressed() && same_pattern(K)) {

@@ -138,3 +138,25 @@ TEST(LinearSolver, CondensedModeMatchesTheDirectSolve)
 }
 
 }  // namespace iga::solver
+
+namespace iga::solver {
+
+TEST(LinearSolver, TheSameMatrixAgainKeepsItsFactorization)
+{
+    // A linear scene refactorizes nothing from its second increment on.
+    const SparseMatrix K = with_contact(chain_matrix(20, 6), {2, 3}, 7);
+    LinearSolver solver(LinearSolver::Kind::lu);
+    ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+    ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+    EXPECT_EQ(solver.n_numeric(), 1);
+    SparseMatrix changed = K;
+    changed.coeffRef(5, 5) += 1.0;
+    ASSERT_EQ(solver.factorize(changed), LinearStatus::ok);
+    EXPECT_EQ(solver.n_numeric(), 2);
+    Vector x;
+    ASSERT_EQ(solver.solve(Vector::Ones(20), x), LinearStatus::ok);
+    constexpr double backward = 1e-12;  // direct solve of a well-conditioned 20 x 20 system
+    EXPECT_TRUE(test::at_most((changed * x - Vector::Ones(20)).norm() / std::sqrt(20.0), backward));
+}
+
+}  // namespace iga::solver
