@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include <limits>
 #include <optional>
 
 namespace iga::analysis {
@@ -163,6 +164,22 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     RunOutcome outcome;
     outcome.status = result.completed ? "completed" : "failed";
     outcome.message = result.message;
+    // Name the usual cause of a stiff failure: a penalty so large against E that the
+    // residual's round-off floor (about eps * penalty / E relative) exceeds the tolerance.
+    if (!result.completed && scene.has_contact()) {
+        double E_min = std::numeric_limits<double>::infinity(), penalty_max = 0.0;
+        for (const BodyModel& b : scene.bodies)
+            E_min = std::min(E_min, b.material.E);
+        for (const io::ContactPair& c : deck.contact)
+            penalty_max = std::max(penalty_max, c.penalty);
+        const double floor = std::numeric_limits<double>::epsilon() * penalty_max / E_min;
+        if (floor > 0.01 * deck.newton.tolerance)
+            outcome.message += fmt::format(
+                ". The penalty is {:.3g} times E, so the relative residual cannot drop much below {:.1g} in double "
+                "Newton tolerance {:.1g} in double precision: use a smaller penalty (about 1e2-1e3 E/h is plenty) or a looser "
+                "newton.tolerance",
+                penalty_max / E_min, floor, deck.newton.tolerance);
+    }
     outcome.results_file = deck.output.file;
     outcome.increments = static_cast<int>(result.increments.size());
     outcome.newton_iterations = result.total_iterations;

@@ -453,5 +453,44 @@ TEST(Newton, MaxIterationsReportsTheLastResidual)
     EXPECT_NE(report.message.find("tolerance 1e-10"), std::string::npos) << report.message;
 }
 
+// A stress-free rigid motion imposed by Dirichlet values (a block slid along a
+// plane at gap 0, verification/hard/grazing_plane.yaml): a free chain of springs
+// whose node 0 is moved by lambda d. The solution is the rigid translation and
+// every force, the reaction included, is round-off of K u: the force scale falls
+// with the residual and the relative residual stays O(1). Newton must recognise
+// the zero-force state (it used to fail with max_iterations).
+TEST(Newton, ZeroForceSolutionConvergesAtRoundOff)
+{
+    // Spring stiffnesses chosen so that the row sums of K are not exactly 0 in
+    // floating point (0.1 + 0.7 - 0.1 - 0.7 = -1.1e-16): round-off, as in assembly.
+    const std::vector<double> k = {100.0, 700.0, 1000.0 / 3.0, 2900.0, 0.1};
+    const int n_nodes = static_cast<int>(k.size()) + 1;
+    Matrix K_full = Matrix::Zero(n_nodes, n_nodes);
+    for (int e = 0; e + 1 < n_nodes; ++e) {
+        K_full(e, e) += k[e];
+        K_full(e + 1, e + 1) += k[e];
+        K_full(e, e + 1) -= k[e];
+        K_full(e + 1, e) -= k[e];
+    }
+    const double d = 0.3;  // prescribed displacement of node 0 at lambda = 1
+    NonlinearSystem system;
+    system.evaluate = [&](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+        Vector u_full(n_nodes);
+        u_full << lambda * d, u;
+        const Vector f_full = K_full * u_full;        // internal forces, reaction at node 0
+        out.residual = f_full.tail(n_nodes - 1);
+        out.force_scale = f_full.norm();              // no external load: only f_int and the reaction
+        if (need_tangent)
+            out.tangent = sparse(K_full.bottomRightCorner(n_nodes - 1, n_nodes - 1));
+    };
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    Vector u = Vector::Zero(n_nodes - 1);
+    const double lambda = 0.37;
+    const NewtonReport report = solve_newton(system, lambda, u, NewtonSettings{}, solver, nullptr);
+    ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
+    for (int i = 0; i < n_nodes - 1; ++i)
+        EXPECT_TRUE(test::near(u(i), lambda * d, solution_tolerance)) << i;
+}
+
 }  // namespace
 }  // namespace iga::solver

@@ -16,6 +16,9 @@ Every case in cases.txt (`case | completed|failed | checks`) is run as
                      that carries Gauss points equals V (relative tolerance 1e-6:
                      the load balance holds to the Newton tolerance, far below it)
       no_contact     every Gauss-point pressure of the last increment is 0
+      max_pressure=P every Gauss-point |pressure| of every increment is <= P
+                     (grazing: gaps are 0 up to round-off, so pressures are
+                     round-off times the penalty)
       contact_first  the first stored increment has a positive pressure somewhere
       all_steps      one /steps group per converged increment (every_step default)
       message~TEXT   the message contains TEXT
@@ -124,6 +127,13 @@ def run_checks(h5, checks, summary, problems):
                 p = g["gauss_points/pressure"][()]
                 if np.any(p != 0.0):
                     problems.append(f"{pair}: pressure {np.max(np.abs(p)):.3g} on the last increment")
+        elif check.startswith("max_pressure="):
+            bound = float(check.split("=", 1)[1])
+            for k in names:
+                for pair, g in pair_sides(steps[k]):
+                    p = g["gauss_points/pressure"][()]
+                    if p.size and not np.max(np.abs(p)) <= bound:
+                        problems.append(f"step {k} {pair}: |pressure| {np.max(np.abs(p)):.3g} > {bound:g}")
         elif check == "contact_first":
             if not any(np.any(g["gauss_points/pressure"][()] > 0.0) for _, g in pair_sides(first)):
                 problems.append("no pressure on the first increment")
