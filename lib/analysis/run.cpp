@@ -175,9 +175,9 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         const double floor = std::numeric_limits<double>::epsilon() * penalty_max / E_min;
         if (floor > 0.01 * deck.newton.tolerance)
             outcome.message += fmt::format(
-                ". The penalty is {:.3g} times E, so the relative residual cannot drop much below {:.1g} in double "
-                "Newton tolerance {:.1g} in double precision: use a smaller penalty (about 1e2-1e3 E/h is plenty) or a looser "
-                "newton.tolerance",
+                ". The penalty is {:.3g} times E: in double precision the round-off of the contact forces "
+                "(about {:.1g} of the elastic stiffness) swamps the Newton tolerance {:.1g}. Use a smaller penalty "
+                "(about 1e2-1e3 E/h is plenty) or a looser newton.tolerance",
                 penalty_max / E_min, floor, deck.newton.tolerance);
     }
     outcome.results_file = deck.output.file;
