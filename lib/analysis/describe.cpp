@@ -1,4 +1,5 @@
 #include "analysis/describe.hpp"
+#include "io/deck_names.hpp"
 
 #include "analysis/geometry.hpp"
 #include "io/locate.hpp"
@@ -10,16 +11,6 @@
 namespace iga::analysis {
 
 namespace {
-
-std::string shape_name(io::ShapeType t)
-{
-    switch (t) {
-    case io::ShapeType::half_disc: return "half_disc";
-    case io::ShapeType::quarter_disc: return "quarter_disc";
-    case io::ShapeType::rectangle: return "rectangle";
-    }
-    return "?";
-}
 
 std::string generic_side_meaning(Side s)
 {
@@ -55,7 +46,7 @@ std::string describe_bodies(const io::Deck& deck)
                            patch.n_control_points());
         std::vector<std::pair<std::string, std::string>> meanings;
         if (body.shape)
-            meanings = nurbs::shape_side_names(shape_name(body.shape->type));
+            meanings = nurbs::shape_side_names(std::string(io::deck_name(body.shape->type)));
         for (int k = 0; k < 2 * patch.n_par(); ++k) {
             const Side side = static_cast<Side>(k);
             std::string meaning = generic_side_meaning(side);

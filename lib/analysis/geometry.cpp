@@ -7,14 +7,6 @@ namespace iga::analysis {
 
 namespace {
 
-VecN to_vec(const std::vector<double>& v)
-{
-    VecN out(static_cast<Index>(v.size()));
-    for (std::size_t i = 0; i < v.size(); ++i)
-        out(static_cast<Index>(i)) = v[i];
-    return out;
-}
-
 nurbs::Patch raw_patch(const io::NurbsData& data, int dimension)
 {
     std::vector<nurbs::KnotVector> knots;

@@ -8,6 +8,12 @@
 
 namespace iga::analysis {
 
+/// A deck coordinate list as a small vector.
+inline VecN to_vec(const std::vector<double>& v)
+{
+    return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Index>(v.size()));
+}
+
 /// The refined patch of a deformable body. Precondition: !body.rigid.
 nurbs::Patch build_patch(const io::Body& body, int dimension);
 

@@ -1,4 +1,5 @@
 #include "analysis/output.hpp"
+#include "io/deck_names.hpp"
 
 #include "analytic/hertz.hpp"
 #include "analytic/pressure_errors.hpp"
@@ -14,16 +15,6 @@
 namespace iga::analysis {
 
 namespace {
-
-std::string shape_name(io::ShapeType t)
-{
-    switch (t) {
-    case io::ShapeType::half_disc: return "half_disc";
-    case io::ShapeType::quarter_disc: return "quarter_disc";
-    case io::ShapeType::rectangle: return "rectangle";
-    }
-    return "";
-}
 
 const contact::DeformableSide* deformable(const contact::ContactPair& pair, int k)
 {
@@ -126,7 +117,7 @@ std::vector<io::BodyGeometry> body_geometry(const io::Deck& deck, const Scene& s
         g.control_points.leftCols(patch.dim()) = patch.control_points();
         g.control_points.col(patch.dim()) = patch.weights();
         if (deck.bodies[k].shape)
-            g.side_names = nurbs::shape_side_names(shape_name(deck.bodies[k].shape->type));
+            g.side_names = nurbs::shape_side_names(std::string(io::deck_name(deck.bodies[k].shape->type)));
         out.push_back(std::move(g));
     }
     return out;

@@ -29,14 +29,6 @@ mechanics::Material to_material(const io::Material& m, const io::Analysis& analy
     return out;
 }
 
-VecN to_vec(const std::vector<double>& v)
-{
-    VecN out(static_cast<Index>(v.size()));
-    for (std::size_t i = 0; i < v.size(); ++i)
-        out(static_cast<Index>(i)) = v[i];
-    return out;
-}
-
 DeckIssue body_issue(const io::Deck& deck, const std::string& path, const std::string& reason)
 {
     return io::located_issue(deck.source_file, path, "", reason);

@@ -26,6 +26,10 @@ Matrix local_displacement(const Vector& u_full, const std::vector<int>& dofs, in
 SceneSystem::SceneSystem(Scene& scene, RunContext& context)
     : scene_(scene), context_(context), element_force_(static_cast<std::size_t>(scene.n_element_blocks))
 {
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+        for (std::size_t e = 0; e < scene.bodies[b].elements.size(); ++e)
+            owner_.push_back({static_cast<int>(b), static_cast<int>(e)});
+    IGA_CHECK(static_cast<int>(owner_.size()) == scene.n_element_blocks, "element blocks do not match the bodies");
 }
 
 solver::NonlinearSystem SceneSystem::nonlinear_system()
@@ -76,90 +80,86 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
     const assembly::SparsePattern& pattern = *scene_.pattern;
     const int d = scene_.dim;
     const bool small = scene_.kinematics == mechanics::Kinematics::small;
+    auto element_of = [&](int block) -> const mechanics::ElementGeometry& {
+        const BlockOwner& o = owner_[static_cast<std::size_t>(block)];
+        return scene_.bodies[static_cast<std::size_t>(o.body)].elements[static_cast<std::size_t>(o.element)];
+    };
+    auto body_of = [&](int block) -> const BodyModel& {
+        return scene_.bodies[static_cast<std::size_t>(owner_[static_cast<std::size_t>(block)].body)];
+    };
+    auto dofs_of = [&](int block) -> const std::vector<int>& {
+        const BlockOwner& o = owner_[static_cast<std::size_t>(block)];
+        return scene_.bodies[static_cast<std::size_t>(o.body)].element_dofs[static_cast<std::size_t>(o.element)];
+    };
 
-    // Small kinematics: the element stiffness matrices are computed once, and
-    // assembled once; afterwards f_int = K_e u_e element by element.
+    // Small kinematics: the element stiffness matrices are computed and assembled
+    // once; afterwards f_int = K_e u_e element by element.
     if (small && !small_stiffness_) {
         SparseMatrix K0 = pattern.make_matrix();
         element_stiffness_.resize(static_cast<std::size_t>(scene_.n_element_blocks));
+        for (int block = 0; block < scene_.n_element_blocks; ++block) {  // once per run: not worth threads
+            const mechanics::ElementGeometry& geometry = element_of(block);
+            mechanics::ElementResponse response = mechanics::element_response(
+                geometry, body_of(block).material, scene_.kinematics, Matrix::Zero(geometry.n_local(), d));
+            pattern.add(block, response.K, K0);
+            element_stiffness_[static_cast<std::size_t>(block)] = std::move(response.K);
+        }
+        small_stiffness_ = std::move(K0);
+    }
+
+    if (small) {
+        // Only K_e u_e per span: too little work to pay for threads (measured slower,
+        // and far slower on a loaded machine).
+        for (int block = 0; block < scene_.n_element_blocks; ++block) {
+            const std::vector<int>& dofs = dofs_of(block);
+            Vector u_e(static_cast<Index>(dofs.size()));
+            for (std::size_t k = 0; k < dofs.size(); ++k)
+                u_e(static_cast<Index>(k)) = u_full(dofs[k]);
+            element_force_[static_cast<std::size_t>(block)] = element_stiffness_[static_cast<std::size_t>(block)] * u_e;
+        }
+        if (need_tangent)
+            K = *small_stiffness_;
+    } else {
+        std::atomic<bool> failed{false};
+        std::mutex message_mutex;
+        std::string failure;
         pattern.for_each_block(
             [&](int block) {
                 if (block >= scene_.n_element_blocks)
                     return;
-                for (const BodyModel& body : scene_.bodies) {
-                    const int e = block - body.first_block;
-                    if (e < 0 || e >= static_cast<int>(body.elements.size()))
-                        continue;
-                    const auto& geometry = body.elements[static_cast<std::size_t>(e)];
-                    const Matrix zero = Matrix::Zero(geometry.n_local(), d);
-                    mechanics::ElementResponse response =
-                        mechanics::element_response(geometry, body.material, scene_.kinematics, zero);
-                    pattern.add(block, response.K, K0);
-                    element_stiffness_[static_cast<std::size_t>(block)] = std::move(response.K);
-                }
-            },
-            assembly::Execution::serial);  // once per run; not worth threads
-        small_stiffness_ = std::move(K0);
-    }
-
-    std::atomic<bool> failed{false};
-    std::mutex message_mutex;
-    std::string failure;
-    pattern.for_each_block(
-        [&](int block) {
-            if (block >= scene_.n_element_blocks)
-                return;
-            for (const BodyModel& body : scene_.bodies) {
-                const int e = block - body.first_block;
-                if (e < 0 || e >= static_cast<int>(body.elements.size()))
-                    continue;
-                const auto& dofs = body.element_dofs[static_cast<std::size_t>(e)];
-                const Matrix u_local = local_displacement(u_full, dofs, d);
+                const std::vector<int>& dofs = dofs_of(block);
                 Vector& f = element_force_[static_cast<std::size_t>(block)];
-                if (small) {
-                    const Matrix& K_e = element_stiffness_[static_cast<std::size_t>(block)];
-                    Vector u_e(static_cast<Index>(dofs.size()));
-                    for (std::size_t k = 0; k < dofs.size(); ++k)
-                        u_e(static_cast<Index>(k)) = u_full(dofs[k]);
-                    f = K_e * u_e;
-                    continue;
-                }
                 const mechanics::ElementResponse response = mechanics::element_response(
-                    body.elements[static_cast<std::size_t>(e)], body.material, scene_.kinematics, u_local);
+                    element_of(block), body_of(block).material, scene_.kinematics, local_displacement(u_full, dofs, d));
                 if (response.status != mechanics::ResponseStatus::ok || !response.f_int.allFinite()) {
                     failed.store(true);
                     std::lock_guard<std::mutex> lock(message_mutex);
                     if (failure.empty())
                         failure = fmt::format("body '{}': inadmissible deformation in element {} (det F <= 0 or "
                                               "material evaluation failed)",
-                                              body.name, e);
+                                              body_of(block).name, owner_[static_cast<std::size_t>(block)].element);
                     f = Vector::Zero(static_cast<Index>(dofs.size()));
-                    continue;
+                    return;
                 }
                 f = response.f_int;
                 if (need_tangent)
                     pattern.add(block, response.K, K);
-            }
-        },
-        // Small kinematics only multiplies cached K_e u_e: too little work per block to
-        // pay for threads (measured slower, and far slower on a loaded machine).
-        small ? assembly::Execution::serial : assembly::Execution::parallel);
-    if (failed.load()) {
-        out.ok = false;
-        out.message = failure;
+            },
+            assembly::Execution::parallel);
+        if (failed.load()) {
+            out.ok = false;
+            out.message = failure;
+        }
     }
-    if (small && need_tangent)
-        K = *small_stiffness_;
 
     // Vectors are scattered serially: cheap, and constrained entries (reactions)
     // may be shared between blocks of one color.
-    for (const BodyModel& body : scene_.bodies)
-        for (std::size_t e = 0; e < body.elements.size(); ++e) {
-            const auto& dofs = body.element_dofs[e];
-            const Vector& f = element_force_[static_cast<std::size_t>(body.first_block) + e];
-            for (std::size_t k = 0; k < dofs.size(); ++k)
-                r_full(dofs[k]) += f(static_cast<Index>(k));
-        }
+    for (int block = 0; block < scene_.n_element_blocks; ++block) {
+        const std::vector<int>& dofs = dofs_of(block);
+        const Vector& f = element_force_[static_cast<std::size_t>(block)];
+        for (std::size_t k = 0; k < dofs.size(); ++k)
+            r_full(dofs[k]) += f(static_cast<Index>(k));
+    }
 }
 
 void SceneSystem::evaluate(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out)

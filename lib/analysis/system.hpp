@@ -47,6 +47,11 @@ private:
     Scene& scene_;
     RunContext& context_;
     std::optional<SparseMatrix> small_stiffness_;  // small kinematics: elastic K, assembled once
+    struct BlockOwner {
+        int body;
+        int element;
+    };
+    std::vector<BlockOwner> owner_;                // element block -> (body, element), blocks come first
     std::vector<Matrix> element_stiffness_;        // small kinematics: K_e per element block
     std::vector<Vector> element_force_;            // per element block, reused storage
     int last_active_ = 0;
