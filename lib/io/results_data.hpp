@@ -60,6 +60,24 @@ struct ContactPairResult {
     std::string name;
     std::vector<ContactSideResult> sides;
     std::map<std::string, double> attributes;  ///< extra numbers (candidates, projections, ...)
+    /// d-vector, pairs with a rigid obstacle: the force the body's contact pressure exerts
+    /// ON the obstacle (attribute obstacle_force); empty for two deformable sides.
+    std::vector<double> obstacle_force;
+};
+
+/// Stress fields of one body at its tessellation points (output.fields): steps/<kkkk>/fields/<body>/.
+struct BodyFields {
+    std::string body;
+    RowMatrix reference_coordinates;  ///< n_t x d
+    RowMatrix displacement;           ///< n_t x d
+    RowMatrix stress;                 ///< n_t x 6: Cauchy xx, yy, zz, xy, yz, xz (2D: yz = xz = 0)
+    Vector von_mises;                 ///< n_t
+};
+
+/// Total reaction of one constrained side (or named surface): steps/<kkkk>/reactions/<name>.
+struct Reaction {
+    std::string name;            ///< "body.side", e.g. "block.v0"
+    std::vector<double> force;   ///< d: force the constraint exerts on the body (sum over its constrained dofs)
 };
 
 /// A body tessellated for visualization (ParaView, output.paraview): /paraview/<body>/.
@@ -82,6 +100,22 @@ struct StepData {
     std::vector<ContactPairResult> contact;
     /// Displacements at the tessellation points (output.paraview): steps/<kkkk>/paraview/<body>/displacement.
     std::vector<std::pair<std::string, RowMatrix>> tessellation_displacement;
+    std::vector<Reaction> reactions;  ///< one per constrained side, deck order of first appearance
+    std::vector<BodyFields> fields;   ///< output.fields: one per deformable body
+};
+
+/// One row of /history, appended for EVERY converged increment (also when only the
+/// last increment is stored under /steps).
+struct HistoryRow {
+    double load_factor = 0.0;
+    std::vector<Reaction> reactions;  ///< history/reactions/<name>: n x d
+    struct ContactSide {
+        std::string pair;               ///< history/contact/<pair>/<side>/...
+        std::string side;               ///< "body.side"
+        double normal_force = 0.0;
+        double max_penetration = 0.0;
+    };
+    std::vector<ContactSide> contact;
 };
 
 /// An analytic reference curve and this run's errors against it: /reference/<pair>/.
@@ -103,6 +137,7 @@ struct ReferenceData {
 struct RunSummary {
     std::string status;   ///< "completed" | "failed" | "running"
     std::string message;  ///< why, when failed
+    std::string warnings; ///< root attribute "warnings": one line per warning, "" when none
     std::map<std::string, double> timings;      ///< seconds: total, assembly, contact_search, ... -> /timings
     std::map<std::string, long long> counters;  ///< -> attributes of /counters (int64)
     RowMatrix convergence;                      ///< n x 4: increment, iteration, residual_norm, load_factor

@@ -47,7 +47,11 @@ public:
     /// hard link /results at it and flushes the file.
     void write_step(const StepData& step);
 
-    /// Writes status/message, /timings, /counters, /convergence and /reference,
+    /// Remembers one /history row (every converged increment, in order); /history is
+    /// written by finish(). Every row has the same names as the first.
+    void append_history(const HistoryRow& row);
+
+    /// Writes status/message/warnings, /history, /timings, /counters, /convergence and /reference,
     /// closes the file and renames it onto the final path. The writer is closed afterwards.
     void finish(const RunSummary& summary);
 
