@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <atomic>
 #include <csignal>
@@ -140,6 +141,8 @@ int run_command(int argc, char** argv)
     options.stop_requested = [] { return interrupt_requested.load(); };
     if (terminal)
         options.progress = [](const std::string& line) { std::cerr << line << '\n'; };
+    if (!quiet)
+        options.warning = [](const std::string& line) { std::cerr << "warning: " << line << '\n'; };
 
     const analysis::RunOutcome outcome = analysis::run(deck, options, context);
 
@@ -149,6 +152,10 @@ int run_command(int argc, char** argv)
                                      outcome.increments, outcome.newton_iterations, outcome.wall_s);
         else
             std::cerr << fmt::format("igacontact: {}: {}\n", outcome.status, outcome.message);
+        for (const io::Reaction& r : outcome.reactions)
+            std::cerr << fmt::format("reaction on {}: ({:.6g})\n", r.name, fmt::join(r.force, ", "));
+        for (const auto& [pair, force] : outcome.obstacle_forces)
+            std::cerr << fmt::format("contact force on the obstacle of {}: ({:.6g})\n", pair, fmt::join(force, ", "));
         std::cerr << "results: " << outcome.results_file << '\n';
     }
     if (summary == "json")
@@ -169,11 +176,21 @@ int check_command(int argc, char** argv)
 
     const io::Deck deck = io::read_deck(deck_path, overrides);
     const std::string bodies = analysis::describe_bodies(deck);  // also builds the geometry: may throw DeckError
-    analysis::build_scene(deck);  // everything a run checks before solving (Jacobians, pairs, constraints)
+    // Everything a run checks before solving (Jacobians, pairs, constraints, obstacles).
+    const analysis::Scene scene = analysis::build_scene(deck);
     std::cout << "# resolved deck: " << deck_path << '\n' << deck.resolved_yaml;
     if (!deck.resolved_yaml.empty() && deck.resolved_yaml.back() != '\n')
         std::cout << '\n';
     std::cout << bodies;
+    if (!scene.reactions.empty()) {
+        std::cout << "# reactions reported per increment (force each constraint exerts on its body):\n";
+        for (const analysis::ReactionGroup& group : scene.reactions)
+            std::cout << fmt::format("#   {} ({} constrained dofs)\n", group.name, group.dofs.size());
+    }
+    for (const analysis::PairModel& pair : scene.pairs)
+        if (pair.obstacle >= 0)
+            std::cout << fmt::format("# contact force on the obstacle {} reported for pair {}\n",
+                                     pair.label[static_cast<std::size_t>(pair.obstacle)], pair.name);
     std::cerr << deck_path << ": ok\n";
     return exit_ok;
 }

@@ -26,7 +26,9 @@ std::string describe_bodies(const io::Deck& deck)
     const int d = deck.analysis.dimension;
     for (const io::Body& body : deck.bodies) {
         if (body.rigid) {
-            out += fmt::format("#   {}: rigid plane (no sides; name it directly in a contact pair)\n", body.name);
+            const char* kind = body.plane ? "plane" : (d == 3 ? "sphere" : "circle");
+            out += fmt::format("#   {}: rigid {}{} (no sides; name it directly in a contact pair)\n", body.name, kind,
+                               body.moves() ? ", moving" : "");
             continue;
         }
         nurbs::Patch patch = [&] {

@@ -123,6 +123,19 @@ std::vector<io::BodyGeometry> body_geometry(const io::Deck& deck, const Scene& s
     return out;
 }
 
+std::vector<io::Reaction> reactions(const Scene& scene, const Vector& r_full)
+{
+    std::vector<io::Reaction> out;
+    const int d = scene.dim;
+    for (const ReactionGroup& group : scene.reactions) {
+        io::Reaction r{group.name, std::vector<double>(static_cast<std::size_t>(d), 0.0)};
+        for (int dof : group.dofs)
+            r.force[static_cast<std::size_t>(dof % d)] += r_full(dof);
+        out.push_back(std::move(r));
+    }
+    return out;
+}
+
 io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_free, double load_factor,
                        int samples_per_span)
 {
@@ -131,6 +144,7 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
     const Vector u_full = scene.dofs->expand(u_free, load_factor);
     for (std::size_t b = 0; b < scene.bodies.size(); ++b)
         step.displacement.emplace_back(scene.bodies[b].name, system.body_displacement(u_full, static_cast<int>(b)));
+    step.reactions = reactions(scene, system.full_residual(u_free, load_factor));
     if (!scene.has_contact())
         return step;
 
@@ -144,6 +158,13 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
         result.attributes["max_penetration"] = state.max_penetration;
         result.attributes["candidates"] = static_cast<double>(state.candidates);
         result.attributes["projections"] = static_cast<double>(state.projections);
+        if (model.obstacle >= 0) {
+            // The body's contact force is -r_c; the obstacle feels the opposite, +r_c.
+            const int d = scene.dim;
+            result.obstacle_force.assign(static_cast<std::size_t>(d), 0.0);
+            for (Index k = 0; k < state.residual.size(); ++k)
+                result.obstacle_force[static_cast<std::size_t>(k % d)] += state.residual(k);
+        }
         for (const contact::CarrierResult& carrier : state.carriers) {
             const contact::DeformableSide* side = deformable(model.pair, carrier.surface);
             IGA_CHECK(side != nullptr, "a rigid surface cannot carry Gauss points");
@@ -166,14 +187,16 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
             r.postprocessed.pressure = recovered.pressure;
             r.normal_force = recovered.normal_force;
             int active = 0;
-            double penetration = 0.0;
+            double penetration = 0.0, contact_measure = 0.0;
             for (Index g = 0; g < carrier.pressure.size(); ++g)
                 if (carrier.pressure(g) > 0.0) {
                     ++active;
                     penetration = std::max(penetration, carrier.gap(g));
+                    contact_measure += carrier.weight(g);
                 }
             r.attributes["n_active"] = active;
             r.attributes["max_penetration"] = penetration;
+            r.attributes["contact_measure"] = contact_measure;  // reference length (area in 3D) in contact
             result.sides.push_back(std::move(r));
         }
         step.contact.push_back(std::move(result));
@@ -221,7 +244,8 @@ std::vector<io::ReferenceData> references(const io::Deck& deck, const Scene& sce
         elastic(k_body, E, nu);
         hertz = analytic::hertz_cylinder_plane(E, nu, ref.radius, ref.force);
         VecN normal(2);
-        if (const auto* plane = std::get_if<contact::RigidPlane>(&model->pair.surface(k_plane)))
+        const auto* obstacle = std::get_if<contact::RigidObstacle>(&model->pair.surface(k_plane));
+        if (const auto* plane = obstacle ? std::get_if<contact::RigidPlane>(&obstacle->shape) : nullptr)
             normal = plane->normal;
         else
             normal << 0.0, 1.0;

@@ -15,7 +15,11 @@ namespace iga::analysis {
 
 std::vector<io::BodyGeometry> body_geometry(const io::Deck& deck, const Scene& scene);
 
-/// Displacements and contact data of the state u_free at load_factor.
+/// The reaction of every constrained side from the full residual at a converged
+/// state (scene.reactions order).
+std::vector<io::Reaction> reactions(const Scene& scene, const Vector& r_full);
+
+/// Displacements, reactions and contact data of the state u_free at load_factor.
 io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_free, double load_factor,
                        int samples_per_span);
 

@@ -4,6 +4,7 @@
 #include "analysis/scene.hpp"
 #include "analysis/system.hpp"
 #include "analysis/tessellation.hpp"
+#include "analysis/warnings.hpp"
 #include "io/locate.hpp"
 #include "io/results_writer.hpp"
 #include "io/xdmf_writer.hpp"
@@ -27,6 +28,21 @@ solver::NewtonSettings newton_settings(const io::Newton& n)
     s.max_iterations = n.max_iterations;
     s.line_search = n.line_search;
     return s;
+}
+
+/// One /history row: the reactions and each contact side's force and penetration.
+io::HistoryRow history_row(const io::StepData& step)
+{
+    io::HistoryRow row;
+    row.load_factor = step.load_factor;
+    row.reactions = step.reactions;
+    for (const io::ContactPairResult& pair : step.contact)
+        for (const io::ContactSideResult& side : pair.sides) {
+            const auto penetration = side.attributes.find("max_penetration");
+            row.contact.push_back({pair.name, side.side_name, side.normal_force,
+                                   penetration == side.attributes.end() ? 0.0 : penetration->second});
+        }
+    return row;
 }
 
 solver::SteppingSettings stepping_settings(const io::Steps& steps)
@@ -101,6 +117,16 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     if (scene.kinematics == mechanics::Kinematics::small && scene.has_contact() && scene.followers.empty())
         linear.set_condensed_dofs(contact_free_dofs(scene));
 
+    std::vector<std::string> warnings;
+    auto warn = [&](const std::vector<std::string>& lines) {
+        for (const std::string& line : lines) {
+            warnings.push_back(line);
+            if (options.warning)
+                options.warning(line);
+        }
+    };
+    warn(overclosure_warnings(scene, system));
+
     std::optional<io::StepData> last_step;
     std::vector<std::array<double, 4>> convergence;
     solver::SteppingCallbacks callbacks;
@@ -124,6 +150,7 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         for (std::size_t k = 0; k < record.report.residual_history.size(); ++k)
             convergence.push_back({static_cast<double>(record.index), static_cast<double>(k),
                                    record.report.residual_history[k], record.load_factor});
+        writer->append_history(history_row(step));
         for (std::size_t b = 0; b < tessellations.size(); ++b)
             step.tessellation_displacement.emplace_back(
                 scene.bodies[b].name, tessellation_displacement(tessellations[b], step.displacement[b].second));
@@ -162,6 +189,14 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     }
 
     RunOutcome outcome;
+    if (last_step) {
+        warn(contact_warnings(deck, scene, *last_step));
+        outcome.reactions = last_step->reactions;
+        for (const io::ContactPairResult& pair : last_step->contact)
+            if (!pair.obstacle_force.empty())
+                outcome.obstacle_forces.emplace_back(pair.name, pair.obstacle_force);
+    }
+    outcome.warnings = warnings;
     outcome.status = result.completed ? "completed" : "failed";
     outcome.message = result.message;
     // Name the usual cause of a stiff failure: a penalty so large against E that the
@@ -188,6 +223,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     io::RunSummary summary;
     summary.status = outcome.status;
     summary.message = outcome.message;
+    for (const std::string& line : warnings)
+        summary.warnings += (summary.warnings.empty() ? "" : "\n") + line;
     summary.references = references(deck, scene, last_step ? &*last_step : nullptr);
     for (const io::ReferenceData& r : summary.references)
         for (const auto& [key, value] : r.errors)

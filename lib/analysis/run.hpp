@@ -11,10 +11,13 @@
 
 #include "core/run_context.hpp"
 #include "io/deck.hpp"
+#include "io/results_data.hpp"
 
 #include <functional>
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace iga::analysis {
 
@@ -23,6 +26,8 @@ struct RunOptions {
     /// Called after each converged increment with a one-line summary (k/N, load
     /// factor, iterations, active Gauss points); the app prints it on a terminal.
     std::function<void(const std::string&)> progress;
+    /// Called with each warning (without the "warning: " prefix) as soon as it is found.
+    std::function<void(const std::string&)> warning;
 };
 
 struct RunOutcome {
@@ -35,6 +40,10 @@ struct RunOutcome {
     double wall_s = 0.0;
     std::map<std::string, double> errors;   ///< against the reference, when the deck asks for one
     std::map<std::string, double> numbers;  ///< dofs, gauss points, active points, ...
+    std::vector<std::string> warnings;      ///< also in the results' root attribute `warnings`
+    std::vector<io::Reaction> reactions;    ///< of the last converged increment
+    /// (pair, d-vector) of the last converged increment: force on each rigid obstacle.
+    std::vector<std::pair<std::string, std::vector<double>>> obstacle_forces;
 };
 
 RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& context);

@@ -1,6 +1,8 @@
 #include "analysis/scene.hpp"
 
+#include "analysis/constraints.hpp"
 #include "analysis/geometry.hpp"
+#include "analysis/obstacles.hpp"
 #include "io/locate.hpp"
 #include "nurbs/side_patch.hpp"
 
@@ -119,21 +121,9 @@ Scene build_scene(const io::Deck& deck)
         nodes_per_body.push_back(b.patch.n_control_points());
         n_nodes += b.patch.n_control_points();
     }
-    std::vector<assembly::PrescribedDof> prescribed;
-    for (const io::Constraint& c : deck.constraints) {
-        const int b = body_index(c.body);
-        IGA_CHECK(b >= 0, "the deck reader let a constraint on a rigid or unknown body through");
-        const nurbs::SidePatch side = nurbs::extract_side(scene.bodies[b].patch, c.side);
-        for (int p : side.parent_index)
-            for (int i = 0; i < d; ++i)
-                if (c.fixed[static_cast<std::size_t>(i)])
-                    prescribed.push_back({(node_offset[b] + p) * d + i, c.value[static_cast<std::size_t>(i)]});
-    }
-    try {
-        scene.dofs = std::make_unique<assembly::DofMap>(d, nodes_per_body, prescribed);
-    } catch (const Error& e) {
-        throw DeckError(body_issue(deck, "constraints", std::string("conflicting constraints: ") + e.what()));
-    }
+    DirichletData dirichlet = dirichlet_data(deck, scene.bodies, scene.body_of_deck, node_offset);
+    scene.dofs = std::make_unique<assembly::DofMap>(d, nodes_per_body, dirichlet.prescribed);
+    scene.reactions = std::move(dirichlet.reactions);
     const assembly::DofMap& dofs = *scene.dofs;
 
     // Blocks: elements first.
@@ -213,7 +203,7 @@ Scene build_scene(const io::Deck& deck)
             IGA_CHECK(deck_body != nullptr, "the deck reader let an unknown contact body through");
             if (deck_body->rigid) {
                 label[k] = s.body;
-                return contact::RigidPlane::make(to_vec(deck_body->plane->point), to_vec(deck_body->plane->normal));
+                return rigid_obstacle(*deck_body);
             }
             body[k] = body_index(s.body);
             label[k] = s.body + "." + std::string(side_name(*s.side));
@@ -238,7 +228,13 @@ Scene build_scene(const io::Deck& deck)
                                            "cannot use this pair: " + reason));
             }
         }();
-        PairModel model{c.name, std::move(pair), body, parent, label, {}, static_cast<int>(blocks.size())};
+        PairModel model{c.name, std::move(pair), body, parent, label, {}, static_cast<int>(blocks.size()), -1,
+                        settings.formulation};
+        for (int k = 0; k < 2; ++k)
+            if (body[k] < 0)
+                model.obstacle = k;
+        if (model.obstacle >= 0)
+            check_obstacle_side(deck, scene, c, model);
         for (int k = 0; k < 2; ++k)
             if (body[k] >= 0) {
                 const std::vector<int> full = dofs_of(dofs, body[k], parent[k]);
@@ -258,7 +254,9 @@ Scene build_scene(const io::Deck& deck)
             const int n_rigid = (p.body[0] < 0) + (p.body[1] < 0);
             if (d != 2)
                 throw DeckError(body_issue(deck, "output.reference", "the Hertz references are 2D line contacts"));
-            if (ref->type == io::ReferenceType::hertz_cylinder_plane && n_rigid != 1)
+            const bool round_obstacle = p.obstacle >= 0 && std::holds_alternative<contact::RigidSphere>(
+                std::get<contact::RigidObstacle>(p.pair.surface(p.obstacle)).shape);
+            if (ref->type == io::ReferenceType::hertz_cylinder_plane && (n_rigid != 1 || round_obstacle))
                 throw DeckError(body_issue(deck, "output.reference.type",
                                            "hertz_cylinder_plane needs a pair of a deformable side and a rigid plane; "
                                            "use hertz_two_cylinders for two deformable sides"));

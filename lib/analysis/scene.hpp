@@ -46,6 +46,13 @@ struct FollowerPressure {
     int first_block = 0;
 };
 
+/// The constrained dofs of one side (all constraint items on the same body.side
+/// together): their residual entries sum to the side's reaction.
+struct ReactionGroup {
+    std::string name;       ///< "body.side"
+    std::vector<int> dofs;  ///< full dofs the side prescribes (each once); component = dof % d
+};
+
 struct PairModel {
     std::string name;
     contact::ContactPair pair;
@@ -54,6 +61,8 @@ struct PairModel {
     std::array<std::string, 2> label;                ///< "cylinder.v0" or the rigid body's name
     std::vector<int> local_to_full;                  ///< pair-local dof -> full dof
     int block = 0;
+    int obstacle = -1;                               ///< surface index (0/1) of a rigid obstacle, -1 if none
+    contact::Formulation formulation = contact::Formulation::two_half_pass;
 };
 
 struct Scene {
@@ -65,6 +74,7 @@ struct Scene {
     Vector f_ext;  ///< full, at load factor 1: dead tractions, forces, gravity, small-kinematics pressures
     std::vector<FollowerPressure> followers;
     std::vector<PairModel> pairs;
+    std::vector<ReactionGroup> reactions;  ///< one per constrained side, deck order of first appearance
     std::unique_ptr<assembly::SparsePattern> pattern;
     int n_element_blocks = 0;
     double model_size = 1.0;  ///< bounding-box diagonal of all deformable bodies

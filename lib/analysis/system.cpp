@@ -164,6 +164,20 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
 
 void SceneSystem::evaluate(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out)
 {
+    evaluate_into(u_free, load_factor, need_tangent, out, &context_, nullptr);
+}
+
+Vector SceneSystem::full_residual(const Vector& u_free, double load_factor)
+{
+    solver::Evaluation scratch;
+    Vector r_full;
+    evaluate_into(u_free, load_factor, false, scratch, nullptr, &r_full);
+    return r_full;
+}
+
+void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out,
+                                RunContext* context, Vector* r_full_out)
+{
     const assembly::DofMap& dofs = *scene_.dofs;
     const assembly::SparsePattern& pattern = *scene_.pattern;
     const int d = scene_.dim;
@@ -178,7 +192,7 @@ void SceneSystem::evaluate(const Vector& u_free, double load_factor, bool need_t
     }
 
     {
-        ScopedTimer timer(&context_, "elements");
+        ScopedTimer timer(context, "elements");
         assemble_elements(u_full, need_tangent, r_full, out.tangent, out);
     }
     double f_int_norm = 0.0, reaction_norm2 = 0.0;
@@ -211,12 +225,13 @@ void SceneSystem::evaluate(const Vector& u_free, double load_factor, bool need_t
     double contact_norm = 0.0;
     int active = 0;
     if (scene_.has_contact()) {  // no pairs: not even a timer runs
-        ScopedTimer timer(&context_, "contact");
+        ScopedTimer timer(context, "contact");
         for (std::size_t p = 0; p < scene_.pairs.size(); ++p) {
             PairModel& pair = scene_.pairs[p];
             const contact::PairEvaluation c =
                 pair.pair.evaluate(side_displacement(u_full, static_cast<int>(p), 0),
-                                   side_displacement(u_full, static_cast<int>(p), 1), need_tangent, &context_);
+                                   side_displacement(u_full, static_cast<int>(p), 1), need_tangent, context,
+                                   load_factor);
             if (!c.ok) {
                 out.ok = false;
                 out.message = fmt::format("contact pair '{}': {}", pair.name, c.message);
@@ -238,6 +253,8 @@ void SceneSystem::evaluate(const Vector& u_free, double load_factor, bool need_t
     last_active_ = active;
 
     out.residual = dofs.restrict(r_full);
+    if (r_full_out)
+        *r_full_out = r_full;
     out.force_scale = std::max({external_norm, std::sqrt(reaction_norm2), contact_norm, f_int_norm});
     if (!out.residual.allFinite() && out.ok) {
         out.ok = false;
@@ -252,7 +269,7 @@ std::vector<contact::PairEvaluation> SceneSystem::contact_state(const Vector& u_
     for (std::size_t p = 0; p < scene_.pairs.size(); ++p)
         out.push_back(scene_.pairs[p].pair.evaluate(side_displacement(u_full, static_cast<int>(p), 0),
                                                     side_displacement(u_full, static_cast<int>(p), 1), false,
-                                                    nullptr));
+                                                    nullptr, load_factor));
     return out;
 }
 

@@ -29,6 +29,12 @@ public:
 
     void evaluate(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out);
 
+    /// The residual on ALL dofs (n_full) at a state, without tangent, timers or
+    /// counters. At equilibrium f_int = lambda f_ext - r_c + R on every dof, so the
+    /// constrained entries of r = f_int - lambda f_ext + r_c are the reactions R (the
+    /// force each constraint exerts on the body).
+    Vector full_residual(const Vector& u_free, double load_factor);
+
     /// Contact evaluation of every pair at a converged state (no tangent, not counted
     /// in the contact timers): for output.
     std::vector<contact::PairEvaluation> contact_state(const Vector& u_free, double load_factor);
@@ -41,6 +47,8 @@ public:
     int last_active() const { return last_active_; }
 
 private:
+    void evaluate_into(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out,
+                       RunContext* context, Vector* r_full_out);
     void assemble_elements(const Vector& u_full, bool need_tangent, Vector& r_full, SparseMatrix& K,
                            solver::Evaluation& out);
 

@@ -35,10 +35,8 @@ void check_surface(const Surface& s, const char* which)
             throw Error(std::string("contact: ") + which + " surface, side " +
                         std::string(side_name(side->side.side)) + ", is collapsed to a point");
         IGA_CHECK(side->outward_sign == 1 || side->outward_sign == -1, "contact: outward sign must be +1 or -1");
-    } else {
-        const RigidPlane& plane = std::get<RigidPlane>(s);
-        if (plane.point.size() != 2 || plane.normal.size() != 2)
-            throw Error(std::string("contact: ") + which + " surface is a rigid plane in 3D" + not_3d);
+    } else if (std::get<RigidObstacle>(s).dim() != 2) {
+        throw Error(std::string("contact: ") + which + " surface is a rigid obstacle in 3D" + not_3d);
     }
 }
 
@@ -142,7 +140,7 @@ int ContactPair::n_control_points(int i) const
 }
 
 PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatrix& disp_second, bool need_tangent,
-                                     RunContext* ctx) const
+                                     RunContext* ctx, double load_factor) const
 {
     const int d = dim_;
     PairEvaluation ev;
@@ -222,18 +220,26 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
                 }
         };
 
-        if (const auto* plane = std::get_if<RigidPlane>(&surfaces_[c.master])) {
+        if (const auto* obstacle = std::get_if<RigidObstacle>(&surfaces_[c.master])) {
             for (int g = 0; g < n_g; ++g) {
                 const VecN x = cr.coordinates.row(g).transpose();
-                const double gap = plane->gap(x);
-                cr.gap(g) = gap;
+                const ObstacleFoot foot = obstacle->foot(x, load_factor);
+                if (!foot.ok) {
+                    ev.ok = false;
+                    ev.message = "contact: " + describe_point(c.slave, g, c.points[g].eta, x) +
+                                 " is at the centre of the rigid obstacle (no contact normal); the bodies overlap "
+                                 "far too much: check the obstacle's position and motion";
+                    flush();
+                    return ev;
+                }
+                cr.gap(g) = foot.gap;
                 cr.state[g] = PointState::ok;
-                const KernelResult kr = gpts_rigid_kernel(c.points[g].N, c.points[g].weight, plane->normal, gap,
-                                                          kernel_base);
+                const KernelResult kr = gpts_rigid_kernel(c.points[g].N, c.points[g].weight, foot.normal, foot.gap,
+                                                          kernel_base, foot.radius);
                 cr.pressure(g) = kr.pressure;
                 if (kr.pressure > 0.0) {
                     ++ev.n_active;
-                    ev.max_penetration = std::max(ev.max_penetration, gap);
+                    ev.max_penetration = std::max(ev.max_penetration, foot.gap);
                     scatter(kr, c.points[g], {});
                 }
             }

@@ -1,5 +1,5 @@
 #pragma once
-// One contact pair: its two surfaces (deformable 2D sides or a rigid plane), the
+// One contact pair: its two surfaces (deformable 2D sides or a rigid obstacle), the
 // Gauss points that carry the penalty, and the per-Newton-iteration evaluation
 // of its residual and tangent (Kopacka et al. eqs. 5-7; physics.md 3.4).
 //
@@ -9,7 +9,7 @@
 //    penalty (tangent non-symmetric: use a general sparse LU);
 //  - single_pass, both deformable: the first surface is the slave, slave and
 //    master rows are assembled (action-reaction; tangent symmetric);
-//  - deformable vs rigid plane: the deformable side, whatever the formulation.
+//  - deformable vs rigid obstacle (plane or sphere): the deformable side, whatever the formulation.
 // Gauss points: `quadrature` per knot span of the carrying side (0 means degree
 // + 2), placed in the REFERENCE configuration with weight W = w_g |dX/deta|
 // (reference Jacobian, held fixed); kinematics use the current configuration.
@@ -29,7 +29,7 @@
 // 3D (surface sides, planes in 3D) is not supported: the constructor throws
 // iga::Error.
 
-#include "contact/rigid_plane.hpp"
+#include "contact/rigid_obstacle.hpp"
 #include "core/run_context.hpp"
 #include "core/side.hpp"
 #include "core/types.hpp"
@@ -61,7 +61,7 @@ struct DeformableSide {
     static DeformableSide make(const nurbs::Patch& parent, Side side);
 };
 
-using Surface = std::variant<DeformableSide, RigidPlane>;
+using Surface = std::variant<DeformableSide, RigidObstacle>;
 
 /// What happened at one Gauss point.
 enum class PointState {
@@ -102,7 +102,7 @@ public:
 
     const PairSettings& settings() const { return settings_; }
     const Surface& surface(int i) const { return surfaces_[i]; }
-    /// Side control points of surface i (0 for a rigid plane).
+    /// Side control points of surface i (0 for a rigid obstacle).
     int n_control_points(int i) const;
     int n_local_dofs() const { return (n_control_points(0) + n_control_points(1)) * dim_; }
     int dim() const { return dim_; }
@@ -112,11 +112,12 @@ public:
     int n_gauss_points(int carrier) const { return static_cast<int>(carriers_[carrier].points.size()); }
 
     /// Residual (and tangent) at the displacements of the two sides (n_cp_i x d,
-    /// an empty matrix for a rigid surface). Adds the timers "contact_search" and
+    /// an empty matrix for a rigid surface); a moving obstacle sits at its
+    /// position for `load_factor`. Adds the timers "contact_search" and
     /// "projection" and the counters "contact_candidates", "projections",
     /// "projection_iterations" to ctx when it is not null.
     PairEvaluation evaluate(const RowMatrix& disp_first, const RowMatrix& disp_second, bool need_tangent,
-                            RunContext* ctx = nullptr) const;
+                            RunContext* ctx = nullptr, double load_factor = 0.0) const;
 
     void commit() { committed_xi_ = trial_xi_; }
     void rollback() { trial_xi_ = committed_xi_; }

@@ -73,10 +73,10 @@ KernelResult gpts_kernel(const Vector& N, double W, const Projection& master, co
 }
 
 KernelResult gpts_rigid_kernel(const Vector& N, double W, const VecN& normal, double gap,
-                               const KernelSettings& settings)
+                               const KernelSettings& settings, double normal_radius)
 {
     const Index d = normal.size();
-    IGA_CHECK(d == 2, "contact: GPTS kernel is 2D only");
+    IGA_CHECK(d == 2 || d == 3, "contact: rigid obstacle normal needs 2 or 3 components");
     const Index n_dofs = N.size() * d;
     KernelResult out;
     out.residual = Vector::Zero(n_dofs);
@@ -89,8 +89,17 @@ KernelResult gpts_rigid_kernel(const Vector& N, double W, const VecN& normal, do
     for (Index a = 0; a < N.size(); ++a)
         Nn.segment(a * d, d) = N(a) * normal;
     out.residual = -out.pressure * W * Nn;
-    if (settings.need_tangent)
-        out.tangent = settings.penalty * W * Nn * Nn.transpose();
+    if (!settings.need_tangent)
+        return out;
+    out.tangent = settings.penalty * W * Nn * Nn.transpose();
+    if (std::isfinite(normal_radius)) {
+        // r_a = -p W N_a n(x): the normal turns with x, dn/dx = (I - n n) / normal_radius.
+        const Matrix turning = (out.pressure * W / normal_radius) *
+                               (Matrix::Identity(d, d) - normal * normal.transpose());
+        for (Index a = 0; a < N.size(); ++a)
+            for (Index b = 0; b < N.size(); ++b)
+                out.tangent.block(a * d, b * d, d, d) -= N(a) * N(b) * turning;
+    }
     return out;
 }
 

@@ -17,7 +17,8 @@
 //   K_b = -eps H W (R_b n) (x) Nn + p W [ (R_b' n) (x) T / c - (R_b tau / m) (x) D ]
 // Single pass assembles slave and master rows (K is then symmetric, the Hessian
 // of Pi_c); a half pass of the two-half-pass algorithm only the slave rows, with
-// slave and master columns. Rigid plane: K_a = eps H W (N_a n) (x) (N_c n).
+// slave and master columns. Rigid plane: K_a = eps H W (N_a n) (x) (N_c n); a rigid
+// sphere adds the turning of its normal (gpts_rigid_kernel).
 //
 // Local numbering (shapes): dofs [slave cps (n_s x d) ; master cps (n_m x d)],
 // dof = cp * d + component, cp counted within the kernel's lists (N's order, then
@@ -26,6 +27,8 @@
 
 #include "contact/projection.hpp"
 #include "core/types.hpp"
+
+#include <limits>
 
 namespace iga::contact {
 
@@ -47,8 +50,12 @@ struct KernelResult {
 KernelResult gpts_kernel(const Vector& N, double W, const Projection& master, const KernelSettings& settings);
 
 /// Slave Gauss point against a rigid obstacle with outward unit normal `normal`
-/// and gap g_N `gap`: only slave dofs (n_s d).
+/// and gap g_N `gap`: only slave dofs (n_s d), any d. `normal_radius` is the
+/// distance over which the normal turns as the slave point moves (|x - c| for a
+/// sphere, dn/dx = (I - n n)/normal_radius); infinite for a plane:
+///   K_ab = W N_a N_b [ eps H n n - (p / normal_radius) (I - n n) ].
 KernelResult gpts_rigid_kernel(const Vector& N, double W, const VecN& normal, double gap,
-                               const KernelSettings& settings);
+                               const KernelSettings& settings,
+                               double normal_radius = std::numeric_limits<double>::infinity());
 
 }  // namespace iga::contact

@@ -304,17 +304,14 @@ Refine read_refine(const Cursor& c, int dim, const std::optional<Parametrization
     return r;
 }
 
-std::optional<RigidPlane> read_rigid(const Cursor& c, int dim)
+std::optional<RigidPlane> read_plane(const Cursor& plane, int dim)
 {
-    if (!c.allow_only({"plane"}))
-        return std::nullopt;
-    const auto plane = required(c, "plane");
-    if (!plane || !plane->allow_only({"point", "normal"}))
+    if (!plane.allow_only({"point", "normal"}))
         return std::nullopt;
     RigidPlane r;
-    if (const auto point = required(*plane, "point"))
+    if (const auto point = required(plane, "point"))
         r.point = point->to_numbers(dim).value_or(std::vector<double>{});
-    const auto normal = required(*plane, "normal");
+    const auto normal = required(plane, "normal");
     if (!normal)
         return r;
     const auto n = normal->to_numbers(dim);
@@ -338,6 +335,47 @@ std::optional<RigidPlane> read_rigid(const Cursor& c, int dim)
     return r;
 }
 
+std::optional<RigidSphere> read_sphere(const Cursor& sphere, int dim)
+{
+    if (!sphere.allow_only({"center", "radius"}))
+        return std::nullopt;
+    RigidSphere r;
+    if (const auto center = required(sphere, "center"))
+        r.center = center->to_numbers(dim).value_or(std::vector<double>{});
+    if (const auto radius = required(sphere, "radius")) {
+        const auto value = radius->to_number();
+        if (value && !(*value > 0))
+            radius->fail("must be > 0");
+        r.radius = value.value_or(0.0);
+    }
+    return r;
+}
+
+/// `rigid:` of an obstacle: one of plane / circle (2D) / sphere (3D), and an optional motion.
+void read_rigid(const Cursor& c, int dim, Body& b)
+{
+    const char* round = dim == 3 ? "sphere" : "circle";
+    const char* other_round = dim == 3 ? "circle" : "sphere";
+    if (!c.allow_only({"plane", round, other_round, "motion"}))
+        return;
+    if (c.has(other_round)) {
+        c.child(other_round).fail_here(fmt::format("a {}D analysis takes '{}', not '{}'", dim, round, other_round));
+        return;
+    }
+    const bool plane = c.has("plane"), sphere = c.has(round);
+    if (plane == sphere) {
+        c.fail_here(plane ? fmt::format("takes 'plane' or '{}', not both", round)
+                          : fmt::format("needs 'plane' or '{}'", round));
+        return;
+    }
+    if (plane)
+        b.plane = read_plane(c.child("plane"), dim);
+    else
+        b.sphere = read_sphere(c.child(round), dim);
+    if (c.has("motion"))
+        b.motion = c.child("motion").to_numbers(dim).value_or(std::vector<double>{});
+}
+
 }  // namespace
 
 Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names)
@@ -355,7 +393,8 @@ Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names)
         for (const char* key : {"material", "nurbs", "shape", "refine"})
             if (c.has(key))
                 c.child(key).fail_here("a rigid body takes no '" + std::string(key) + "'");
-        b.plane = read_rigid(c.child("rigid"), known.dim);
+        if (const Cursor rigid = c.child("rigid"); rigid.expect_map())
+            read_rigid(rigid, known.dim, b);
         return b;
     }
     if (const auto material = c.get<std::string>("material")) {

@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/side.hpp"
 
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -79,6 +80,15 @@ struct RigidPlane {
     bool operator==(const RigidPlane&) const = default;
 };
 
+/// A rigid circle (2D, deck key `circle`) or sphere (3D, `sphere`): the solid disc
+/// or ball; its outward normal points away from the centre.
+struct RigidSphere {
+    std::vector<double> center;  ///< d coordinates
+    double radius = 0.0;         ///< > 0
+
+    bool operator==(const RigidSphere&) const = default;
+};
+
 struct Body {
     std::string name;
     bool rigid = false;
@@ -87,18 +97,24 @@ struct Body {
     std::optional<NurbsData> nurbs;
     std::optional<Shape> shape;
     Refine refine;
-    // Rigid obstacle.
+    // Rigid obstacle: exactly one of plane / sphere, and its motion.
     std::optional<RigidPlane> plane;
+    std::optional<RigidSphere> sphere;   ///< `circle` in 2D, `sphere` in 3D
+    std::vector<double> motion;          ///< rigid translation at load factor 1; empty: fixed
+
+    bool moves() const { return std::any_of(motion.begin(), motion.end(), [](double m) { return m != 0.0; }); }
 
     bool operator==(const Body&) const = default;
 };
 
-/// Dirichlet condition on every control point of a side.
+/// Dirichlet condition on every control point of a side. `fix: [x]` and
+/// `displacement: [~, -0.1]` (a null leaves that component free) may be combined:
+/// a component is prescribed when it is fixed or given a value.
 struct Constraint {
     std::string body;
     Side side = Side::u0;
     std::vector<bool> fixed;    ///< d entries: which components are prescribed
-    std::vector<double> value;  ///< d entries: prescribed values at load factor 1 (0 for `fix`)
+    std::vector<double> value;  ///< d entries: prescribed values at load factor 1 (0 for `fix` and free ones)
 
     bool operator==(const Constraint&) const = default;
 };

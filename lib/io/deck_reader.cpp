@@ -5,6 +5,8 @@
 #include "io/overrides.hpp"
 #include "io/yaml_cursor.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <filesystem>
@@ -148,12 +150,12 @@ std::vector<Constraint> read_constraints(const Cursor& root, const KnownNames& k
         k.side = required_side(c, dim).value_or(Side::u0);
         const bool fix = c.has("fix");
         const bool displacement = c.has("displacement");
-        if (fix == displacement) {
-            c.fail_here(fix ? "takes 'fix' or 'displacement', not both"
-                            : "needs 'fix' (components held at zero) or 'displacement' (prescribed values)");
-        } else if (fix) {
-            k.fixed.assign(dim, false);
-            k.value.assign(dim, 0.0);
+        k.fixed.assign(dim, false);
+        k.value.assign(dim, 0.0);
+        if (!fix && !displacement)
+            c.fail_here("needs 'fix' (components held at zero) and/or 'displacement' (prescribed values, ~ for "
+                        "a free component)");
+        if (fix) {
             const Cursor f = c.child("fix");
             if (!f.is_list() || f.size() == 0)
                 f.fail("expected a list of components, e.g. [" + join_names(components) + "]");
@@ -165,9 +167,33 @@ std::vector<Constraint> read_constraints(const Cursor& root, const KnownNames& k
                 else if (name)
                     item.fail("expected a component: " + join_names(components));
             }
-        } else if (const auto v = c.child("displacement").to_numbers(dim)) {
-            k.fixed.assign(dim, true);
-            k.value = *v;
+        }
+        if (displacement) {
+            const Cursor v = c.child("displacement");
+            if (!v.is_list() || v.size() != static_cast<std::size_t>(dim)) {
+                v.fail(fmt::format("expected a list of {} values (~ leaves a component free), e.g. [~, -0.01]", dim));
+            } else {
+                bool any = false;
+                for (int i = 0; i < dim; ++i) {
+                    const Cursor item = v.item(static_cast<std::size_t>(i));
+                    if (!item.exists())  // ~ (null): this component is free
+                        continue;
+                    const auto value = item.to_number();
+                    if (!value)
+                        continue;
+                    any = true;
+                    if (k.fixed[static_cast<std::size_t>(i)] && *value != 0.0) {
+                        item.fail(fmt::format("component {} is also in 'fix' (held at zero); write ~ here or drop "
+                                              "it from 'fix'",
+                                              components[static_cast<std::size_t>(i)]));
+                        continue;
+                    }
+                    k.fixed[static_cast<std::size_t>(i)] = true;
+                    k.value[static_cast<std::size_t>(i)] = *value;
+                }
+                if (!any && !fix)
+                    v.fail("prescribes no component (every entry is ~)");
+            }
         }
         out.push_back(k);
     }

@@ -74,6 +74,18 @@ void write_body(YAML::Emitter& out, const Body& b)
             numbers(out, b.plane->normal);
             out << YAML::EndMap;
         }
+        if (b.sphere) {
+            out << YAML::Key << (b.sphere->center.size() == 3 ? "sphere" : "circle") << YAML::Value
+                << YAML::BeginMap;
+            out << YAML::Key << "center" << YAML::Value;
+            numbers(out, b.sphere->center);
+            out << YAML::Key << "radius" << YAML::Value << format_number(b.sphere->radius);
+            out << YAML::EndMap;
+        }
+        if (!b.motion.empty()) {
+            out << YAML::Key << "motion" << YAML::Value;
+            numbers(out, b.motion);
+        }
         out << YAML::EndMap << YAML::EndMap;
         return;
     }
@@ -134,17 +146,31 @@ void write_constraint(YAML::Emitter& out, const Constraint& k, int dim)
     out << YAML::Flow << YAML::BeginMap;
     out << YAML::Key << "body" << YAML::Value << k.body;
     out << YAML::Key << "side" << YAML::Value << word(k.side);
-    const bool all_zero = std::all_of(k.value.begin(), k.value.end(), [](double v) { return v == 0.0; });
-    if (all_zero) {
-        constexpr const char* components[] = {"x", "y", "z"};
+    // Zero values are written as `fix`, the others as `displacement` with ~ for
+    // the components it leaves to `fix` or free: reads back to the same constraint.
+    constexpr const char* components[] = {"x", "y", "z"};
+    const int n = std::min(dim, static_cast<int>(k.fixed.size()));
+    bool any_fixed = false, any_value = false;
+    for (int i = 0; i < n; ++i) {
+        any_fixed = any_fixed || (k.fixed[i] && k.value[i] == 0.0);
+        any_value = any_value || (k.fixed[i] && k.value[i] != 0.0);
+    }
+    if (any_fixed || !any_value) {
         out << YAML::Key << "fix" << YAML::Value << YAML::Flow << YAML::BeginSeq;
-        for (int i = 0; i < dim && i < static_cast<int>(k.fixed.size()); ++i)
-            if (k.fixed[i])
+        for (int i = 0; i < n; ++i)
+            if (k.fixed[i] && k.value[i] == 0.0)
                 out << components[i];
         out << YAML::EndSeq;
-    } else {
-        out << YAML::Key << "displacement" << YAML::Value;
-        numbers(out, k.value);
+    }
+    if (any_value) {
+        out << YAML::Key << "displacement" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+        for (int i = 0; i < n; ++i) {
+            if (k.fixed[i] && k.value[i] != 0.0)
+                out << format_number(k.value[i]);
+            else
+                out << YAML::Null;
+        }
+        out << YAML::EndSeq;
     }
     out << YAML::EndMap;
 }

@@ -16,6 +16,7 @@ namespace iga::io {
 
 struct ResultsWriter::State {
     h5::Handle file;
+    std::vector<HistoryRow> history;
 };
 
 namespace {
@@ -161,6 +162,7 @@ ResultsWriter::ResultsWriter(std::string final_path, const std::string& program_
         h5::write_attribute(file, "program_version", program_version);
         h5::write_attribute(file, "status", std::string("running"));
         h5::write_attribute(file, "message", std::string());
+        h5::write_attribute(file, "warnings", std::string());
         h5::write_string_dataset(file, "deck", resolved_deck);
         h5::create_group(file, "steps");
         flush(file, temp_path_);
@@ -245,8 +247,16 @@ void ResultsWriter::write_step(const StepData& step)
             h5::Handle pair_group = h5::create_group(contact.id(), pair.name);
             for (const auto& [attribute, value] : pair.attributes)
                 h5::write_attribute(pair_group.id(), attribute, value);
+            if (!pair.obstacle_force.empty())
+                h5::write_attribute(pair_group.id(), "obstacle_force", std::span<const double>(pair.obstacle_force));
             for (const ContactSideResult& side : pair.sides)
                 write_side(pair_group.id(), side);
+        }
+        if (!step.reactions.empty()) {
+            h5::Handle reactions = h5::create_group(group.id(), "reactions");
+            for (const Reaction& r : step.reactions)
+                h5::write_dataset(reactions.id(), r.name, std::span<const double>(r.force),
+                                  {static_cast<hsize_t>(r.force.size())});
         }
         if (!step.tessellation_displacement.empty()) {
             h5::Handle paraview = h5::create_group(group.id(), "paraview");
@@ -263,6 +273,60 @@ void ResultsWriter::write_step(const StepData& step)
     flush(file, temp_path_);
 }
 
+void ResultsWriter::append_history(const HistoryRow& row)
+{
+    IGA_CHECK(is_open(), "results file " + final_path_ + " is already closed");
+    state_->history.push_back(row);
+}
+
+namespace {
+
+void write_history(hid_t file, const std::vector<HistoryRow>& rows)
+{
+    if (rows.empty())
+        return;
+    const HistoryRow& first = rows.front();
+    const hsize_t n = rows.size();
+    h5::Handle history = h5::create_group(file, "history");
+    std::vector<double> column(n);
+    for (hsize_t k = 0; k < n; ++k)
+        column[k] = rows[k].load_factor;
+    h5::write_dataset(history.id(), "load_factor", std::span<const double>(column), {n});
+    if (!first.reactions.empty()) {
+        h5::Handle reactions = h5::create_group(history.id(), "reactions");
+        for (std::size_t j = 0; j < first.reactions.size(); ++j) {
+            const std::size_t d = first.reactions[j].force.size();
+            std::vector<double> table(n * d);
+            for (hsize_t k = 0; k < n; ++k) {
+                IGA_CHECK(rows[k].reactions.size() == first.reactions.size(), "history rows differ in reactions");
+                for (std::size_t i = 0; i < d; ++i)
+                    table[k * d + i] = rows[k].reactions[j].force[i];
+            }
+            h5::write_dataset(reactions.id(), first.reactions[j].name, std::span<const double>(table),
+                              {n, static_cast<hsize_t>(d)});
+        }
+    }
+    if (!first.contact.empty()) {
+        h5::Handle contact = h5::create_group(history.id(), "contact");
+        for (std::size_t j = 0; j < first.contact.size(); ++j) {
+            const std::string& pair = first.contact[j].pair;
+            if (!h5::exists(contact.id(), pair))
+                h5::create_group(contact.id(), pair);
+            h5::Handle side = h5::create_group(contact.id(), pair + "/" + first.contact[j].side);
+            std::vector<double> force(n), penetration(n);
+            for (hsize_t k = 0; k < n; ++k) {
+                IGA_CHECK(rows[k].contact.size() == first.contact.size(), "history rows differ in contact sides");
+                force[k] = rows[k].contact[j].normal_force;
+                penetration[k] = rows[k].contact[j].max_penetration;
+            }
+            h5::write_dataset(side.id(), "normal_force", std::span<const double>(force), {n});
+            h5::write_dataset(side.id(), "max_penetration", std::span<const double>(penetration), {n});
+        }
+    }
+}
+
+}  // namespace
+
 void ResultsWriter::finish(const RunSummary& summary)
 {
     IGA_CHECK(is_open(), "results file " + final_path_ + " is already closed");
@@ -274,6 +338,8 @@ void ResultsWriter::finish(const RunSummary& summary)
     const hid_t file = state_->file.id();
     h5::write_attribute(file, "status", summary.status);
     h5::write_attribute(file, "message", summary.message);
+    h5::write_attribute(file, "warnings", summary.warnings);
+    write_history(file, state_->history);
 
     h5::Handle timings = h5::create_group(file, "timings");
     for (const auto& [name, seconds] : summary.timings)

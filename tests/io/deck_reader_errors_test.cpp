@@ -352,10 +352,22 @@ TEST(DeckReaderErrors, ConstraintsAndLoads)
         return issue_of(replaced(minimal_deck, "{body: block, side: u0, fix: [x]}", text));
     };
     EXPECT_EQ(constraint("{body: block, side: u0}"),
-              "hertz.yaml:15:5: error: constraints.0: needs 'fix' (components held at zero) or 'displacement' "
-              "(prescribed values)");
-    EXPECT_EQ(constraint("{body: block, side: u0, fix: [x], displacement: [0, 1]}"),
-              "hertz.yaml:15:5: error: constraints.0: takes 'fix' or 'displacement', not both");
+              "hertz.yaml:15:5: error: constraints.0: needs 'fix' (components held at zero) and/or 'displacement' "
+              "(prescribed values, ~ for a free component)");
+    // fix and displacement combine; a component may not be both held at zero and moved.
+    const Deck combined = read(replaced(minimal_deck, "{body: block, side: u0, fix: [x]}",
+                                        "{body: block, side: u0, fix: [x], displacement: [~, 1]}"));
+    EXPECT_EQ(combined.constraints[0].fixed, (std::vector<bool>{true, true}));
+    EXPECT_EQ(combined.constraints[0].value, (std::vector<double>{0.0, 1.0}));
+    EXPECT_EQ(constraint("{body: block, side: u0, fix: [x], displacement: [0.5, 1]}"),
+              "hertz.yaml:15:54: error: constraints.0.displacement.0 = 0.5: component x is also in 'fix' (held at "
+              "zero); write ~ here or drop it from 'fix'");
+    EXPECT_EQ(constraint("{body: block, side: u0, displacement: [~, ~]}"),
+              "hertz.yaml:15:43: error: constraints.0.displacement = [~, ~]: prescribes no component (every entry "
+              "is ~)");
+    EXPECT_EQ(constraint("{body: block, side: u0, displacement: [~]}"),
+              "hertz.yaml:15:43: error: constraints.0.displacement = [~]: expected a list of 2 values (~ leaves a "
+              "component free), e.g. [~, -0.01]");
     EXPECT_EQ(constraint("{body: block, side: u0, fix: [x, z]}"),
               "hertz.yaml:15:38: error: constraints.0.fix.1 = z: expected a component: x, y");
     EXPECT_EQ(constraint("{body: block, side: u0, fix: x}"),

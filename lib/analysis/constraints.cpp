@@ -1,0 +1,89 @@
+#include "analysis/constraints.hpp"
+
+#include "io/locate.hpp"
+#include "nurbs/side_patch.hpp"
+
+#include <fmt/format.h>
+
+#include <map>
+
+namespace iga::analysis {
+
+namespace {
+
+constexpr const char* component_names[] = {"x", "y", "z"};
+
+std::string point_text(const RowMatrix& points, int row)
+{
+    std::string out = "(";
+    for (Index i = 0; i < points.cols(); ++i)
+        out += fmt::format("{}{:.6g}", i ? ", " : "", points(row, i));
+    return out + ")";
+}
+
+std::string item_label(const io::Constraint& c, std::size_t index)
+{
+    return fmt::format("constraints.{} ({}.{})", index, c.body, side_name(c.side));
+}
+
+}  // namespace
+
+DirichletData dirichlet_data(const io::Deck& deck, const std::vector<BodyModel>& bodies,
+                             const std::vector<int>& body_of_deck, const std::vector<int>& node_offset)
+{
+    const int d = deck.analysis.dimension;
+    struct Owner {
+        std::size_t item;
+        double value;
+    };
+    std::map<int, Owner> owner;  // full dof -> first item prescribing it
+    DirichletData out;
+    std::map<std::string, std::size_t> group_of;  // "body.side" -> reactions index
+
+    for (std::size_t k = 0; k < deck.constraints.size(); ++k) {
+        const io::Constraint& c = deck.constraints[k];
+        int b = -1;
+        for (std::size_t i = 0; i < deck.bodies.size(); ++i)
+            if (deck.bodies[i].name == c.body)
+                b = body_of_deck[i];
+        IGA_CHECK(b >= 0, "the deck reader let a constraint on a rigid or unknown body through");
+        const BodyModel& body = bodies[static_cast<std::size_t>(b)];
+        const nurbs::SidePatch side = nurbs::extract_side(body.patch, c.side);
+
+        const std::string name = c.body + "." + std::string(side_name(c.side));
+        auto [group, added] = group_of.try_emplace(name, out.reactions.size());
+        if (added)
+            out.reactions.push_back({name, {}});
+        std::vector<int>& group_dofs = out.reactions[group->second].dofs;
+
+        for (int p : side.parent_index)
+            for (int i = 0; i < d; ++i) {
+                if (!c.fixed[static_cast<std::size_t>(i)])
+                    continue;
+                const int dof = (node_offset[static_cast<std::size_t>(b)] + p) * d + i;
+                const double value = c.value[static_cast<std::size_t>(i)];
+                if (std::find(group_dofs.begin(), group_dofs.end(), dof) == group_dofs.end())
+                    group_dofs.push_back(dof);
+                const auto [it, fresh] = owner.try_emplace(dof, Owner{k, value});
+                if (fresh) {
+                    out.prescribed.push_back({dof, value});
+                    continue;
+                }
+                if (it->second.value == value)
+                    continue;
+                const io::Constraint& first = deck.constraints[it->second.item];
+                throw DeckError(io::located_issue(
+                    deck.source_file, fmt::format("constraints.{}", k), "",
+                    fmt::format("conflicts with {}: both prescribe the {}-displacement of the control point at {} "
+                                "of body '{}' ({} = {:.6g} here, {:.6g} there); the sides {}.{} and {}.{} meet "
+                                "there. Leave that component free in one of them (~ in 'displacement', or drop "
+                                "it from 'fix')",
+                                item_label(first, it->second.item), component_names[i],
+                                point_text(body.patch.control_points(), p), c.body, component_names[i], value,
+                                it->second.value, first.body, side_name(first.side), c.body, side_name(c.side))));
+            }
+    }
+    return out;
+}
+
+}  // namespace iga::analysis

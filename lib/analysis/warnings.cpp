@@ -1,0 +1,127 @@
+#include "analysis/warnings.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace iga::analysis {
+
+namespace {
+
+std::string point_text(const RowMatrix& points, Index row)
+{
+    std::string out = "(";
+    for (Index i = 0; i < points.cols(); ++i)
+        out += fmt::format("{}{:.4g}", i ? ", " : "", points(row, i));
+    return out + ")";
+}
+
+double body_size(const BodyModel& body)
+{
+    const RowMatrix& p = body.patch.control_points();
+    return (p.colwise().maxCoeff() - p.colwise().minCoeff()).norm();
+}
+
+/// The largest imposed travel at load factor 1: prescribed displacements and obstacle motions.
+double imposed_travel(const io::Deck& deck)
+{
+    double travel = 0.0;
+    auto norm = [](const std::vector<double>& v) {
+        double s = 0.0;
+        for (double x : v)
+            s += x * x;
+        return std::sqrt(s);
+    };
+    for (const io::Constraint& c : deck.constraints)
+        travel = std::max(travel, norm(c.value));
+    for (const io::Body& b : deck.bodies)
+        travel = std::max(travel, norm(b.motion));
+    return travel;
+}
+
+double attribute(const io::ContactSideResult& side, const std::string& name)
+{
+    const auto it = side.attributes.find(name);
+    return it == side.attributes.end() ? 0.0 : it->second;
+}
+
+}  // namespace
+
+std::vector<std::string> overclosure_warnings(const Scene& scene, SceneSystem& system)
+{
+    std::vector<std::string> out;
+    if (!scene.has_contact())
+        return out;
+    const Vector u0 = Vector::Zero(scene.dofs->n_free());
+    const std::vector<contact::PairEvaluation> states = system.contact_state(u0, 0.0);
+    const double tolerance = overclosure_tolerance * scene.model_size;
+    for (std::size_t p = 0; p < scene.pairs.size(); ++p) {
+        const PairModel& model = scene.pairs[p];
+        for (const contact::CarrierResult& carrier : states[p].carriers) {
+            Index deepest = -1;
+            for (Index g = 0; g < carrier.gap.size(); ++g)
+                if (carrier.state[static_cast<std::size_t>(g)] == contact::PointState::ok &&
+                    carrier.gap(g) > tolerance && (deepest < 0 || carrier.gap(g) > carrier.gap(deepest)))
+                    deepest = g;
+            if (deepest < 0)
+                continue;
+            out.push_back(fmt::format(
+                "contact pair '{}': {} starts {:.3g} deep inside the other surface (at {}); the first increment "
+                "pushes it out with the full penalty force. If the overlap is not intended, move the bodies apart",
+                model.name, model.label[static_cast<std::size_t>(carrier.surface)], carrier.gap(deepest),
+                point_text(carrier.reference_coordinates, deepest)));
+            break;  // one line per pair: the other half pass sees the same overlap
+        }
+    }
+    return out;
+}
+
+std::vector<std::string> contact_warnings(const io::Deck& deck, const Scene& scene, const io::StepData& step)
+{
+    std::vector<std::string> out;
+    const double travel = imposed_travel(deck) * step.load_factor;
+    const int d = scene.dim;
+    for (std::size_t p = 0; p < step.contact.size() && p < scene.pairs.size(); ++p) {
+        const io::ContactPairResult& pair = step.contact[p];
+        const PairModel& model = scene.pairs[p];
+        for (const io::ContactSideResult& side : pair.sides) {
+            const double penetration = attribute(side, "max_penetration");
+            if (!(penetration > 0.0))
+                continue;
+            const double measure = attribute(side, "contact_measure");
+            const double zone = d == 3 ? std::sqrt(measure) : measure;
+            int b = -1;
+            for (int k = 0; k < 2; ++k)
+                if (model.label[static_cast<std::size_t>(k)] == side.side_name)
+                    b = model.body[static_cast<std::size_t>(k)];
+            const double size = b >= 0 ? body_size(scene.bodies[static_cast<std::size_t>(b)]) : 0.0;
+            std::string against;
+            if (zone > 0.0 && penetration > penetration_to_zone * zone)
+                against = fmt::format("{:.0f} % of the contact zone ({:.3g})", 100.0 * penetration / zone, zone);
+            else if (size > 0.0 && penetration > penetration_to_body * size)
+                against = fmt::format("{:.1f} % of the body size ({:.3g})", 100.0 * penetration / size, size);
+            else if (travel > 0.0 && penetration > penetration_to_travel * travel)
+                against = fmt::format("{:.0f} % of the imposed travel ({:.3g})", 100.0 * penetration / travel,
+                                      travel);
+            if (!against.empty())
+                out.push_back(fmt::format(
+                    "contact pair '{}': {} penetrates {:.3g} at load factor {:.3g}, {}: the penalty is too soft "
+                    "for this load; raise contact.{}.penalty (the penetration falls in proportion)",
+                    pair.name, side.side_name, penetration, step.load_factor, against, pair.name));
+        }
+        if (model.formulation == contact::Formulation::two_half_pass && pair.sides.size() == 2) {
+            const double f1 = pair.sides[0].normal_force, f2 = pair.sides[1].normal_force;
+            const double scale = std::max(std::abs(f1), std::abs(f2));
+            if (scale > 0.0 && std::abs(f1 - f2) > half_pass_disagreement * scale)
+                out.push_back(fmt::format(
+                    "contact pair '{}': the two half passes disagree in normal force by {:.1f} % ({}: {:.6g}, "
+                    "{}: {:.6g}); the sides are resolved very differently or the contact zone spans few Gauss "
+                    "points: refine the coarser side or raise contact.{}.quadrature",
+                    pair.name, 100.0 * std::abs(f1 - f2) / scale, pair.sides[0].side_name, f1,
+                    pair.sides[1].side_name, f2, pair.name));
+        }
+    }
+    return out;
+}
+
+}  // namespace iga::analysis

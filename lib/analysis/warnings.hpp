@@ -1,0 +1,46 @@
+#pragma once
+// Set-ups that run to the end but are grossly wrong, caught and worded for the
+// user (stderr "warning: ..." and the results' root attribute `warnings`):
+//  - initial overclosure: contact surfaces that overlap in the reference
+//    configuration by more than overclosure_tolerance of the model size;
+//  - a penetration large against the contact zone (its reference length, or the
+//    square root of its area in 3D), against the body, or against the travel
+//    imposed by displacements and obstacle motion: the penalty is too soft for
+//    the answer to mean much;
+//  - two-half-pass sides whose contact forces disagree by more than
+//    half_pass_disagreement: the two surfaces are resolved too differently
+//    (refine the coarser side), or the contact zone is barely resolved.
+// A body that starts entirely inside a rigid obstacle is an error, not a warning
+// (analysis/obstacles.hpp).
+
+#include "analysis/scene.hpp"
+#include "analysis/system.hpp"
+#include "io/deck.hpp"
+#include "io/results_data.hpp"
+
+#include <string>
+#include <vector>
+
+namespace iga::analysis {
+
+/// Overlap at the start beyond this fraction of the model size: round-off of exact
+/// geometry (a circle touching a plane) is ~1e-16, a modelling slip is far larger.
+constexpr double overclosure_tolerance = 1e-6;
+/// Max penetration over the contact zone's size: beyond 5 % the zone itself and
+/// the pressure are penalty artefacts (Hertz at kappa = eps a / E* ~ 1 is ~1.5 %).
+constexpr double penetration_to_zone = 0.05;
+/// Max penetration over the body size: a per-cent of the body is visible overlap.
+constexpr double penetration_to_body = 0.01;
+/// Max penetration over the imposed travel: a tenth of the travel lost to the penalty.
+constexpr double penetration_to_travel = 0.1;
+/// Relative disagreement of the two half passes' normal forces (0.35 % on matched
+/// two-cylinder meshes): a few per cent flags a real resolution mismatch.
+constexpr double half_pass_disagreement = 0.03;
+
+/// Warnings about the surfaces' overlap at load factor 0 (u = 0).
+std::vector<std::string> overclosure_warnings(const Scene& scene, SceneSystem& system);
+
+/// Warnings about the contact state of a converged increment (the last one).
+std::vector<std::string> contact_warnings(const io::Deck& deck, const Scene& scene, const io::StepData& step);
+
+}  // namespace iga::analysis
