@@ -36,6 +36,9 @@ constexpr double penetration_to_travel = 0.1;
 /// Relative disagreement of the two half passes' normal forces (0.35 % on matched
 /// two-cylinder meshes): a few per cent flags a real resolution mismatch.
 constexpr double half_pass_disagreement = 0.03;
+/// Contact forces below this fraction of E L^(d-1) (L the body size) are round-off
+/// of grazing contact, not a resolved force: no disagreement is reported for them.
+constexpr double negligible_contact_force = 1e-8;
 
 /// Warnings about the surfaces' overlap at load factor 0 (u = 0).
 std::vector<std::string> overclosure_warnings(const Scene& scene, SceneSystem& system);

@@ -217,6 +217,72 @@ TEST(Kernel, RigidPlaneTangentIsDerivative)
     EXPECT_TRUE(test::near_rel(force.norm(), k.pressure * slave.W, round_off));
 }
 
+/// A rigid circle (2D) or sphere (3D) as obstacle: the normal turns with the slave
+/// point, so the tangent carries -(p W / |x - c|) N_a N_b (I - n n) besides the
+/// penalty term; both must match the finite-difference derivative of the residual.
+void expect_sphere_tangent_is_derivative(int d)
+{
+    // Three slave control points around (0, 0.95[, 0]) below a ball of radius 1 about (0.1, 1.9[, 0.05]).
+    RowMatrix points(3, d);
+    points.setZero();
+    points(0, 0) = -0.3, points(1, 0) = 0.05, points(2, 0) = 0.4;
+    points(0, 1) = 0.93, points(1, 1) = 0.97, points(2, 1) = 0.92;
+    if (d == 3)
+        points(0, 2) = 0.02, points(1, 2) = -0.03, points(2, 2) = 0.04;
+    Vector N(3);
+    N << 0.25, 0.5, 0.25;
+    constexpr double W = 0.31;
+    VecN center = VecN::Zero(d);
+    center(0) = 0.1, center(1) = 1.9;
+    if (d == 3)
+        center(2) = 0.05;
+    const RigidObstacle ball(RigidSphere::make(center, 1.0));
+    const KernelSettings settings{.penalty = 7e2, .master_rows = false, .need_tangent = true};
+    auto kernel = [&](const Vector& u) {
+        VecN x = VecN::Zero(d);
+        for (Index a = 0; a < 3; ++a)
+            x += N(a) * (points.row(a).transpose() + u.segment(d * a, d));
+        const ObstacleFoot foot = ball.foot(x, 0.0);
+        return gpts_rigid_kernel(N, W, foot.normal, foot.gap, settings, foot.radius);
+    };
+    const Vector u = random_state(3 * d, 11);
+    const KernelResult k = kernel(u);
+    ASSERT_GT(k.pressure, 0.0) << "the state must penetrate the ball";
+    const Matrix K_fd = test::central_difference_jacobian([&](const Vector& v) { return kernel(v).residual; }, u,
+                                                          fd_step);
+    EXPECT_TRUE(test::at_most(relative_error(k.tangent, K_fd), fd_tolerance)) << "d = " << d;
+    // Without the turning of the normal the tangent is measurably wrong: the term is real.
+    const KernelResult flat = [&] {
+        VecN x = VecN::Zero(d);
+        for (Index a = 0; a < 3; ++a)
+            x += N(a) * (points.row(a).transpose() + u.segment(d * a, d));
+        const ObstacleFoot foot = ball.foot(x, 0.0);
+        return gpts_rigid_kernel(N, W, foot.normal, foot.gap, settings);
+    }();
+    EXPECT_TRUE(test::at_least(relative_error(flat.tangent, K_fd), geometric_term_share)) << "d = " << d;
+}
+
+TEST(Kernel, RigidCircleTangentIsDerivative) { expect_sphere_tangent_is_derivative(2); }
+
+TEST(Kernel, RigidSphereTangentIsDerivative) { expect_sphere_tangent_is_derivative(3); }
+
+TEST(RigidObstacle, SphereFootAndMotion)
+{
+    // Disc of radius 1 about (0, 2), moving by (0, -0.5) at load factor 1.
+    const RigidObstacle disc(RigidSphere::make(vec2(0, 2), 1.0), vec2(0, -0.5));
+    const ObstacleFoot at_rest = disc.foot(vec2(0, 0.9), 0.0);  // 0.1 below the disc: open
+    EXPECT_TRUE(test::near(at_rest.gap, -0.1, round_off));
+    EXPECT_TRUE(test::near((at_rest.normal - vec2(0, -1)).norm(), 0.0, round_off));
+    EXPECT_TRUE(test::near(at_rest.radius, 1.1, round_off));
+    const ObstacleFoot moved = disc.foot(vec2(0, 0.9), 0.4);  // centre now at y = 1.8: 0.1 inside
+    EXPECT_TRUE(test::near(moved.gap, 0.1, round_off));
+    EXPECT_FALSE(disc.foot(vec2(0, 1.5), 1.0).ok);  // at the centre: no normal, a status
+    // A moving plane: the gap changes by the motion along the normal.
+    const RigidObstacle lid(RigidPlane::make(vec2(0, 1), vec2(0, -1)), vec2(0.3, -0.2));
+    EXPECT_TRUE(test::near(lid.foot(vec2(5, 0.9), 0.0).gap, -0.1, round_off));
+    EXPECT_TRUE(test::near(lid.foot(vec2(5, 0.9), 1.0).gap, 0.1, round_off));
+}
+
 TEST(RigidPlane, GapSign)
 {
     const RigidPlane floor = RigidPlane::make(vec2(0, 0), vec2(0, 2));  // normalized by make

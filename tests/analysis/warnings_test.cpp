@@ -1,0 +1,99 @@
+// Grossly wrong set-ups do not finish silently (issue 9): an initial
+// overclosure, a penalty so soft that the penetration is large, two half passes
+// that disagree, are warnings in the outcome and the results' root attribute
+// `warnings`; a body wholly behind a rigid plane (a flipped normal) is a located
+// deck error. The canonical decks raise no warning at all.
+
+#include "run_support.hpp"
+
+#include "core/error.hpp"
+
+#include <gtest/gtest.h>
+
+namespace iga::test {
+
+namespace {
+
+std::string joined(const std::vector<std::string>& lines)
+{
+    std::string out;
+    for (const std::string& line : lines)
+        out += line + "\n";
+    return out;
+}
+
+}  // namespace
+
+TEST(Warnings, CanonicalDecksRaiseNone)
+{
+    const auto dir = scratch_dir("warnings_none");
+    for (const char* deck : {"inputs/hertz.yaml", "inputs/hertz_displacement_2d.yaml", "inputs/contact_patch_test_2d.yaml",
+                             "inputs/punch_cylinder_block_2d.yaml"}) {
+        const auto out = dir / "run.h5";
+        const auto outcome = run_deck(source_path(deck), {}, out);
+        ASSERT_EQ(outcome.status, "completed") << deck;
+        EXPECT_TRUE(outcome.warnings.empty()) << deck << ":\n" << joined(outcome.warnings);
+        EXPECT_EQ(Results(out).text("/", "warnings"), "") << deck;
+    }
+}
+
+TEST(Warnings, InitialOverclosureIsReported)
+{
+    // The floor raised 0.02 into the cylinder (the Hertz zone is 0.1 wide).
+    const auto dir = scratch_dir("warnings_overclosure");
+    const auto outcome = run_deck(source_path("inputs/hertz_displacement_2d.yaml"),
+                                  {"bodies.floor.rigid.plane.point=[0, 0.02]"}, dir / "run.h5");
+    ASSERT_FALSE(outcome.warnings.empty());
+    EXPECT_NE(outcome.warnings.front().find("starts 0.02 deep"), std::string::npos) << outcome.warnings.front();
+    EXPECT_NE(Results(dir / "run.h5").text("/", "warnings").find("starts 0.02 deep"), std::string::npos);
+}
+
+TEST(Warnings, SoftPenaltyIsReported)
+{
+    // penalty 300 with E = 1000: kappa = eps a / E* ~ 0.03, the penetration is a
+    // sizeable part of the contact zone and of the imposed travel.
+    const auto dir = scratch_dir("warnings_soft");
+    const auto outcome = run_deck(source_path("inputs/hertz_displacement_2d.yaml"),
+                                  {"contact.cyl_floor.penalty=300"}, dir / "run.h5");
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    const std::string all = joined(outcome.warnings);
+    EXPECT_NE(all.find("penalty is too soft"), std::string::npos) << all;
+    EXPECT_NE(all.find("contact.cyl_floor.penalty"), std::string::npos) << all;
+}
+
+TEST(Warnings, HalfPassDisagreementIsReported)
+{
+    // Two cylinders, one side resolved with a single knot span against a fine one:
+    // the coarse side's half pass cannot carry the same force.
+    const auto dir = scratch_dir("warnings_half_pass");
+    const auto fine = run_deck(source_path("inputs/hertz_two_cylinders_2d.yaml"), {}, dir / "fine.h5");
+    ASSERT_EQ(fine.status, "completed") << fine.message;
+    EXPECT_TRUE(fine.warnings.empty()) << joined(fine.warnings);
+    io::Deck deck = io::read_deck(source_path("inputs/hertz_two_cylinders_2d.yaml"), {});
+    ASSERT_GE(deck.bodies.size(), 2u);
+    const std::string coarse_body = deck.bodies[0].name;
+    const auto coarse = run_deck(source_path("inputs/hertz_two_cylinders_2d.yaml"),
+                                 {"bodies." + coarse_body + ".refine.insert=[[], []]",
+                                  "bodies." + coarse_body + ".refine.spans=[2, 2]"},
+                                 dir / "coarse.h5");
+    const std::string all = joined(coarse.warnings);
+    EXPECT_NE(all.find("half passes disagree"), std::string::npos) << coarse.status << ": " << all;
+}
+
+TEST(Warnings, FlippedPlaneIsAnError)
+{
+    io::Deck deck = io::read_deck(source_path("inputs/hertz.yaml"), {"bodies.floor.rigid.plane.normal=[0, -1]"});
+    deck.output.file = (scratch_dir("warnings_flipped") / "never.h5").string();
+    RunContext context(nullptr, Verbosity::quiet);
+    try {
+        analysis::run(deck, analysis::RunOptions{}, context);
+        FAIL() << "a body wholly behind the plane was accepted";
+    } catch (const DeckError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("bodies.floor.rigid.plane.normal"), std::string::npos) << message;
+        EXPECT_NE(message.find("did you mean normal: [0, 1]"), std::string::npos) << message;
+    }
+    EXPECT_FALSE(std::filesystem::exists(deck.output.file));
+}
+
+}  // namespace iga::test
