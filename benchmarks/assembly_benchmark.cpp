@@ -25,7 +25,7 @@
 // oversubscribed machine the spin-waiting at the ~10 color barriers costs more
 // than it saves: 2 threads were slower in wall time by default and only tied
 // with OMP_WAIT_POLICY=passive. A speed-up on idle cores could not be measured
-// here; on shared machines run with OMP_NUM_THREADS=1 (or Execution::serial).
+// here; on shared machines run with OMP_NUM_THREADS=1 (or Execution::serial()).
 
 #include "assembly/dof_map.hpp"
 #include "assembly/sparse_pattern.hpp"
@@ -133,7 +133,7 @@ void BM_ElementIndexedNaturalOrder(benchmark::State& state)
 }
 BENCHMARK(BM_ElementIndexedNaturalOrder)->Unit(benchmark::kMillisecond);
 
-void element_colored(benchmark::State& state, Execution execution)
+void element_colored(benchmark::State& state, const Execution& execution)
 {
     const Grid g;
     const SparsePattern pattern(g.dofs, g.blocks);
@@ -150,12 +150,12 @@ void element_colored(benchmark::State& state, Execution execution)
         benchmark::DoNotOptimize(K.valuePtr());
     }
 }
-void BM_ElementIndexedColoredSerial(benchmark::State& state) { element_colored(state, Execution::serial); }
-void BM_ElementIndexedColoredParallel(benchmark::State& state) { element_colored(state, Execution::parallel); }
+void BM_ElementIndexedColoredSerial(benchmark::State& state) { element_colored(state, Execution::serial()); }
+void BM_ElementIndexedColoredParallel(benchmark::State& state) { element_colored(state, Execution{.n_threads = 2}); }
 BENCHMARK(BM_ElementIndexedColoredSerial)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ElementIndexedColoredParallel)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-void scatter_only(benchmark::State& state, Execution execution)
+void scatter_only(benchmark::State& state, const Execution& execution)
 {
     const Grid g;
     const SparsePattern pattern(g.dofs, g.blocks);
@@ -169,8 +169,8 @@ void scatter_only(benchmark::State& state, Execution execution)
         benchmark::DoNotOptimize(K.valuePtr());
     }
 }
-void BM_ScatterOnlySerial(benchmark::State& state) { scatter_only(state, Execution::serial); }
-void BM_ScatterOnlyParallel(benchmark::State& state) { scatter_only(state, Execution::parallel); }
+void BM_ScatterOnlySerial(benchmark::State& state) { scatter_only(state, Execution::serial()); }
+void BM_ScatterOnlyParallel(benchmark::State& state) { scatter_only(state, Execution{.n_threads = 2}); }
 BENCHMARK(BM_ScatterOnlySerial)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ScatterOnlyParallel)->Unit(benchmark::kMillisecond)->UseRealTime();
 

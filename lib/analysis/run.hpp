@@ -23,6 +23,9 @@ struct RunOptions {
     /// Called after each converged increment with a one-line summary (k/N, load
     /// factor, iterations, active Gauss points); the app prints it on a terminal.
     std::function<void(const std::string&)> progress;
+    /// Threads of the element assembly: >= 1 exactly that many, 0 automatic
+    /// (serial below a work threshold; assembly/threads.hpp).
+    int threads = 0;
 };
 
 struct RunOutcome {

@@ -3,12 +3,13 @@
 #include "core/error.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <barrier>
 #include <exception>
+#include <mutex>
 #include <string>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include <system_error>
+#include <thread>
 
 namespace iga::assembly {
 
@@ -189,38 +190,58 @@ std::vector<int> SparsePattern::local_indices(int block, std::span<const int> fu
     return local;
 }
 
-void SparsePattern::for_each_block(const std::function<void(int block)>& kernel, Execution execution) const
+void SparsePattern::for_each_block(const std::function<void(int block)>& kernel, const Execution& execution) const
 {
-#ifdef _OPENMP
-    if (execution == Execution::parallel && omp_get_max_threads() > 1) {
-        std::exception_ptr error;
-#pragma omp parallel
-        {
-            for (const std::vector<int>& blocks : colors_) {
-                const int n = static_cast<int>(blocks.size());
-                // Dynamic chunks: contact blocks cost far more than element blocks.
-#pragma omp for schedule(dynamic, 8)
-                for (int k = 0; k < n; ++k) {
+    const int n_threads = std::max(1, execution.n_threads);
+    if (n_threads == 1) {
+        for (const std::vector<int>& blocks : colors_)
+            for (int b : blocks)
+                kernel(b);
+        return;
+    }
+
+    // Chunks of blocks from one counter per color: contact blocks cost far more
+    // than element blocks, and a thread without a core leaves its share to the others.
+    constexpr int chunk = 8;
+    std::vector<std::atomic<int>> next(colors_.size());
+    for (std::atomic<int>& n : next)
+        n.store(0, std::memory_order_relaxed);
+    std::barrier color_done(n_threads);
+    std::mutex error_mutex;
+    std::exception_ptr error;
+    auto work = [&] {
+        for (std::size_t c = 0; c < colors_.size(); ++c) {
+            const std::vector<int>& blocks = colors_[c];
+            const int n = static_cast<int>(blocks.size());
+            for (int first = next[c].fetch_add(chunk); first < n; first = next[c].fetch_add(chunk)) {
+                const int last = std::min(n, first + chunk);
+                for (int k = first; k < last; ++k) {
                     try {
-                        kernel(blocks[k]);
+                        kernel(blocks[static_cast<std::size_t>(k)]);
                     } catch (...) {
-#pragma omp critical(iga_assembly_error)
+                        const std::lock_guard<std::mutex> lock(error_mutex);
                         if (!error)
                             error = std::current_exception();
                     }
                 }
-                // the implicit barrier of `omp for` separates the colors
+            }
+            color_done.arrive_and_wait();  // colors one after the other
+        }
+    };
+    {
+        std::vector<std::jthread> helpers;
+        helpers.reserve(static_cast<std::size_t>(n_threads - 1));
+        for (int t = 1; t < n_threads; ++t) {
+            try {
+                helpers.emplace_back(work);
+            } catch (const std::system_error&) {  // no more threads: fewer participants
+                color_done.arrive_and_drop();
             }
         }
-        if (error)
-            std::rethrow_exception(error);
-        return;
-    }
-#endif
-    (void)execution;
-    for (const std::vector<int>& blocks : colors_)
-        for (int b : blocks)
-            kernel(b);
+        work();
+    }  // joined here
+    if (error)
+        std::rethrow_exception(error);
 }
 
 }  // namespace iga::assembly

@@ -99,8 +99,10 @@ TEST(SceneEffects, ParaviewIndexReferencesExistingDatasetsWithTheirShapes)
             actual += (k ? " " : "") + std::to_string(a.dims[k]);
         EXPECT_EQ(actual, dims) << path;
     }
-    // Per increment: cells, points, displacement, 3 Gauss-point items, 2 post-processed items.
-    EXPECT_EQ(n_items, 2 * 8);
+    // Per increment: cells, points, displacement, 3 Gauss-point items, 2 post-processed items,
+    // and (output.fields, on with paraview) six stress columns and von_mises.
+    EXPECT_EQ(n_items, 2 * (8 + 7));
+    EXPECT_EQ(xdmf.find("nan"), std::string::npos);
     EXPECT_EQ(r.steps().size(), 2u);
     // The tessellation moves with the solution: the lowest point of the arc goes down.
     const RowMatrix u = r.matrix("steps/0002/paraview/cylinder/displacement");
