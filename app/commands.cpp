@@ -116,7 +116,7 @@ int run_command(int argc, char** argv)
     int threads = 0;
     cli.add_option("--threads", threads,
                    "threads for the element assembly (default 0: automatic, serial for small scenes; README \"Threads\")")
-        ->check(CLI::NonNegativeNumber);
+        ->check(CLI::Range(0, 1024));
     if (const int code = parse(cli, argc, argv); code >= 0)
         return code;
 

@@ -10,12 +10,14 @@
 //   sqrt(((s_xx - s_yy)^2 + (s_yy - s_zz)^2 + (s_zz - s_xx)^2) / 2 + 3 (s_xy^2 + s_yz^2 + s_xz^2)).
 //
 // Points where the geometry map is singular (a collapsed edge or corner, as in
-// the quarter and half discs, where det(dX/dxi) = 0) are evaluated slightly
-// inside the patch: the parameter moves towards the centre of its knot span by
-// 1e-6, then 1e-4, then 1e-2 of the span, until the Jacobian is positive. The
-// stress is continuous there, so the value is that of a point within ~1e-6 of
-// a span's size. A point whose stress still cannot be evaluated (det F <= 0
-// there in finite kinematics) gets zeros and is counted in n_unevaluated.
+// the quarter and half discs: det(dX/dxi) below 1e-6 of its scale, which there is
+// round-off of either sign) are not evaluated where they are: J^-1 would turn the
+// round-off into O(1) stress errors, and the round-off still grows like
+// 1/distance^2 close to the edge. Their stress is extrapolated linearly from two
+// points inside, moved towards the centre of the knot span by 0.05 and 0.1 of the
+// span: 2 s(0.05) - s(0.1), exact for a linear stress field. A point whose stress
+// cannot be evaluated (det F <= 0 there in finite kinematics) gets zeros and is
+// counted in n_unevaluated.
 
 #include "analysis/scene.hpp"
 #include "analysis/tessellation.hpp"

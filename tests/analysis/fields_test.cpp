@@ -21,10 +21,11 @@
 namespace iga::test {
 namespace {
 
-// The basis reproduces u = G X to round-off; the gradient near the collapsed
-// corner divides by a small Jacobian (det ~ 1e-6 of a span's, moved inside), so
-// allow 1e-8 of the stress scale E |G| (still 1e5 below a wrong corner value).
-constexpr double reproduction_tolerance = 1e-8;
+// The basis reproduces u = G X to round-off; near the collapsed edge the gradient
+// divides by a small Jacobian, and the extrapolated corner value (u1 meets v0) was
+// measured 1.3e-8 off, so allow 1e-7 of the stress scale E |G| (a corner evaluated
+// at the singular point itself is off by O(1), an unshifted neighbour by 1e-5).
+constexpr double reproduction_tolerance = 1e-7;
 
 TEST(Fields, LinearDisplacementGivesConstantStressAlsoAtTheCollapsedCorner)
 {

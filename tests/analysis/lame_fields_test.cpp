@@ -25,8 +25,8 @@ namespace {
 constexpr double nu = 0.3, pressure = 1.0, r_inner = 1.0, r_outer = 2.0;
 
 // Degree 3, 16 x 16 spans: the pointwise stress error is O(h^3); measured at most
-// 2.2e-4 p (at the inner arc, where the stress gradient is largest), so 1e-3 p
-// (the brief's bound) leaves a factor ~4 while a wrong component order, a missing
+// 1.3e-4 p (the largest error sits on the boundary, where the stress gradient is
+// largest), so 1e-3 p leaves a factor ~8 while a wrong component order, a missing
 // plane-strain sigma_zz or a sign error is off by O(p).
 constexpr double stress_tolerance = 1e-3 * pressure;
 constexpr int tessellation_cells_per_span = 4;  // as output.paraview writes
