@@ -29,6 +29,7 @@
 
 #include "assembly/dof_map.hpp"
 #include "assembly/sparse_pattern.hpp"
+#include "assembly/thread_team.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -150,8 +151,9 @@ void element_colored(benchmark::State& state, const Execution& execution)
         benchmark::DoNotOptimize(K.valuePtr());
     }
 }
+ThreadTeam two_threads(2);  // benchmark-wide team
 void BM_ElementIndexedColoredSerial(benchmark::State& state) { element_colored(state, Execution::serial()); }
-void BM_ElementIndexedColoredParallel(benchmark::State& state) { element_colored(state, Execution{.n_threads = 2}); }
+void BM_ElementIndexedColoredParallel(benchmark::State& state) { element_colored(state, Execution{&two_threads}); }
 BENCHMARK(BM_ElementIndexedColoredSerial)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ElementIndexedColoredParallel)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -170,7 +172,7 @@ void scatter_only(benchmark::State& state, const Execution& execution)
     }
 }
 void BM_ScatterOnlySerial(benchmark::State& state) { scatter_only(state, Execution::serial()); }
-void BM_ScatterOnlyParallel(benchmark::State& state) { scatter_only(state, Execution{.n_threads = 2}); }
+void BM_ScatterOnlyParallel(benchmark::State& state) { scatter_only(state, Execution{&two_threads}); }
 BENCHMARK(BM_ScatterOnlySerial)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ScatterOnlyParallel)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -37,10 +37,14 @@ SceneSystem::SceneSystem(Scene& scene, RunContext& context, int requested_thread
         }
     IGA_CHECK(static_cast<int>(owner_.size()) == scene.n_element_blocks, "element blocks do not match the bodies");
     // Small kinematics only multiplies cached element stiffnesses: always serial.
-    if (scene.kinematics == mechanics::Kinematics::finite)
-        execution_.n_threads = assembly::choose_threads(requested_threads, work, assembly::hardware_threads());
+    if (scene.kinematics == mechanics::Kinematics::finite) {
+        const int n = assembly::choose_threads(requested_threads, work, assembly::hardware_threads(),
+                                                   requested_threads >= 1 ? 0.0 : assembly::system_load());
+        if (n > 1)
+            team_ = std::make_unique<assembly::ThreadTeam>(n);
+    }
     context_.log(Verbosity::verbose, fmt::format("  element assembly: {} thread(s) ({} element-tangent entries{})",
-                                                 execution_.n_threads, work,
+                                                 n_threads(), work,
                                                  requested_threads >= 1 ? ", --threads" : ", automatic"));
 }
 
@@ -157,7 +161,7 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
                 if (need_tangent)
                     pattern.add(block, response.K, K);
             },
-            execution_);
+            assembly::Execution{team_.get()});
         if (failed.load()) {
             out.ok = false;
             out.message = failure;

@@ -15,9 +15,11 @@
 
 #include "analysis/scene.hpp"
 #include "assembly/sparse_pattern.hpp"
+#include "assembly/thread_team.hpp"
 #include "core/run_context.hpp"
 #include "solver/newton.hpp"
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -29,7 +31,7 @@ public:
     SceneSystem(Scene& scene, RunContext& context, int requested_threads = 0);
 
     /// Threads of the element loop (1 for small kinematics, whose loop is serial).
-    int n_threads() const { return execution_.n_threads; }
+    int n_threads() const { return team_ ? team_->n_threads() : 1; }
 
     /// The NonlinearSystem view for the solver (captures this object).
     solver::NonlinearSystem nonlinear_system();
@@ -53,7 +55,7 @@ private:
 
     Scene& scene_;
     RunContext& context_;
-    assembly::Execution execution_;
+    std::unique_ptr<assembly::ThreadTeam> team_;  // null: serial element loop
     std::optional<SparseMatrix> small_stiffness_;  // small kinematics: elastic K, assembled once
     struct BlockOwner {
         int body;

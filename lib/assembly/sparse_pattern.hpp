@@ -19,15 +19,16 @@
 //
 // Parallel assembly: the blocks are greedily colored so that no two blocks of
 // one color share a free dof; for_each_block runs the colors one after the
-// other and the blocks of a color on Execution::n_threads threads (std::thread,
-// started per call; the caller is one of them), so threads never write the same
-// entry. Waiting is passive (std::barrier between colors, which blocks in the
-// kernel after a short spin) and blocks are handed out in chunks from an atomic
-// counter, so a thread that another process holds off its core delays the loop
-// by one chunk at most: the loop is never much slower than the serial one, even
-// on a loaded machine (OpenMP's spin-waiting barriers were, up to 100x; see
-// README "Threads"). The serial path visits the blocks in the same order, so
-// both give bitwise identical results. Measured with
+// other and the blocks of a color on the threads of a ThreadTeam
+// (assembly/thread_team.hpp; the caller is one of them), so threads never write
+// the same entry. Blocks are handed out in chunks from an atomic counter per
+// color; the caller advances to the next color once every block of the current
+// one is done, waiting (passively) only for chunks that a helper has claimed,
+// never for a helper to show up. So a helper that another process holds off its
+// core costs at most the chunk it holds, and the loop is never much slower than
+// the serial one on a loaded machine (OpenMP's spin-waiting barriers were, up
+// to 100x; README "Threads"). The serial path visits the blocks in the same
+// color order, so both give bitwise identical results. Measured with
 // benchmarks/assembly_benchmark.cpp (64 x 64 quadratic 2D spans, 18-dof blocks):
 // the indexed add costs 0.6x the CPU time of triplets + setFromTriplets; coloring
 // costs ~10% serially. Choosing the thread count: assembly/threads.hpp.
@@ -42,10 +43,12 @@
 
 namespace iga::assembly {
 
-/// How for_each_block runs: n_threads = 1 is the plain serial loop.
+class ThreadTeam;
+
+/// How for_each_block runs: without a team (or a team of one) the plain serial loop.
 struct Execution {
-    int n_threads = 1;
-    static Execution serial() { return {1}; }
+    ThreadTeam* team = nullptr;
+    static Execution serial() { return {}; }
 };
 
 class SparsePattern {
@@ -84,8 +87,8 @@ public:
     /// Blocks of one color: no two share a free dof.
     const std::vector<int>& color(int c) const { return colors_[c]; }
 
-    /// Calls kernel(block) once per block, color by color; with n_threads > 1 the
-    /// blocks of a color run on that many threads (the calling one included).
+    /// Calls kernel(block) once per block, color by color; with a team of n > 1
+    /// threads the blocks of a color run on them (the calling thread included).
     /// The kernel may add() and add_vector() for its own block only. Colors
     /// separate free dofs only: writes indexed by constrained dofs (e.g. reactions
     /// in a full-length vector) may race and must be done outside. An exception

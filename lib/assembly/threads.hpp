@@ -6,8 +6,12 @@
 // cost of starting them and of the color barriers (~10 per call): below
 // `parallel_work_threshold` (the sum over element blocks of n_local^2, i.e. the
 // size of the element tangents) the automatic choice is serial. Above it, it is
-// min(hardware threads, max_automatic_threads). Numbers behind the threshold:
-// README "Threads" (scripts/bench_threads.py).
+// the number of idle cores (hardware threads minus the 1-minute load average,
+// rounded), at least 1 and at most max_automatic_threads: on a machine that
+// other jobs keep busy a second thread gains nothing and only adds jitter.
+// Results do not depend on the thread count (bitwise; sparse_pattern.hpp), so
+// a load-dependent choice costs no reproducibility. Numbers behind the
+// threshold: README "Threads" (scripts/bench_threads.py).
 //
 // Library threads: CHOLMOD in the Debian build uses OpenMP (libgomp) for a few
 // loops, and libgomp's idle threads spin by default (OMP_WAIT_POLICY is read at
@@ -27,11 +31,15 @@ inline constexpr int max_automatic_threads = 4;
 
 /// Threads for a loop of `work` element-tangent entries: `requested` when >= 1,
 /// else (0 = automatic) 1 below parallel_work_threshold, else
-/// min(hardware_threads, max_automatic_threads). hardware_threads <= 0 means unknown (1).
-int choose_threads(int requested, std::int64_t work, int hardware_threads);
+/// clamp(hardware_threads - round(load), 1, max_automatic_threads).
+/// hardware_threads <= 0 means unknown (1); a negative or NaN load counts as 0.
+int choose_threads(int requested, std::int64_t work, int hardware_threads, double load);
 
 /// std::thread::hardware_concurrency(), or 1 when unknown.
 int hardware_threads();
+
+/// The 1-minute load average (getloadavg), or 0 when unknown.
+double system_load();
 
 /// OpenMP team size one for the libraries called from this thread (CHOLMOD); a
 /// no-op without OpenMP.

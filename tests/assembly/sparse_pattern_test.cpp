@@ -2,6 +2,7 @@
 // built from triplets, constrained dofs, coloring, serial = parallel.
 
 #include "assembly/sparse_pattern.hpp"
+#include "assembly/thread_team.hpp"
 #include "core/error.hpp"
 #include "support/tolerance.hpp"
 
@@ -219,8 +220,9 @@ TEST(SparsePattern, ParallelAndSerialAssemblyAreIdentical)
     SparseMatrix K_serial, K_parallel;
     Vector r_serial, r_parallel;
     assemble(Execution::serial(), K_serial, r_serial);
-    for (int repeat = 0; repeat < 10; ++repeat) {  // races, if any, rarely show on the first run
-        assemble(Execution{.n_threads = 2 + repeat % 3}, K_parallel, r_parallel);
+    for (int repeat = 0; repeat < 12; ++repeat) {  // races, if any, rarely show on the first run
+        ThreadTeam team(2 + repeat % 3);
+        assemble(Execution{&team}, K_parallel, r_parallel);
         // Bitwise: both visit the blocks in color order, one writer per entry per color.
         ASSERT_TRUE(std::equal(K_serial.valuePtr(), K_serial.valuePtr() + K_serial.nonZeros(),
                                K_parallel.valuePtr()));
@@ -232,7 +234,8 @@ TEST(SparsePattern, KernelExceptionIsRethrown)
 {
     const Scene scene;
     const SparsePattern pattern(scene.dofs, scene.blocks);
-    for (const Execution execution : {Execution::serial(), Execution{.n_threads = 3}})
+    ThreadTeam team(3);
+    for (const Execution execution : {Execution::serial(), Execution{&team}})
         EXPECT_THROW(pattern.for_each_block(
                          [](int b) {
                              if (b == 7)
