@@ -114,6 +114,10 @@ int run_command(int argc, char** argv)
     cli.add_flag("-q,--quiet", quiet, "print nothing but errors");
     cli.add_flag("-v,--verbose", verbose, "print Newton iterations");
     cli.add_option("--summary", summary, "print one summary line at the end")->check(CLI::IsMember({"json"}));
+    int threads = 0;
+    cli.add_option("--threads", threads,
+                   "threads for the element assembly (default 0: automatic, serial for small scenes; README \"Threads\")")
+        ->check(CLI::Range(0, 1024));
     if (const int code = parse(cli, argc, argv); code >= 0)
         return code;
 
@@ -139,6 +143,7 @@ int run_command(int argc, char** argv)
     std::signal(SIGTERM, on_interrupt);
     analysis::RunOptions options;
     options.stop_requested = [] { return interrupt_requested.load(); };
+    options.threads = threads;
     if (terminal)
         options.progress = [](const std::string& line) { std::cerr << line << '\n'; };
     if (!quiet)

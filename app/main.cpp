@@ -2,7 +2,7 @@
 // exit codes: 0 success, 1 the solve failed (or `compare` found differences),
 // 2 bad input or usage, 3 internal error.
 //
-//   igacontact DECK [-o OUT.h5] [--set PATH=VALUE]... [-q|-v] [--summary json]
+//   igacontact DECK [-o OUT.h5] [--set PATH=VALUE]... [-q|-v] [--summary json] [--threads N]
 //   igacontact check DECK [--set PATH=VALUE]...
 //   igacontact compare REF.h5 NEW.h5 [--rtol R] [--atol A] [--only PATH]... [--all] [-v]
 

@@ -1,12 +1,12 @@
 // Assembly kernels: does the precomputed-position scatter pay against triplets,
-// and does the colored OpenMP loop pay against the serial one?
+// and does the colored threaded loop pay against the serial one?
 //
 // Scene: a 2D grid of 64 x 64 quadratic spans (66 x 66 control points, 8712
 // dofs, 4096 blocks of 18 dofs), left column fixed. "Element" kernel: a
 // B^T D B sum over 9 Gauss points (~10k flops per span, like a small-strain
 // element without the basis evaluation); "scatter" kernels add precomputed
 // local matrices only.
-// Run: bin/assembly_benchmark (set OMP_NUM_THREADS to vary the threads).
+// Run: bin/assembly_benchmark ("Parallel" = a ThreadTeam of 2).
 //
 // Measured on the project machine (2 cores, Release, GCC 12) while other builds
 // kept the load average at 8-11, so wall times are ~2.5x the CPU times and only
@@ -25,10 +25,12 @@
 // oversubscribed machine the spin-waiting at the ~10 color barriers costs more
 // than it saves: 2 threads were slower in wall time by default and only tied
 // with OMP_WAIT_POLICY=passive. A speed-up on idle cores could not be measured
-// here; on shared machines run with OMP_NUM_THREADS=1 (or Execution::serial).
+// here. (Those figures are for the former OpenMP loop; the ThreadTeam loop that
+// replaced it waits passively and never for an absent helper: README "Threads".)
 
 #include "assembly/dof_map.hpp"
 #include "assembly/sparse_pattern.hpp"
+#include "assembly/thread_team.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -133,7 +135,7 @@ void BM_ElementIndexedNaturalOrder(benchmark::State& state)
 }
 BENCHMARK(BM_ElementIndexedNaturalOrder)->Unit(benchmark::kMillisecond);
 
-void element_colored(benchmark::State& state, Execution execution)
+void element_colored(benchmark::State& state, const Execution& execution)
 {
     const Grid g;
     const SparsePattern pattern(g.dofs, g.blocks);
@@ -150,12 +152,13 @@ void element_colored(benchmark::State& state, Execution execution)
         benchmark::DoNotOptimize(K.valuePtr());
     }
 }
-void BM_ElementIndexedColoredSerial(benchmark::State& state) { element_colored(state, Execution::serial); }
-void BM_ElementIndexedColoredParallel(benchmark::State& state) { element_colored(state, Execution::parallel); }
+ThreadTeam two_threads(2);  // benchmark-wide team
+void BM_ElementIndexedColoredSerial(benchmark::State& state) { element_colored(state, Execution::serial()); }
+void BM_ElementIndexedColoredParallel(benchmark::State& state) { element_colored(state, Execution{&two_threads}); }
 BENCHMARK(BM_ElementIndexedColoredSerial)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ElementIndexedColoredParallel)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-void scatter_only(benchmark::State& state, Execution execution)
+void scatter_only(benchmark::State& state, const Execution& execution)
 {
     const Grid g;
     const SparsePattern pattern(g.dofs, g.blocks);
@@ -169,8 +172,8 @@ void scatter_only(benchmark::State& state, Execution execution)
         benchmark::DoNotOptimize(K.valuePtr());
     }
 }
-void BM_ScatterOnlySerial(benchmark::State& state) { scatter_only(state, Execution::serial); }
-void BM_ScatterOnlyParallel(benchmark::State& state) { scatter_only(state, Execution::parallel); }
+void BM_ScatterOnlySerial(benchmark::State& state) { scatter_only(state, Execution::serial()); }
+void BM_ScatterOnlyParallel(benchmark::State& state) { scatter_only(state, Execution{&two_threads}); }
 BENCHMARK(BM_ScatterOnlySerial)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ScatterOnlyParallel)->Unit(benchmark::kMillisecond)->UseRealTime();
 

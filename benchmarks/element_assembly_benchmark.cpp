@@ -8,7 +8,8 @@
 // copying the assembled K and f_int = K_e u_e per element. Finite kinematics
 // evaluates every element (F, S, material and geometric tangent) and the
 // follower pressure on the inner arc each time, at a small non-zero state.
-// Run: bin/element_assembly_benchmark (set OMP_NUM_THREADS to vary the threads).
+// Run: bin/element_assembly_benchmark (threads: automatic, assembly/threads.hpp;
+// the figures below predate the ThreadTeam loop and were taken with OpenMP).
 //
 // Measured on the project machine (2 cores shared with other jobs, Release,
 // GCC 12, OMP_NUM_THREADS=2), per evaluation:

@@ -3,17 +3,22 @@
 
 Usage:  scripts/plot_pressure.py RESULTS.h5 [-o PNG] [--pair NAME] [--step KKKK]
 
-Reads only the documented layout (shared/spec/results.md). For the chosen pair
-(default: the pair of /reference if there is one, else the first pair under
-/results/contact) and each side carrying Gauss points it draws
+Reads only the documented layout (shared/spec/results.md). It plots the pair of
+/reference if there is one (or --pair), else every pair, in deck order (the order
+of `contact` in the /deck text; HDF5 lists groups alphabetically). For each side
+carrying Gauss points it draws
   - gauss_points/reference_coordinates + pressure as markers,
   - postprocessed/reference_coordinates + pressure as a line ("post-processed (NURBS)"),
   - /reference/<pair>/pressure (analytic, dashed) when present.
 With a reference, abscissae are x = (X - center) . tangent (attributes of
 /reference/<pair>), plotted as x/a against p/p0 and zoomed to |x/a| <= 1.5; the
-title quotes the stored errors (l2, peak, half_width). Without one, the first
-reference coordinate and the raw pressure are plotted. One-sided data (a
-quarter model) are mirrored to negative x as a lighter copy.
+title quotes the stored errors (l2, peak, half_width). Without one, each side is
+plotted against its first reference coordinate X when X is monotonic along the
+side, else against its arc length in the reference configuration (measured along
+the side's post-processed samples, the same for every pair that shares the side).
+Each pair and side is its own series, sorted by its abscissa: a side touched by
+two pairs gives two curves, never one zigzag. One-sided data (a quarter model)
+are mirrored to negative x as a lighter copy (reference plots only).
 Writes RESULTS_pressure.png (or -o) with the Agg backend and prints its path.
 Needs numpy, h5py and matplotlib (/usr/bin/python3 on the project machines).
 """
@@ -67,19 +72,68 @@ def results_group(h5, step):
     sys.exit("error: the results file has no /results and no /steps (did the run converge any increment?)")
 
 
-def choose_pair(h5, group, requested):
+def deck_pair_order(h5):
+    """Contact pair names in deck order, from the /deck text ([] when unreadable)."""
+    if "deck" not in h5:
+        return []
+    text = h5["deck"][()]
+    if isinstance(text, np.ndarray):  # a one-element string array
+        text = text.reshape(-1)[0]
+    if isinstance(text, bytes):
+        text = text.decode()
+    try:
+        import yaml  # python3-yaml; optional
+        deck = yaml.safe_load(text) or {}
+        return [c["name"] for c in deck.get("contact") or [] if isinstance(c, dict) and "name" in c]
+    except Exception:  # no yaml module or an unexpected shape: alphabetical order
+        return []
+
+
+def choose_pairs(h5, group, requested):
+    """The pairs to plot: --pair, else the reference's pair, else all in deck order."""
     pairs = list(group["contact"].keys()) if "contact" in group else []
     if requested is not None:
         if requested not in pairs:
             sys.exit(f"error: pair '{requested}' not found; pairs: {', '.join(pairs) or 'none'}")
-        return requested
+        return [requested]
     if "reference" in h5:
         for name in h5["reference"]:
             if name in pairs:
-                return name
+                return [name]
     if not pairs:
         sys.exit("error: no contact pairs in this increment")
-    return pairs[0]
+    order = deck_pair_order(h5)
+    return [p for p in order if p in pairs] + [p for p in pairs if p not in order]
+
+
+class SideAbscissa:
+    """Abscissa along one side without a reference: X if X is monotonic along the side's
+    post-processed samples (stored in side order), else the arc length of that polyline."""
+
+    def __init__(self, samples):
+        self.samples = np.asarray(samples, dtype=float)
+        x = self.samples[:, 0] if self.samples.size else np.zeros(0)
+        steps = np.diff(x)
+        self.use_x = x.size < 2 or bool(np.all(steps > 0) or np.all(steps < 0))
+        lengths = np.linalg.norm(np.diff(self.samples, axis=0), axis=1) if x.size > 1 else np.zeros(0)
+        self.s = np.concatenate([[0.0], np.cumsum(lengths)])
+        self.label = "X  (first reference coordinate)" if self.use_x else "arc length s along the side (reference)"
+
+    def __call__(self, coordinates):
+        coordinates = np.asarray(coordinates, dtype=float)
+        if self.use_x or len(self.samples) < 2:
+            return coordinates[:, 0]
+        # Arc length of the closest point on the sample polyline.
+        a, b = self.samples[:-1], self.samples[1:]
+        ab = b - a
+        length2 = np.maximum(np.einsum("ij,ij->i", ab, ab), np.finfo(float).tiny)
+        out = np.empty(len(coordinates))
+        for k, point in enumerate(coordinates):
+            t = np.clip(np.einsum("ij,ij->i", point - a, ab) / length2, 0.0, 1.0)
+            distance = np.linalg.norm(a + t[:, None] * ab - point, axis=1)
+            j = int(np.argmin(distance))
+            out[k] = self.s[j] + t[j] * (self.s[j + 1] - self.s[j])
+        return out
 
 
 class Abscissa:
@@ -125,57 +179,87 @@ def plot_series(ax, x, p, mirror, **style):
         ax.plot(-x[order], p[order], **faded)
 
 
+def plot_with_reference(ax, h5, group, group_name, pair, args, colours):
+    """The Hertz-style plot of one pair against its analytic reference; returns the title."""
+    reference = h5["reference"][pair]
+    axis = Abscissa(reference)
+    sides = [s for s in group["contact"][pair].values() if isinstance(s, h5py.Group) and "gauss_points" in s]
+    if not sides:
+        sys.exit(f"error: pair '{pair}' has no side with Gauss points in /{group_name}")
+    for colour, side in zip(colours * 4, sides):
+        name = side.name.rsplit("/", 1)[-1]
+        gauss = side["gauss_points"]
+        xg = axis.x(gauss["reference_coordinates"][()])
+        mirror = one_sided(xg)
+        pg = axis.p(gauss["pressure"][()])
+        plot_series(ax, xg, pg, mirror, color=colour, marker="o", markersize=3.5, linestyle="none",
+                    label=f"{name}: Gauss points" + (" (lighter: mirrored)" if mirror else ""))
+        if "postprocessed" in side:
+            post = side["postprocessed"]
+            plot_series(ax, axis.x(post["reference_coordinates"][()]), axis.p(post["pressure"][()]), mirror,
+                        color=colour, linewidth=1.5, label=f"{name}: post-processed (NURBS)")
+    title = f"{args.results.name}: pair {pair}, /{group_name}"
+    xr = reference["x"][()] / axis.a if "x" in reference else axis.x(reference["coordinates"][()])
+    kind = attribute(reference.attrs, "type") or "Hertz"
+    plot_series(ax, np.asarray(xr), axis.p(reference["pressure"][()]), False, color="black",
+                linestyle="--", linewidth=1.2, label=f"analytic ({kind})")
+    errors = [(label, attribute(reference.attrs, *keys)) for label, keys in
+              (("L2", ("l2", "L2")), ("peak", ("peak",)), ("half-width", ("half_width", "half-width")))]
+    quoted = ", ".join(f"{label} {100 * value:+.2f} %" if label != "L2" else f"{label} {100 * value:.2f} %"
+                       for label, value in errors if value is not None)
+    if quoted:
+        title += "\n" + quoted
+    ax.set_xlim(-ZOOM, ZOOM)
+    ax.set_xlabel("x / a  (reference configuration)")
+    ax.set_ylabel("p / p0")
+    return title
+
+
+def plot_pairs(ax, group, group_name, pairs, args, colours):
+    """Every side of every pair as its own series, against X or the side's arc length; returns the title."""
+    abscissae = {}  # side name -> SideAbscissa, shared by the pairs touching that side
+    labels = set()
+    series = 0
+    for pair in pairs:
+        sides = [s for s in group["contact"][pair].values() if isinstance(s, h5py.Group) and "gauss_points" in s]
+        for side in sides:
+            name = side.name.rsplit("/", 1)[-1]
+            if name not in abscissae:
+                samples = (side["postprocessed"]["reference_coordinates"][()] if "postprocessed" in side
+                           else side["gauss_points"]["reference_coordinates"][()])
+                abscissae[name] = SideAbscissa(samples)
+            axis = abscissae[name]
+            labels.add(axis.label)
+            colour = colours[series % len(colours)]
+            series += 1
+            gauss = side["gauss_points"]
+            plot_series(ax, axis(gauss["reference_coordinates"][()]), np.asarray(gauss["pressure"][()], dtype=float),
+                        False, color=colour, marker="o", markersize=3.5, linestyle="none",
+                        label=f"{pair} {name}: Gauss points")
+            if "postprocessed" in side:
+                post = side["postprocessed"]
+                plot_series(ax, axis(post["reference_coordinates"][()]), np.asarray(post["pressure"][()], dtype=float),
+                            False, color=colour, linewidth=1.5, label=f"{pair} {name}: post-processed (NURBS)")
+    if series == 0:
+        sys.exit(f"error: no side with Gauss points in /{group_name}")
+    ax.set_xlabel(" / ".join(sorted(labels)))
+    ax.set_ylabel("contact pressure p")
+    return f"{args.results.name}: " + (f"pair {pairs[0]}" if len(pairs) == 1 else "pairs " + ", ".join(pairs)) + \
+        f", /{group_name}"
+
+
 def main(argv):
     args = parse_args(argv)
     output = args.output or args.results.with_name(args.results.stem + "_pressure.png")
     with h5py.File(args.results, "r") as h5:
         group, group_name = results_group(h5, args.step)
-        pair = choose_pair(h5, group, args.pair)
-        reference = h5["reference"][pair] if "reference" in h5 and pair in h5["reference"] else None
-        axis = Abscissa(reference)
-
+        pairs = choose_pairs(h5, group, args.pair)
         fig, ax = plt.subplots(figsize=(8, 5))
         colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-        extent = 0.0
-        sides = [s for s in group["contact"][pair].values() if isinstance(s, h5py.Group) and "gauss_points" in s]
-        if not sides:
-            sys.exit(f"error: pair '{pair}' has no side with Gauss points in /{group_name}")
-        for colour, side in zip(colours * 4, sides):
-            name = side.name.rsplit("/", 1)[-1]
-            gauss = side["gauss_points"]
-            xg = axis.x(gauss["reference_coordinates"][()])
-            mirror = one_sided(xg)
-            pg = axis.p(gauss["pressure"][()])
-            plot_series(ax, xg, pg, mirror, color=colour, marker="o", markersize=3.5, linestyle="none",
-                        label=f"{name}: Gauss points" + (" (lighter: mirrored)" if mirror else ""))
-            if pg.size and np.max(pg) > 0:  # the loaded zone, for the zoom without a reference
-                loaded = np.abs(xg[pg > 0.01 * np.max(pg)])
-                extent = max(extent, float(np.max(loaded)))
-            if "postprocessed" in side:
-                post = side["postprocessed"]
-                plot_series(ax, axis.x(post["reference_coordinates"][()]), axis.p(post["pressure"][()]), mirror,
-                            color=colour, linewidth=1.5, label=f"{name}: post-processed (NURBS)")
-
-        title = f"{args.results.name}: pair {pair}, /{group_name}"
-        if reference is not None:
-            xr = reference["x"][()] / axis.a if "x" in reference else axis.x(reference["coordinates"][()])
-            kind = attribute(reference.attrs, "type") or "Hertz"
-            plot_series(ax, np.asarray(xr), axis.p(reference["pressure"][()]), False, color="black",
-                        linestyle="--", linewidth=1.2, label=f"analytic ({kind})")
-            errors = [(label, attribute(reference.attrs, *keys)) for label, keys in
-                      (("L2", ("l2", "L2")), ("peak", ("peak",)), ("half-width", ("half_width", "half-width")))]
-            quoted = ", ".join(f"{label} {100 * value:+.2f} %" if label != "L2" else f"{label} {100 * value:.2f} %"
-                               for label, value in errors if value is not None)
-            if quoted:
-                title += "\n" + quoted
-            ax.set_xlim(-ZOOM, ZOOM)
-            ax.set_xlabel("x / a  (reference configuration)")
-            ax.set_ylabel("p / p0")
+        if len(pairs) == 1 and "reference" in h5 and pairs[0] in h5["reference"]:
+            title = plot_with_reference(ax, h5, group, group_name, pairs[0], args, colours)
         else:
-            if extent > 0:
-                ax.set_xlim(-ZOOM * extent if ax.get_xlim()[0] < 0 else ax.get_xlim()[0], ZOOM * extent)
-            ax.set_xlabel("X  (first reference coordinate)")
-            ax.set_ylabel("contact pressure p")
+            title = plot_pairs(ax, group, group_name, pairs, args, colours)
         ax.set_title(title, fontsize=10)
         ax.axhline(0.0, color="grey", linewidth=0.5)
         ax.grid(True, alpha=0.3)

@@ -1,10 +1,12 @@
 #include "analysis/run.hpp"
 
+#include "analysis/fields.hpp"
 #include "analysis/output.hpp"
 #include "analysis/scene.hpp"
 #include "analysis/system.hpp"
 #include "analysis/tessellation.hpp"
 #include "analysis/warnings.hpp"
+#include "assembly/threads.hpp"
 #include "io/locate.hpp"
 #include "io/results_writer.hpp"
 #include "io/xdmf_writer.hpp"
@@ -65,13 +67,32 @@ std::vector<int> contact_free_dofs(const Scene& scene)
     return out;
 }
 
+/// output.fields of every body at a converged state; points that could not be
+/// evaluated are reported in the log (they hold zeros).
+std::vector<io::BodyFields> stress_fields(const Scene& scene, const std::vector<TessellatedBody>& tessellations,
+                                          const io::StepData& step, RunContext& context)
+{
+    std::vector<io::BodyFields> out;
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+        FieldsResult r = body_fields(scene.bodies[b], tessellations[b], scene.kinematics, step.displacement[b].second);
+        if (r.n_unevaluated > 0)
+            context.log(Verbosity::normal,
+                        fmt::format("warning: body '{}': stress not evaluable at {} tessellation point(s) "
+                                    "(det F <= 0 there); stored as 0",
+                                    scene.bodies[b].name, r.n_unevaluated));
+        out.push_back(std::move(r.fields));
+    }
+    return out;
+}
+
 }  // namespace
 
 RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& context)
 {
     ScopedTimer total(nullptr, "total");
     Scene scene = build_scene(deck);
-    SceneSystem system(scene, context);
+    assembly::limit_library_threads();  // CHOLMOD's OpenMP loops inline: nothing spins
+    SceneSystem system(scene, context, options.threads);
 
     std::optional<io::ResultsWriter> writer;
     try {
@@ -86,12 +107,13 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     {
         ScopedTimer t(&context, "output");
         writer->write_bodies(body_geometry(deck, scene));
+        if (deck.output.paraview || deck.output.fields)  // fields live on the tessellation points
+            for (const BodyModel& body : scene.bodies)
+                tessellations.push_back(tessellate(body, tessellation_cells_per_span));
         if (deck.output.paraview) {
             std::vector<io::Tessellation> meshes;
-            for (const BodyModel& body : scene.bodies) {
-                tessellations.push_back(tessellate(body, tessellation_cells_per_span));
-                meshes.push_back(tessellations.back().mesh);
-            }
+            for (const TessellatedBody& t : tessellations)
+                meshes.push_back(t.mesh);
             writer->write_tessellation(meshes);
         }
     }
@@ -151,9 +173,12 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
             convergence.push_back({static_cast<double>(record.index), static_cast<double>(k),
                                    record.report.residual_history[k], record.load_factor});
         writer->append_history(history_row(step));
-        for (std::size_t b = 0; b < tessellations.size(); ++b)
-            step.tessellation_displacement.emplace_back(
-                scene.bodies[b].name, tessellation_displacement(tessellations[b], step.displacement[b].second));
+        if (deck.output.paraview)
+            for (std::size_t b = 0; b < tessellations.size(); ++b)
+                step.tessellation_displacement.emplace_back(
+                    scene.bodies[b].name, tessellation_displacement(tessellations[b], step.displacement[b].second));
+        if (deck.output.fields)
+            step.fields = stress_fields(scene, tessellations, step, context);
         if (deck.output.every_step) {
             writer->write_step(step);
             if (deck.output.paraview)
@@ -262,7 +287,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         std::vector<io::XdmfMesh> meshes;
         for (const TessellatedBody& t : tessellations)
             meshes.push_back({t.mesh.body, t.mesh.points.rows(),
-                              static_cast<long long>(t.mesh.cells.size()) / t.mesh.nodes_per_cell, t.mesh.nodes_per_cell});
+                              static_cast<long long>(t.mesh.cells.size()) / t.mesh.nodes_per_cell, t.mesh.nodes_per_cell,
+                              deck.output.fields});
         const std::string& file = deck.output.file;
         const std::size_t slash = file.find_last_of('/');
         const std::string name = slash == std::string::npos ? file : file.substr(slash + 1);
@@ -273,6 +299,7 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     }
     outcome.wall_s = total.elapsed();
     outcome.numbers["dofs"] = scene.dofs->n_full();
+    outcome.numbers["threads"] = system.n_threads();
     outcome.numbers["contact_gauss_points"] = static_cast<double>(gauss_points);
     return outcome;
 }

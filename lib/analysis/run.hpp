@@ -28,6 +28,9 @@ struct RunOptions {
     std::function<void(const std::string&)> progress;
     /// Called with each warning (without the "warning: " prefix) as soon as it is found.
     std::function<void(const std::string&)> warning;
+    /// Threads of the element assembly: >= 1 exactly that many, 0 automatic
+    /// (serial below a work threshold; assembly/threads.hpp).
+    int threads = 0;
 };
 
 struct RunOutcome {

@@ -1,10 +1,12 @@
 #include "analysis/system.hpp"
 
+#include "assembly/threads.hpp"
 #include "mechanics/element.hpp"
 
 #include <fmt/format.h>
 
 #include <atomic>
+#include <cstdint>
 #include <mutex>
 
 namespace iga::analysis {
@@ -23,13 +25,27 @@ Matrix local_displacement(const Vector& u_full, const std::vector<int>& dofs, in
 
 }  // namespace
 
-SceneSystem::SceneSystem(Scene& scene, RunContext& context)
+SceneSystem::SceneSystem(Scene& scene, RunContext& context, int requested_threads)
     : scene_(scene), context_(context), element_force_(static_cast<std::size_t>(scene.n_element_blocks))
 {
+    std::int64_t work = 0;  // entries of all element tangents
     for (std::size_t b = 0; b < scene.bodies.size(); ++b)
-        for (std::size_t e = 0; e < scene.bodies[b].elements.size(); ++e)
+        for (std::size_t e = 0; e < scene.bodies[b].elements.size(); ++e) {
             owner_.push_back({static_cast<int>(b), static_cast<int>(e)});
+            const auto n_local = static_cast<std::int64_t>(scene.bodies[b].element_dofs[e].size());
+            work += n_local * n_local;
+        }
     IGA_CHECK(static_cast<int>(owner_.size()) == scene.n_element_blocks, "element blocks do not match the bodies");
+    // Small kinematics only multiplies cached element stiffnesses: always serial.
+    if (scene.kinematics == mechanics::Kinematics::finite) {
+        const int n = assembly::choose_threads(requested_threads, work, assembly::hardware_threads(),
+                                                   requested_threads >= 1 ? 0.0 : assembly::system_load());
+        if (n > 1)
+            team_ = std::make_unique<assembly::ThreadTeam>(n);
+    }
+    context_.log(Verbosity::verbose, fmt::format("  element assembly: {} thread(s) ({} element-tangent entries{})",
+                                                 n_threads(), work,
+                                                 requested_threads >= 1 ? ", --threads" : ", automatic"));
 }
 
 solver::NonlinearSystem SceneSystem::nonlinear_system()
@@ -145,7 +161,7 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
                 if (need_tangent)
                     pattern.add(block, response.K, K);
             },
-            assembly::Execution::parallel);
+            assembly::Execution{team_.get()});
         if (failed.load()) {
             out.ok = false;
             out.message = failure;

@@ -2,8 +2,10 @@
 // The residual and tangent of a scene, as the sum of its terms:
 //   r(u) = f_int(u) - lambda f_ext - lambda f_follower(u) + sum_pairs r_c(u),
 //   K = dr/du,
-// on the free dofs (solver/newton.hpp's NonlinearSystem). Elements are
-// evaluated in parallel (OpenMP, colored blocks); contact pairs serially.
+// on the free dofs (solver/newton.hpp's NonlinearSystem). Finite kinematics:
+// elements are evaluated on n_threads() threads (colored blocks; the count from
+// assembly/threads.hpp: requested, or automatic from the element work); contact
+// pairs serially.
 // Small kinematics: the element stiffness is constant, assembled once and
 // reused (f_int = K u): no geometric terms are ever computed.
 //
@@ -12,9 +14,12 @@
 // displacement-driven scenes converge relative to their reactions.
 
 #include "analysis/scene.hpp"
+#include "assembly/sparse_pattern.hpp"
+#include "assembly/thread_team.hpp"
 #include "core/run_context.hpp"
 #include "solver/newton.hpp"
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -22,7 +27,11 @@ namespace iga::analysis {
 
 class SceneSystem {
 public:
-    SceneSystem(Scene& scene, RunContext& context);
+    /// requested_threads: >= 1 exactly that many for the element loop, 0 automatic.
+    SceneSystem(Scene& scene, RunContext& context, int requested_threads = 0);
+
+    /// Threads of the element loop (1 for small kinematics, whose loop is serial).
+    int n_threads() const { return team_ ? team_->n_threads() : 1; }
 
     /// The NonlinearSystem view for the solver (captures this object).
     solver::NonlinearSystem nonlinear_system();
@@ -54,6 +63,7 @@ private:
 
     Scene& scene_;
     RunContext& context_;
+    std::unique_ptr<assembly::ThreadTeam> team_;  // null: serial element loop
     std::optional<SparseMatrix> small_stiffness_;  // small kinematics: elastic K, assembled once
     struct BlockOwner {
         int body;

@@ -38,6 +38,7 @@ TessellatedBody tessellate(const BodyModel& body, int per_span)
                 out.mesh.points.row(id(i, j, k)).head(patch.dim()) = x.transpose();
                 out.indices.push_back(basis.indices);
                 out.R.push_back(basis.R);
+                out.parameters.push_back(xi);
             }
     if (n_par == 2) {
         out.mesh.nodes_per_cell = 4;

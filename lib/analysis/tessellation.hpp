@@ -15,6 +15,7 @@ struct TessellatedBody {
     io::Tessellation mesh;                 ///< points padded to 3 columns
     std::vector<std::vector<int>> indices; ///< per point: control points with non-zero basis
     std::vector<Vector> R;                 ///< per point: their basis values
+    std::vector<VecN> parameters;          ///< per point: its parameter xi (n_par entries)
 };
 
 TessellatedBody tessellate(const BodyModel& body, int per_span);

@@ -1,14 +1,15 @@
 #include "assembly/sparse_pattern.hpp"
 
+#include "assembly/thread_team.hpp"
+
 #include "core/error.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
+#include <mutex>
 #include <string>
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include <thread>
 
 namespace iga::assembly {
 
@@ -189,38 +190,76 @@ std::vector<int> SparsePattern::local_indices(int block, std::span<const int> fu
     return local;
 }
 
-void SparsePattern::for_each_block(const std::function<void(int block)>& kernel, Execution execution) const
+void SparsePattern::for_each_block(const std::function<void(int block)>& kernel, const Execution& execution) const
 {
-#ifdef _OPENMP
-    if (execution == Execution::parallel && omp_get_max_threads() > 1) {
-        std::exception_ptr error;
-#pragma omp parallel
-        {
-            for (const std::vector<int>& blocks : colors_) {
-                const int n = static_cast<int>(blocks.size());
-                // Dynamic chunks: contact blocks cost far more than element blocks.
-#pragma omp for schedule(dynamic, 8)
-                for (int k = 0; k < n; ++k) {
-                    try {
-                        kernel(blocks[k]);
-                    } catch (...) {
-#pragma omp critical(iga_assembly_error)
-                        if (!error)
-                            error = std::current_exception();
-                    }
-                }
-                // the implicit barrier of `omp for` separates the colors
-            }
-        }
-        if (error)
-            std::rethrow_exception(error);
+    if (execution.team == nullptr || execution.team->n_threads() == 1) {
+        for (const std::vector<int>& blocks : colors_)
+            for (int b : blocks)
+                kernel(b);
         return;
     }
-#endif
-    (void)execution;
-    for (const std::vector<int>& blocks : colors_)
-        for (int b : blocks)
-            kernel(b);
+
+    // Small chunks: contact blocks cost far more than element blocks, and a helper
+    // preempted while holding a chunk delays the color by that chunk only.
+    constexpr int chunk = 4;
+    const int n_colors = static_cast<int>(colors_.size());
+    std::vector<std::atomic<int>> next(colors_.size());  // next unclaimed block of each color
+    std::vector<std::atomic<int>> done(colors_.size());  // finished blocks of each color
+    for (std::size_t c = 0; c < colors_.size(); ++c) {
+        next[c].store(0, std::memory_order_relaxed);
+        done[c].store(0, std::memory_order_relaxed);
+    }
+    std::atomic<int> open_color{0};  // colors below it may be worked on; n_colors + 1 when finished
+    std::mutex error_mutex;
+    std::exception_ptr error;
+
+    // Claims and runs chunks of color c until none is left.
+    auto work_on = [&](int c) {
+        const std::vector<int>& blocks = colors_[static_cast<std::size_t>(c)];
+        const int n = static_cast<int>(blocks.size());
+        for (int first = next[c].fetch_add(chunk); first < n; first = next[c].fetch_add(chunk)) {
+            const int last = std::min(n, first + chunk);
+            for (int k = first; k < last; ++k) {
+                try {
+                    kernel(blocks[static_cast<std::size_t>(k)]);
+                } catch (...) {
+                    const std::lock_guard<std::mutex> lock(error_mutex);
+                    if (!error)
+                        error = std::current_exception();
+                }
+            }
+            if (done[c].fetch_add(last - first) + (last - first) == n)
+                done[c].notify_all();
+        }
+    };
+    // Helpers: follow the caller from color to color; leave when it has finished.
+    auto helper = [&] {
+        for (int c = 0; c < n_colors; ++c) {
+            for (int open = open_color.load(); open <= c; open = open_color.load())
+                open_color.wait(open);
+            if (open_color.load() > n_colors)
+                return;
+            work_on(c);
+        }
+    };
+    execution.team->run([&, caller = std::this_thread::get_id()] {
+        if (std::this_thread::get_id() != caller) {
+            helper();
+            return;
+        }
+        for (int c = 0; c < n_colors; ++c) {
+            open_color.store(c + 1);
+            open_color.notify_all();
+            work_on(c);
+            const int n = static_cast<int>(colors_[static_cast<std::size_t>(c)].size());
+            for (int d = done[c].load(); d < n; d = done[c].load())
+                done[c].wait(d);  // chunks still running on helpers
+        }
+        open_color.store(n_colors + 1);
+        open_color.notify_all();
+    });
+    if (error)
+        std::rethrow_exception(error);
 }
 
 }  // namespace iga::assembly

@@ -19,16 +19,19 @@
 //
 // Parallel assembly: the blocks are greedily colored so that no two blocks of
 // one color share a free dof; for_each_block runs the colors one after the
-// other and the blocks of a color in parallel (OpenMP), so threads never write
-// the same entry. The serial path visits the blocks in the same order, so both
-// give bitwise identical results. Measured with benchmarks/assembly_benchmark.cpp
-// (64 x 64 quadratic 2D spans, 18-dof blocks, a B^T D B kernel on 9 points): the
-// indexed add costs 0.6x the CPU time of triplets + setFromTriplets; coloring
-// costs ~10% serially; 2 threads split the work evenly, but on the 2-core
-// project machine, loaded by other jobs, the spin-waiting at the color barriers
-// made the parallel loop slower in wall time (a tie with OMP_WAIT_POLICY=passive).
-// So parallel pays only on idle cores: use OMP_NUM_THREADS=1 or
-// Execution::serial on shared machines (numbers in the benchmark's header).
+// other and the blocks of a color on the threads of a ThreadTeam
+// (assembly/thread_team.hpp; the caller is one of them), so threads never write
+// the same entry. Blocks are handed out in chunks from an atomic counter per
+// color; the caller advances to the next color once every block of the current
+// one is done, waiting (passively) only for chunks that a helper has claimed,
+// never for a helper to show up. So a helper that another process holds off its
+// core costs at most the chunk it holds, and the loop is never much slower than
+// the serial one on a loaded machine (OpenMP's spin-waiting barriers were, up
+// to 100x; README "Threads"). The serial path visits the blocks in the same
+// color order, so both give bitwise identical results. Measured with
+// benchmarks/assembly_benchmark.cpp (64 x 64 quadratic 2D spans, 18-dof blocks):
+// the indexed add costs 0.6x the CPU time of triplets + setFromTriplets; coloring
+// costs ~10% serially. Choosing the thread count: assembly/threads.hpp.
 
 #include "assembly/dof_map.hpp"
 #include "core/types.hpp"
@@ -40,7 +43,13 @@
 
 namespace iga::assembly {
 
-enum class Execution { serial, parallel };
+class ThreadTeam;
+
+/// How for_each_block runs: without a team (or a team of one) the plain serial loop.
+struct Execution {
+    ThreadTeam* team = nullptr;
+    static Execution serial() { return {}; }
+};
 
 class SparsePattern {
 public:
@@ -78,13 +87,13 @@ public:
     /// Blocks of one color: no two share a free dof.
     const std::vector<int>& color(int c) const { return colors_[c]; }
 
-    /// Calls kernel(block) once per block, color by color; with Execution::parallel
-    /// the blocks of a color run on OpenMP threads (serial when OpenMP is absent).
+    /// Calls kernel(block) once per block, color by color; with a team of n > 1
+    /// threads the blocks of a color run on them (the calling thread included).
     /// The kernel may add() and add_vector() for its own block only. Colors
     /// separate free dofs only: writes indexed by constrained dofs (e.g. reactions
     /// in a full-length vector) may race and must be done outside. An exception
     /// thrown by the kernel is rethrown here, after all blocks ran (the first one caught).
-    void for_each_block(const std::function<void(int block)>& kernel, Execution execution) const;
+    void for_each_block(const std::function<void(int block)>& kernel, const Execution& execution) const;
 
 private:
     int n_free_;

@@ -180,6 +180,8 @@ struct Output {
     int samples_per_span = 16;
     std::optional<Reference> reference;
     bool paraview = false;
+    /// Stress fields at the tessellation points; the reader defaults it to `paraview`.
+    bool fields = false;
 
     bool operator==(const Output&) const = default;
 };

@@ -400,7 +400,7 @@ Output read_output(const Cursor& root, const std::string& file_label, const std:
     Output o;
     o.file = resolve_path(deck_dir, fs::path(file_label).filename().replace_extension(".h5").string());
     const Cursor c = root.child("output");
-    if (!c.exists() || !c.allow_only({"file", "every_step", "samples_per_span", "reference", "paraview"}))
+    if (!c.exists() || !c.allow_only({"file", "every_step", "samples_per_span", "reference", "paraview", "fields"}))
         return o;
     if (c.has("file")) {
         const auto file = c.child("file").to_string();
@@ -414,6 +414,7 @@ Output read_output(const Cursor& root, const std::string& file_label, const std:
     if (c.has("reference"))
         o.reference = read_reference(c.child("reference"), known);
     o.paraview = c.get_or("paraview", o.paraview);
+    o.fields = c.get_or("fields", o.paraview);  // on with paraview unless said otherwise
     return o;
 }
 

@@ -228,6 +228,7 @@ void write_output(YAML::Emitter& out, const Output& o)
         out << YAML::EndMap;
     }
     out << YAML::Key << "paraview" << YAML::Value << word(o.paraview);
+    out << YAML::Key << "fields" << YAML::Value << word(o.fields);
     out << YAML::EndMap;
 }
 

@@ -69,7 +69,8 @@ Schema make_deck_schema()
                         {"every_step", v},
                         {"samples_per_span", v},
                         {"reference", map({{"pair", v}, {"type", v}, {"radius", v}, {"radii", v}, {"force", v}})},
-                        {"paraview", v}})},
+                        {"paraview", v},
+                        {"fields", v}})},
     });
 }
 

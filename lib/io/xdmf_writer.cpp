@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cstdio>
 #include <fstream>
 #include <unistd.h>
@@ -18,6 +19,18 @@ std::string item(const std::string& h5, const std::string& path, const std::stri
     return fmt::format("<DataItem Dimensions=\"{}\" NumberType=\"{}\" Precision=\"{}\" Format=\"HDF\">{}:{}</DataItem>",
                        dims, integer ? "Int" : "Float", integer ? 4 : 8, h5, path);
 }
+
+/// Column `k` of an n_rows x n_cols float dataset, as an XDMF HyperSlab (start, stride, count).
+std::string column(const std::string& h5, const std::string& path, long long n_rows, int n_cols, int k)
+{
+    return fmt::format("<DataItem ItemType=\"HyperSlab\" Dimensions=\"{0} 1\" Type=\"HyperSlab\">\n"
+                       "       <DataItem Dimensions=\"3 2\" NumberType=\"Int\" Format=\"XML\">0 {1} 1 1 {0} 1</DataItem>\n"
+                       "       {2}\n      </DataItem>",
+                       n_rows, k, item(h5, path, fmt::format("{} {}", n_rows, n_cols), false));
+}
+
+/// Column order of fields/<body>/stress (results.md).
+constexpr std::array<const char*, 6> stress_components = {"xx", "yy", "zz", "xy", "yz", "xz"};
 
 std::string escape(const std::string& s)
 {
@@ -57,9 +70,21 @@ std::string xdmf_text(const std::string& h5_name, const std::vector<XdmfMesh>& m
             out += fmt::format("     <Geometry GeometryType=\"XYZ\">\n      {}\n     </Geometry>\n",
                                item(h5, "/paraview/" + body + "/points", fmt::format("{} 3", mesh.n_points), false));
             out += fmt::format("     <Attribute Name=\"displacement\" AttributeType=\"Vector\" Center=\"Node\">\n"
-                               "      {}\n     </Attribute>\n    </Grid>\n",
+                               "      {}\n     </Attribute>\n",
                                item(h5, group + "/paraview/" + body + "/displacement",
                                     fmt::format("{} 3", mesh.n_points), false));
+            if (mesh.fields) {
+                const std::string fields = group + "/fields/" + body;
+                for (std::size_t k = 0; k < stress_components.size(); ++k)
+                    out += fmt::format("     <Attribute Name=\"stress_{}\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+                                       "      {}\n     </Attribute>\n",
+                                       stress_components[k], column(h5, fields + "/stress", mesh.n_points, 6,
+                                                                    static_cast<int>(k)));
+                out += fmt::format("     <Attribute Name=\"von_mises\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+                                   "      {}\n     </Attribute>\n",
+                                   item(h5, fields + "/von_mises", std::to_string(mesh.n_points), false));
+            }
+            out += "    </Grid>\n";
         }
         for (const XdmfContactSide& side : step.sides) {
             const std::string g = escape(side.group);

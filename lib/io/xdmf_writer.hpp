@@ -7,7 +7,13 @@
 //   - each body: its tessellation (/paraview/<body>/points, n_t x 3; cells,
 //     quadrilaterals in 2D, hexahedra in 3D) with the node attribute
 //     "displacement" (/steps/<kkkk>/paraview/<body>/displacement, n_t x 3):
-//     apply ParaView's "Warp By Vector" to see the deformed shape;
+//     apply ParaView's "Warp By Vector" to see the deformed shape; with
+//     output.fields also the node attributes "stress_xx", "stress_yy",
+//     "stress_zz", "stress_xy", "stress_yz", "stress_xz" (each a HyperSlab,
+//     one column of /steps/<kkkk>/fields/<body>/stress, n_t x 6 in the order
+//     xx, yy, zz, xy, yz, xz) and "von_mises" (fields/<body>/von_mises, n_t).
+//     Six scalars rather than one "Tensor6": XDMF's Tensor6 order is xx, xy,
+//     xz, yy, yz, zz, not the file's, and ParaView colours by scalars directly;
 //   - each contact side carrying Gauss points: the Gauss points (a
 //     polyvertex at gauss_points/coordinates, current configuration) with
 //     "pressure" and "gap", and the post-processed curve (a polyline at
@@ -23,6 +29,7 @@ struct XdmfMesh {
     long long n_points = 0;
     long long n_cells = 0;
     int nodes_per_cell = 4;  ///< 4: quadrilaterals (2D), 8: hexahedra (3D)
+    bool fields = false;     ///< the steps hold fields/<body>/{stress, von_mises} (output.fields)
 };
 
 struct XdmfContactSide {

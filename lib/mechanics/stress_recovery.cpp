@@ -10,6 +10,25 @@
 
 namespace iga::mechanics {
 
+namespace {
+
+/// The 3D law of a plane-strain material, for its out-of-plane stress.
+Material three_dimensional(Material material)
+{
+    material.plane = PlaneMode::none;
+    return material;
+}
+
+/// d x d -> 3 x 3 with zero third row and column.
+MatN padded(const MatN& a)
+{
+    MatN out = MatN::Zero(3, 3);
+    out.topLeftCorner(a.rows(), a.cols()) = a;
+    return out;
+}
+
+}  // namespace
+
 PointStress cauchy_stress(const nurbs::Patch& patch, const Material& material, Kinematics kinematics,
                           const RowMatrix& displacement, const VecN& xi)
 {
@@ -35,9 +54,14 @@ PointStress cauchy_stress(const nurbs::Patch& patch, const Material& material, K
     out.x = ref.X + VecN(u_local.transpose() * basis.R);
     const MatN identity = MatN::Identity(d, d);
     if (kinematics == Kinematics::small) {
-        const StressResponse s = small_strain_response(material, MatN(0.5 * (H + H.transpose())));
+        const MatN eps = 0.5 * (H + H.transpose());
+        const StressResponse s = small_strain_response(material, eps);
         out.cauchy = s.stress;
         out.status = s.status;
+        if (d == 3)
+            out.cauchy33 = s.stress(2, 2);
+        else if (material.plane == PlaneMode::strain)
+            out.cauchy33 = small_strain_response(three_dimensional(material), padded(eps)).stress(2, 2);
         return out;
     }
     const MatN F = identity + H;
@@ -51,6 +75,11 @@ PointStress cauchy_stress(const nurbs::Patch& patch, const Material& material, K
     const double J = material.plane == PlaneMode::stress ? det_F * std::sqrt(1.0 + 2.0 * s.strain33) : det_F;
     out.cauchy = F * s.stress * F.transpose() / J;
     out.status = s.status;
+    if (d == 3)
+        out.cauchy33 = out.cauchy(2, 2);
+    else if (material.plane == PlaneMode::strain)  // F33 = 1: sigma33 = S33 / J
+        out.cauchy33 = finite_strain_response(three_dimensional(material), padded(MatN(0.5 * (F.transpose() * F - identity))))
+                           .stress(2, 2) / J;
     return out;
 }
 

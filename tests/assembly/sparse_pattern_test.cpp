@@ -2,6 +2,7 @@
 // built from triplets, constrained dofs, coloring, serial = parallel.
 
 #include "assembly/sparse_pattern.hpp"
+#include "assembly/thread_team.hpp"
 #include "core/error.hpp"
 #include "support/tolerance.hpp"
 
@@ -13,9 +14,6 @@
 #include <set>
 #include <stdexcept>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 namespace iga::assembly {
 namespace {
@@ -89,7 +87,7 @@ TEST(SparsePattern, AssembledMatrixEqualsTripletReference)
     SparseMatrix K = pattern.make_matrix();
     ASSERT_TRUE(pattern.matches(K));
     EXPECT_TRUE(Matrix(K).isZero(0.0));
-    pattern.for_each_block([&](int b) { pattern.add(b, locals[b], K); }, Execution::serial);
+    pattern.for_each_block([&](int b) { pattern.add(b, locals[b], K); }, Execution::serial());
 
     std::vector<Triplet> triplets;
     for (int b = 0; b < pattern.n_blocks(); ++b) {
@@ -204,16 +202,12 @@ TEST(SparsePattern, ColorsNeverShareAFreeDof)
 
 TEST(SparsePattern, ParallelAndSerialAssemblyAreIdentical)
 {
-#ifdef _OPENMP
-    const int threads_before = omp_get_max_threads();
-    omp_set_num_threads(4);
-#endif
     std::mt19937 rng(seed + 2);
     const Scene scene;
     const SparsePattern pattern(scene.dofs, scene.blocks);
     const std::vector<Matrix> locals = random_locals(scene.blocks, rng);
 
-    auto assemble = [&](Execution execution, SparseMatrix& K, Vector& r) {
+    auto assemble = [&](const Execution& execution, SparseMatrix& K, Vector& r) {
         K = pattern.make_matrix();
         r = Vector::Zero(scene.dofs.n_free());
         pattern.for_each_block(
@@ -225,24 +219,23 @@ TEST(SparsePattern, ParallelAndSerialAssemblyAreIdentical)
     };
     SparseMatrix K_serial, K_parallel;
     Vector r_serial, r_parallel;
-    assemble(Execution::serial, K_serial, r_serial);
-    for (int repeat = 0; repeat < 5; ++repeat) {  // races, if any, rarely show on the first run
-        assemble(Execution::parallel, K_parallel, r_parallel);
+    assemble(Execution::serial(), K_serial, r_serial);
+    for (int repeat = 0; repeat < 12; ++repeat) {  // races, if any, rarely show on the first run
+        ThreadTeam team(2 + repeat % 3);
+        assemble(Execution{&team}, K_parallel, r_parallel);
         // Bitwise: both visit the blocks in color order, one writer per entry per color.
         ASSERT_TRUE(std::equal(K_serial.valuePtr(), K_serial.valuePtr() + K_serial.nonZeros(),
                                K_parallel.valuePtr()));
         ASSERT_EQ(r_serial, r_parallel);
     }
-#ifdef _OPENMP
-    omp_set_num_threads(threads_before);
-#endif
 }
 
 TEST(SparsePattern, KernelExceptionIsRethrown)
 {
     const Scene scene;
     const SparsePattern pattern(scene.dofs, scene.blocks);
-    for (Execution execution : {Execution::serial, Execution::parallel})
+    ThreadTeam team(3);
+    for (const Execution execution : {Execution::serial(), Execution{&team}})
         EXPECT_THROW(pattern.for_each_block(
                          [](int b) {
                              if (b == 7)

@@ -1,0 +1,121 @@
+#!/usr/bin/python3
+"""Tests of scripts/plot_history.py and scripts/plot_pressure.py on synthetic results files
+made with h5py (the documented layout only). Usage: plot_scripts_test.py SCRIPTS_DIR WORK_DIR"""
+
+import importlib.util
+import pathlib
+import sys
+import unittest
+
+import h5py
+import numpy as np
+
+SCRIPTS = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else pathlib.Path(__file__).parents[2] / "scripts"
+WORK = pathlib.Path(sys.argv[2]) if len(sys.argv) > 2 else pathlib.Path("/tmp/plot_scripts_test")
+EXACT = 1e-12  # the scripts only scale stored values: round-off
+
+
+def load(name):
+    spec = importlib.util.spec_from_file_location(name, SCRIPTS / f"{name}.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+plot_history = load("plot_history")
+plot_pressure = load("plot_pressure")
+
+
+def is_png(path):
+    return path.exists() and path.stat().st_size > 1000 and path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+DISPLACEMENT_DECK = """format: 1
+constraints:
+  - {body: block, side: v0, fix: [x, y]}
+  - {body: block, side: v1, displacement: [null, -0.002]}
+contact:
+  - {name: touch, between: [block.v1, punch]}
+"""
+
+
+def write_history(path, deck):
+    load_factor = np.array([0.25, 0.5, 0.75, 1.0])
+    with h5py.File(path, "w") as h5:
+        h5["deck"] = deck
+        h5["history/load_factor"] = load_factor
+        h5["history/reactions/block.v0"] = np.column_stack([np.zeros(4), 10.0 * load_factor])
+        h5["history/contact/touch/block.v1/normal_force"] = 9.0 * load_factor ** 1.5
+        h5["history/contact/touch/block.v1/max_penetration"] = 1e-5 * load_factor
+    return load_factor
+
+
+class PlotHistory(unittest.TestCase):
+    def test_prescribed_displacement_is_the_abscissa(self):
+        path = WORK / "displacement.h5"
+        load_factor = write_history(path, DISPLACEMENT_DECK)
+        with h5py.File(path, "r") as h5:
+            x, label, curves = plot_history.history_series(h5)
+        np.testing.assert_allclose(x, -0.002 * load_factor, rtol=0, atol=EXACT)
+        self.assertIn("block.v1 u_y", label)
+        names = [name for name, _ in curves]
+        # the x component of the reaction is zero throughout: not drawn
+        self.assertEqual(names, ["reaction block.v0 (y)", "contact touch block.v1: normal force"])
+        np.testing.assert_allclose(curves[0][1], 10.0 * load_factor, rtol=0, atol=EXACT)
+        self.assertEqual(plot_history.main([str(path), "-o", str(WORK / "displacement.png")]), 0)
+        self.assertTrue(is_png(WORK / "displacement.png"))
+
+    def test_load_factor_without_a_prescribed_displacement(self):
+        path = WORK / "load.h5"
+        load_factor = write_history(path, "format: 1\nconstraints:\n  - {body: block, side: v0, fix: [x, y]}\n")
+        with h5py.File(path, "r") as h5:
+            x, label, _ = plot_history.history_series(h5)
+        np.testing.assert_array_equal(x, load_factor)
+        self.assertEqual(label, "load factor")
+        self.assertEqual(plot_history.main([str(path)]), 0)
+        self.assertTrue(is_png(WORK / "load_history.png"))
+
+
+def write_side(group, coordinates, pressure):
+    group["gauss_points/reference_coordinates"] = coordinates[::3]
+    group["gauss_points/coordinates"] = coordinates[::3]
+    group["gauss_points/pressure"] = pressure[::3]
+    group["gauss_points/gap"] = np.zeros(len(pressure[::3]))
+    group["gauss_points/parameter"] = np.linspace(0, 1, len(pressure[::3]))
+    group["postprocessed/reference_coordinates"] = coordinates
+    group["postprocessed/coordinates"] = coordinates
+    group["postprocessed/pressure"] = pressure
+
+
+class PlotPressure(unittest.TestCase):
+    def test_pairs_in_deck_order_and_arc_length_on_a_curved_side(self):
+        # Three quarters of a circle (x goes 0 -> 1 -> -1: not monotonic) pressed by two
+        # punches: pairs "zeta" then "alpha" in the deck, both on the side drum.v0.
+        angle = np.linspace(-0.5 * np.pi, np.pi, 61)
+        arc = np.column_stack([np.cos(angle), np.sin(angle)])
+        path = WORK / "two_punches.h5"
+        with h5py.File(path, "w") as h5:
+            h5["deck"] = "format: 1\ncontact:\n  - {name: zeta, between: [drum.v0, p1]}\n" \
+                         "  - {name: alpha, between: [drum.v0, p2]}\n"
+            write_side(h5.create_group("results/contact/zeta/drum.v0"), arc, np.maximum(0, np.cos(4 * angle)))
+            write_side(h5.create_group("results/contact/alpha/drum.v0"), arc, np.maximum(0, -np.cos(4 * angle)))
+        with h5py.File(path, "r") as h5:
+            self.assertEqual(plot_pressure.choose_pairs(h5, h5["results"], None), ["zeta", "alpha"])
+        axis = plot_pressure.SideAbscissa(arc)
+        self.assertFalse(axis.use_x)
+        s = axis(arc)
+        # polyline (chord) length of 61 samples vs the arc: 1 - sin(h/2)/(h/2) ~ h^2/24 = 2.7e-4 relative
+        np.testing.assert_allclose(s, angle + 0.5 * np.pi, rtol=0, atol=2e-3)
+        self.assertTrue(np.all(np.diff(axis(arc[::-1])) < 0))  # points map back onto the side's order
+        self.assertEqual(plot_pressure.main([str(path), "-o", str(WORK / "two_punches.png")]), 0)
+        self.assertTrue(is_png(WORK / "two_punches.png"))
+
+    def test_x_is_kept_where_it_is_monotonic(self):
+        x = np.linspace(-1, 1, 11)
+        self.assertTrue(plot_pressure.SideAbscissa(np.column_stack([x, 0.1 * x ** 2])).use_x)
+        self.assertFalse(plot_pressure.SideAbscissa(np.column_stack([np.cos(x * 3), x])).use_x)
+
+
+if __name__ == "__main__":
+    WORK.mkdir(parents=True, exist_ok=True)
+    unittest.main(argv=[sys.argv[0]], verbosity=2)
