@@ -3,6 +3,7 @@
 #include "analysis/run.hpp"
 #include "analysis/describe.hpp"
 #include "analysis/scene.hpp"
+#include "analysis/size_estimate.hpp"
 #include "core/error.hpp"
 #include "core/run_context.hpp"
 #include "io/deck_reader.hpp"
@@ -132,6 +133,7 @@ int check_command(int argc, char** argv)
 
     const io::Deck deck = io::read_deck(deck_path, overrides);
     io::check_output_paths(deck, io::input_files(deck), io::output_origin(false, overrides));
+    analysis::check_size(deck);  // before describe_bodies builds the geometry
     const std::string bodies = analysis::describe_bodies(deck);  // also builds the geometry: may throw DeckError
     analysis::build_scene(deck);  // everything a run checks before solving (Jacobians, pairs, constraints)
     std::cout << "# resolved deck: " << deck_path << '\n' << deck.resolved_yaml;
