@@ -2,7 +2,7 @@
 // `--summary json`: one JSON line on stdout for every outcome of a run, so that
 // scripts never scrape the log. Always an object with "status", "message" and
 // "exit_code":
-//   exit 0 / 1: status "completed" / "failed" (or "interrupted" runs' "failed"), with
+//   exit 0 / 1: status "completed" / "failed" (an interrupted run is "failed"), with
 //               "results", "increments", "newton_iterations", "cutbacks", "wall_s",
 //               the run's numbers and "errors" against the reference;
 //   exit 2:     status "bad_input" (bad deck, bad usage, unreadable file), message = the error;
