@@ -3,11 +3,14 @@
 #include "analysis/run.hpp"
 #include "analysis/describe.hpp"
 #include "analysis/scene.hpp"
+#include "analysis/size_estimate.hpp"
 #include "core/error.hpp"
 #include "core/run_context.hpp"
 #include "io/deck_reader.hpp"
 #include "io/deck_writer.hpp"
+#include "io/output_paths.hpp"
 #include "io/results_compare.hpp"
+#include "summary_json.hpp"
 #include "version.hpp"
 
 #include <CLI/CLI.hpp>
@@ -34,61 +37,19 @@ extern "C" void on_interrupt(int signal)
     std::signal(signal, SIG_DFL);
 }
 
-/// Parses with CLI11; returns -1 when parsing succeeded, else the exit code
-/// (0 for --help/--version, 2 for a usage error).
+/// Parses with CLI11; returns -1 when parsing succeeded, 0 after --help/--version
+/// (CLI11 printed them). A usage error throws UsageError, which main() prints as
+/// "igacontact: error: ..." like every other error.
 int parse(CLI::App& cli, int argc, char** argv)
 {
     try {
         cli.parse(argc, argv);
         return -1;
     } catch (const CLI::ParseError& e) {
-        const int code = cli.exit(e);
-        return code == 0 ? exit_ok : exit_bad_input;
+        if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success))
+            return cli.exit(e) == 0 ? exit_ok : exit_bad_input;
+        throw UsageError(e.what());
     }
-}
-
-std::string json_escape(const std::string& s)
-{
-    std::string out;
-    for (char c : s) {
-        switch (c) {
-        case '"': out += "\\\""; break;
-        case '\\': out += "\\\\"; break;
-        case '\n': out += "\\n"; break;
-        case '\t': out += "\\t"; break;
-        default:
-            if (static_cast<unsigned char>(c) < 0x20)
-                out += fmt::format("\\u{:04x}", static_cast<int>(c));
-            else
-                out += c;
-        }
-    }
-    return out;
-}
-
-std::string json_number(double x)
-{
-    return std::isfinite(x) ? fmt::format("{:.9g}", x) : "null";
-}
-
-/// One JSON line for scripts (`--summary json`): never scrape the log.
-std::string summary_json(const analysis::RunOutcome& r)
-{
-    std::string out = fmt::format(
-        "{{\"status\": \"{}\", \"message\": \"{}\", \"results\": \"{}\", \"increments\": {}, "
-        "\"newton_iterations\": {}, \"cutbacks\": {}, \"wall_s\": {}",
-        json_escape(r.status), json_escape(r.message), json_escape(r.results_file), r.increments,
-        r.newton_iterations, r.cutbacks, json_number(r.wall_s));
-    for (const auto& [key, value] : r.numbers)
-        out += fmt::format(", \"{}\": {}", json_escape(key), json_number(value));
-    out += ", \"errors\": {";
-    bool first = true;
-    for (const auto& [key, value] : r.errors) {
-        out += fmt::format("{}\"{}\": {}", first ? "" : ", ", json_escape(key), json_number(value));
-        first = false;
-    }
-    out += "}}";
-    return out;
 }
 
 }  // namespace
@@ -126,6 +87,8 @@ int run_command(int argc, char** argv)
         deck.output.file = output;
         deck.resolved_yaml = io::write_resolved_yaml(deck);  // /deck shows the file actually written
     }
+    // Never write over the deck (or any input), whichever way the path was given.
+    io::check_output_paths(deck, io::input_files(deck), io::output_origin(!output.empty(), overrides));
 
     const Verbosity verbosity = quiet ? Verbosity::quiet : (verbose ? Verbosity::verbose : Verbosity::normal);
     // On a terminal the progress line (k/N, load factor, iterations, active Gauss
@@ -163,9 +126,10 @@ int run_command(int argc, char** argv)
             std::cerr << fmt::format("contact force on the obstacle of {}: ({:.6g})\n", pair, fmt::join(force, ", "));
         std::cerr << "results: " << outcome.results_file << '\n';
     }
+    const int code = outcome.status == "completed" ? exit_ok : exit_failed;
     if (summary == "json")
-        std::cout << summary_json(outcome) << std::endl;
-    return outcome.status == "completed" ? exit_ok : exit_failed;
+        std::cout << summary_json(outcome, code) << std::endl;
+    return code;
 }
 
 int check_command(int argc, char** argv)
@@ -180,6 +144,8 @@ int check_command(int argc, char** argv)
         return code;
 
     const io::Deck deck = io::read_deck(deck_path, overrides);
+    io::check_output_paths(deck, io::input_files(deck), io::output_origin(false, overrides));
+    analysis::check_size(deck);  // before describe_bodies builds the geometry
     const std::string bodies = analysis::describe_bodies(deck);  // also builds the geometry: may throw DeckError
     // Everything a run checks before solving (Jacobians, pairs, constraints, obstacles).
     const analysis::Scene scene = analysis::build_scene(deck);

@@ -2,7 +2,15 @@
 // The three commands of the CLI. Each parses its own arguments (CLI11) and
 // returns the process exit code.
 
+#include <stdexcept>
+
 namespace iga::app {
+
+/// Bad usage of the command line (unknown option, missing argument): exit 2.
+class UsageError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
 
 inline constexpr int exit_ok = 0;
 inline constexpr int exit_failed = 1;     ///< the solve failed; `compare`: files differ

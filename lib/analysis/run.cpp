@@ -8,6 +8,7 @@
 #include "analysis/warnings.hpp"
 #include "assembly/threads.hpp"
 #include "io/locate.hpp"
+#include "io/output_paths.hpp"
 #include "io/results_writer.hpp"
 #include "io/xdmf_writer.hpp"
 #include "solver/linear.hpp"
@@ -292,9 +293,7 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         const std::string& file = deck.output.file;
         const std::size_t slash = file.find_last_of('/');
         const std::string name = slash == std::string::npos ? file : file.substr(slash + 1);
-        const std::size_t dot = file.rfind(".h5");
-        const std::string xdmf_path = (dot != std::string::npos && dot + 3 == file.size() ? file.substr(0, dot) : file) + ".xdmf";
-        io::write_xdmf(xdmf_path, io::xdmf_text(name, meshes, xdmf_steps));
+        io::write_xdmf(io::xdmf_path(file), io::xdmf_text(name, meshes, xdmf_steps));
         outcome.numbers["paraview"] = 1;
     }
     outcome.wall_s = total.elapsed();

@@ -1,4 +1,5 @@
 #include "analysis/scene.hpp"
+#include "analysis/size_estimate.hpp"
 
 #include "analysis/constraints.hpp"
 #include "analysis/geometry.hpp"
@@ -60,6 +61,7 @@ std::vector<int> dofs_of(const assembly::DofMap& dofs, int body, const std::vect
 
 Scene build_scene(const io::Deck& deck)
 {
+    check_size(deck);  // refuse an absurd model before allocating any of it
     Scene scene;
     scene.dim = deck.analysis.dimension;
     const int d = scene.dim;

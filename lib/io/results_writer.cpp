@@ -14,9 +14,25 @@
 
 namespace iga::io {
 
+namespace {
+
+/// /history, column by column (one entry per append_history call), written by finish().
+struct HistoryColumns {
+    std::size_t n_rows = 0;
+    std::vector<double> load_factor;
+    std::vector<std::string> reaction_names;
+    std::size_t dimension = 0;                   ///< entries of each reaction vector
+    std::vector<std::vector<double>> reactions;  ///< per name, n_rows x dimension, row-major
+    std::vector<std::pair<std::string, std::string>> contact_sides;  ///< (pair, side)
+    std::vector<std::vector<double>> normal_force;     ///< per contact side, n_rows
+    std::vector<std::vector<double>> max_penetration;  ///< per contact side, n_rows
+};
+
+}  // namespace
+
 struct ResultsWriter::State {
     h5::Handle file;
-    std::vector<HistoryRow> history;
+    HistoryColumns history;
 };
 
 namespace {
@@ -99,6 +115,33 @@ void write_side(hid_t pair, const ContactSideResult& side)
     h5::write_dataset(post.id(), "pressure", pp.pressure);
 }
 
+void write_fields(hid_t step, const std::vector<BodyFields>& fields)
+{
+    h5::Handle group = h5::create_group(step, "fields");
+    for (const BodyFields& body : fields) {
+        IGA_CHECK(!body.body.empty(), "stress fields need the body's name");
+        const Index n = body.reference_coordinates.rows();
+        IGA_CHECK(body.displacement.rows() == n && body.stress.rows() == n && body.von_mises.size() == n,
+                  "fields of body " + body.body + ": every array needs one row per tessellation point");
+        IGA_CHECK(body.stress.cols() == 6, "fields of body " + body.body + ": stress has 6 columns (xx, yy, zz, xy, yz, xz)");
+        h5::Handle body_group = h5::create_group(group.id(), body.body);
+        h5::write_dataset(body_group.id(), "reference_coordinates", body.reference_coordinates);
+        h5::write_dataset(body_group.id(), "displacement", body.displacement);
+        h5::write_dataset(body_group.id(), "stress", body.stress);
+        h5::write_dataset(body_group.id(), "von_mises", body.von_mises);
+    }
+}
+
+void write_reactions(hid_t step, const std::vector<Reaction>& reactions)
+{
+    h5::Handle group = h5::create_group(step, "reactions");
+    for (const Reaction& reaction : reactions) {
+        IGA_CHECK(!reaction.name.empty(), "a reaction needs the name of its side (body.side)");
+        h5::write_dataset(group.id(), reaction.name, std::span<const double>(reaction.force),
+                          {static_cast<hsize_t>(reaction.force.size())});
+    }
+}
+
 void write_reference(hid_t references, const ReferenceData& reference)
 {
     IGA_CHECK(!reference.pair.empty(), "a reference curve needs its pair name");
@@ -124,6 +167,32 @@ void write_reference(hid_t references, const ReferenceData& reference)
         h5::write_attribute(group.id(), "center", std::span<const double>(reference.center));
     if (!reference.tangent.empty())
         h5::write_attribute(group.id(), "tangent", std::span<const double>(reference.tangent));
+}
+
+// /history from the columns gathered by append_history (load_factor only, of length 0, without rows).
+void write_history(hid_t file, const HistoryColumns& h)
+{
+    const auto n = static_cast<hsize_t>(h.n_rows);
+    h5::Handle group = h5::create_group(file, "history");
+    h5::write_dataset(group.id(), "load_factor", std::span<const double>(h.load_factor), {n});
+    if (!h.reaction_names.empty()) {
+        h5::Handle reactions = h5::create_group(group.id(), "reactions");
+        for (std::size_t k = 0; k < h.reaction_names.size(); ++k)
+            h5::write_dataset(reactions.id(), h.reaction_names[k], std::span<const double>(h.reactions[k]),
+                              {n, static_cast<hsize_t>(h.dimension)});
+    }
+    if (!h.contact_sides.empty()) {
+        h5::Handle contact = h5::create_group(group.id(), "contact");
+        for (std::size_t k = 0; k < h.contact_sides.size(); ++k) {
+            const auto& [pair, side] = h.contact_sides[k];
+            if (!h5::exists(contact.id(), pair))
+                h5::create_group(contact.id(), pair);
+            h5::Handle pair_group = h5::open_object(contact.id(), pair);
+            h5::Handle side_group = h5::create_group(pair_group.id(), side);
+            h5::write_dataset(side_group.id(), "normal_force", std::span<const double>(h.normal_force[k]), {n});
+            h5::write_dataset(side_group.id(), "max_penetration", std::span<const double>(h.max_penetration[k]), {n});
+        }
+    }
 }
 
 void flush(hid_t file, const std::string& path)
@@ -252,12 +321,6 @@ void ResultsWriter::write_step(const StepData& step)
             for (const ContactSideResult& side : pair.sides)
                 write_side(pair_group.id(), side);
         }
-        if (!step.reactions.empty()) {
-            h5::Handle reactions = h5::create_group(group.id(), "reactions");
-            for (const Reaction& r : step.reactions)
-                h5::write_dataset(reactions.id(), r.name, std::span<const double>(r.force),
-                                  {static_cast<hsize_t>(r.force.size())});
-        }
         if (!step.tessellation_displacement.empty()) {
             h5::Handle paraview = h5::create_group(group.id(), "paraview");
             for (const auto& [body, values] : step.tessellation_displacement) {
@@ -265,6 +328,10 @@ void ResultsWriter::write_step(const StepData& step)
                 h5::write_dataset(body_group.id(), "displacement", values);
             }
         }
+        if (!step.reactions.empty())
+            write_reactions(group.id(), step.reactions);
+        if (!step.fields.empty())
+            write_fields(group.id(), step.fields);
         flush(file, temp_path_);
         if (H5Olink(group.id(), file, ("steps/" + name).c_str(), H5P_DEFAULT, H5P_DEFAULT) < 0)
             h5::throw_error("cannot link steps/" + name + " in results file " + temp_path_);
@@ -276,56 +343,39 @@ void ResultsWriter::write_step(const StepData& step)
 void ResultsWriter::append_history(const HistoryRow& row)
 {
     IGA_CHECK(is_open(), "results file " + final_path_ + " is already closed");
-    state_->history.push_back(row);
-}
-
-namespace {
-
-void write_history(hid_t file, const std::vector<HistoryRow>& rows)
-{
-    if (rows.empty())
-        return;
-    const HistoryRow& first = rows.front();
-    const hsize_t n = rows.size();
-    h5::Handle history = h5::create_group(file, "history");
-    std::vector<double> column(n);
-    for (hsize_t k = 0; k < n; ++k)
-        column[k] = rows[k].load_factor;
-    h5::write_dataset(history.id(), "load_factor", std::span<const double>(column), {n});
-    if (!first.reactions.empty()) {
-        h5::Handle reactions = h5::create_group(history.id(), "reactions");
-        for (std::size_t j = 0; j < first.reactions.size(); ++j) {
-            const std::size_t d = first.reactions[j].force.size();
-            std::vector<double> table(n * d);
-            for (hsize_t k = 0; k < n; ++k) {
-                IGA_CHECK(rows[k].reactions.size() == first.reactions.size(), "history rows differ in reactions");
-                for (std::size_t i = 0; i < d; ++i)
-                    table[k * d + i] = rows[k].reactions[j].force[i];
-            }
-            h5::write_dataset(reactions.id(), first.reactions[j].name, std::span<const double>(table),
-                              {n, static_cast<hsize_t>(d)});
+    HistoryColumns& h = state_->history;
+    if (h.n_rows == 0) {
+        for (const Reaction& reaction : row.reactions) {
+            IGA_CHECK(!reaction.name.empty(), "a history reaction needs the name of its side (body.side)");
+            h.reaction_names.push_back(reaction.name);
         }
-    }
-    if (!first.contact.empty()) {
-        h5::Handle contact = h5::create_group(history.id(), "contact");
-        for (std::size_t j = 0; j < first.contact.size(); ++j) {
-            const std::string& pair = first.contact[j].pair;
-            if (!h5::exists(contact.id(), pair))
-                h5::create_group(contact.id(), pair);
-            h5::Handle side = h5::create_group(contact.id(), pair + "/" + first.contact[j].side);
-            std::vector<double> force(n), penetration(n);
-            for (hsize_t k = 0; k < n; ++k) {
-                IGA_CHECK(rows[k].contact.size() == first.contact.size(), "history rows differ in contact sides");
-                force[k] = rows[k].contact[j].normal_force;
-                penetration[k] = rows[k].contact[j].max_penetration;
-            }
-            h5::write_dataset(side.id(), "normal_force", std::span<const double>(force), {n});
-            h5::write_dataset(side.id(), "max_penetration", std::span<const double>(penetration), {n});
+        h.dimension = row.reactions.empty() ? 0 : row.reactions.front().force.size();
+        h.reactions.assign(row.reactions.size(), {});
+        for (const HistoryRow::ContactSide& side : row.contact) {
+            IGA_CHECK(!side.pair.empty() && !side.side.empty(), "a history contact side needs its pair and side");
+            h.contact_sides.emplace_back(side.pair, side.side);
         }
+        h.normal_force.assign(row.contact.size(), {});
+        h.max_penetration.assign(row.contact.size(), {});
     }
+    IGA_CHECK(row.reactions.size() == h.reaction_names.size() && row.contact.size() == h.contact_sides.size(),
+              "every /history row has the reactions and contact sides of the first");
+    for (std::size_t k = 0; k < row.reactions.size(); ++k) {
+        IGA_CHECK(row.reactions[k].name == h.reaction_names[k] && row.reactions[k].force.size() == h.dimension,
+                  "history row " + std::to_string(h.n_rows + 1) + ": reaction '" + row.reactions[k].name +
+                      "' does not match the first row's '" + h.reaction_names[k] + "'");
+        h.reactions[k].insert(h.reactions[k].end(), row.reactions[k].force.begin(), row.reactions[k].force.end());
+    }
+    for (std::size_t k = 0; k < row.contact.size(); ++k) {
+        IGA_CHECK(row.contact[k].pair == h.contact_sides[k].first && row.contact[k].side == h.contact_sides[k].second,
+                  "history row " + std::to_string(h.n_rows + 1) + ": contact side '" + row.contact[k].pair + "/" +
+                      row.contact[k].side + "' does not match the first row's");
+        h.normal_force[k].push_back(row.contact[k].normal_force);
+        h.max_penetration[k].push_back(row.contact[k].max_penetration);
+    }
+    h.load_factor.push_back(row.load_factor);
+    ++h.n_rows;
 }
-
-}  // namespace
 
 void ResultsWriter::finish(const RunSummary& summary)
 {

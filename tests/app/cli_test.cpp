@@ -284,5 +284,108 @@ TEST(Cli, SummaryJsonIsOneParsableLine)
     EXPECT_TRUE(fs::equivalent(fs::path(m[1].str()), file)) << line;
 }
 
+// Data safety: an output path that is the deck itself, however it is spelled or given
+// (-o, --set, the deck's own output.file, a symbolic link, the XDMF index beside the
+// results), is refused with exit 2 before anything is written; the deck survives byte
+// for byte and no other file appears.
+TEST(Cli, OutputThatIsTheDeckIsRefusedAndTheDeckSurvives)
+{
+    const auto dir = scratch_dir("output_is_deck");
+    const fs::path deck = dir / "deck.yaml";
+    fs::copy_file(lame_deck(), deck);
+    fs::create_symlink("deck.yaml", dir / "link.h5");
+    const fs::path xdmf_deck = dir / "deck.xdmf";
+    fs::copy_file(lame_deck(), xdmf_deck);
+    const std::string text = read_text(deck);
+    const std::string q = shell_quote(deck.string());
+    struct Case {
+        std::string arguments, expect;
+    };
+    const std::vector<Case> cases = {
+        {q + " -o " + q, "<command line>: error: output.file = " + deck.string() +
+                             ": the results file given with the -o option would replace the deck itself"},
+        {q + " -o " + shell_quote((dir / "." / "deck.yaml").string()), "given with the -o option would replace the deck"},
+        {q + " -o " + shell_quote((dir / "link.h5").string()), "would replace the deck itself"},
+        {q + " --set output.file=deck.yaml", "<command line>: error: output.file = " + deck.string() +
+                                                 ": the results file would replace the deck itself"},
+        {shell_quote(xdmf_deck.string()) + " --set output.paraview=true -o " + shell_quote((dir / "deck.h5").string()),
+         "the ParaView index " + xdmf_deck.string() + " (output.paraview) of the results file given with the -o "
+         "option would replace the deck itself"},
+        {"check " + q + " --set output.file=deck.yaml", "would replace the deck itself"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.arguments);
+        const bool check = c.arguments.rfind("check ", 0) == 0;  // `check` prints only errors anyway
+        const CliResult r = run_cli(c.arguments + (check ? "" : " -q"), dir);
+        EXPECT_EQ(r.exit_code, 2) << r.err;
+        EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
+        EXPECT_EQ(read_text(deck), text) << "the deck was overwritten";
+        EXPECT_EQ(read_text(xdmf_deck), text) << "the deck deck.xdmf was overwritten";
+    }
+    std::vector<std::string> left = files_starting_with(dir, "");
+    std::sort(left.begin(), left.end());
+    EXPECT_EQ(left, (std::vector<std::string>{"cli_stderr.txt", "cli_stdout.txt", "deck.xdmf", "deck.yaml", "link.h5"}));
+}
+
+// An unknown option is reported like every other error: "igacontact: error: ...", exit 2.
+TEST(Cli, UnknownOptionIsAnErrorInTheHouseFormat)
+{
+    const auto dir = scratch_dir("unknown_option");
+    const CliResult r = run_cli(shell_quote(lame_deck()) + " --bogus", dir);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err.rfind("igacontact: error: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("--bogus"), std::string::npos) << r.err;
+    for (const char* command : {"check", "compare"}) {
+        const CliResult sub = run_cli(std::string(command) + " --bogus", dir);
+        EXPECT_EQ(sub.exit_code, 2) << sub.err;
+        EXPECT_EQ(sub.err.rfind("igacontact: error: ", 0), 0u) << command << ": " << sub.err;
+    }
+}
+
+/// The one line on stdout (trailing newline removed); fails the test if there is not exactly one.
+std::string the_json_line(const CliResult& r)
+{
+    std::string line = !r.out.empty() && r.out.back() == '\n' ? r.out.substr(0, r.out.size() - 1) : r.out;
+    EXPECT_FALSE(line.empty()) << "no JSON line; stderr: " << r.err;
+    EXPECT_EQ(line.find('\n'), std::string::npos) << "exactly one line on stdout:\n" << r.out;
+    EXPECT_TRUE(!line.empty() && line.front() == '{' && line.back() == '}') << line;
+    return line;
+}
+
+// `--summary json` answers for every outcome: a failed run (exit 1), bad input and bad
+// usage (exit 2), each with its status, message and exit code.
+TEST(Cli, SummaryJsonForEveryOutcome)
+{
+    const auto dir = scratch_dir("summary_outcomes");
+    const std::string contact_deck = shell_quote(source_path("verification/bad_input/base.yaml"));
+    const std::string out = " -q --summary json -o " + shell_quote((dir / "r.h5").string());
+    std::smatch m;
+
+    const CliResult failed =
+        run_cli(contact_deck + out + " --set newton.max_iterations=1 --set steps.max_cutbacks=0", dir);
+    EXPECT_EQ(failed.exit_code, 1) << failed.err;
+    const std::string failed_line = the_json_line(failed);
+    EXPECT_TRUE(std::regex_search(failed_line, m, std::regex("\"status\": *\"failed\""))) << failed_line;
+    EXPECT_TRUE(std::regex_search(failed_line, m, std::regex("\"exit_code\": *1"))) << failed_line;
+    EXPECT_TRUE(std::regex_search(failed_line, m, std::regex("\"message\": *\"[^\"]*Newton"))) << failed_line;
+
+    const CliResult bad_deck = run_cli(contact_deck + out + " --set materials.soft.E=-1", dir);
+    EXPECT_EQ(bad_deck.exit_code, 2) << bad_deck.err;
+    const std::string bad_line = the_json_line(bad_deck);
+    EXPECT_TRUE(std::regex_search(bad_line, m, std::regex("\"status\": *\"bad_input\""))) << bad_line;
+    EXPECT_TRUE(std::regex_search(bad_line, m, std::regex("\"exit_code\": *2"))) << bad_line;
+    EXPECT_NE(bad_line.find("materials.soft.E = -1: must be > 0"), std::string::npos) << bad_line;
+
+    const CliResult usage = run_cli(contact_deck + " --bogus --summary=json", dir);
+    EXPECT_EQ(usage.exit_code, 2) << usage.err;
+    const std::string usage_line = the_json_line(usage);
+    EXPECT_TRUE(std::regex_search(usage_line, m, std::regex("\"status\": *\"bad_input\""))) << usage_line;
+    EXPECT_NE(usage_line.find("--bogus"), std::string::npos) << usage_line;
+
+    const CliResult missing = run_cli(shell_quote((dir / "no_such.yaml").string()) + out, dir);
+    EXPECT_EQ(missing.exit_code, 2) << missing.err;
+    EXPECT_NE(the_json_line(missing).find("no such deck file"), std::string::npos) << missing.out;
+}
+
 }  // namespace
 }  // namespace iga::test

@@ -36,6 +36,7 @@ struct SampleRun {
     std::string deck = "format: 1\nanalysis:\n  dimension: 2\ncontact:\n  penalty: 1e6\n";
     std::vector<BodyGeometry> bodies;
     std::vector<StepData> steps;
+    std::vector<HistoryRow> history;
     RunSummary summary;
 };
 
@@ -79,10 +80,19 @@ SampleRun sample_run()
         ContactPairResult pair;
         pair.name = "cyl_floor";
         pair.sides = {side};
+        pair.obstacle_force = {0.0, -100.0 * k};
         step.contact = {pair};
+        step.reactions = {{"cylinder.v1", {0.5 * k, 100.0 * k}}};
+        step.fields = {BodyFields{.body = "cylinder", .reference_coordinates = ramp(3, 2, 0.0),
+                                  .displacement = ramp(3, 2, 1.0 * k), .stress = ramp(3, 6, 5.0 * k),
+                                  .von_mises = Vector::LinSpaced(3, 1.0, 3.0 * k)}};
         run.steps.push_back(step);
+        run.history.push_back(HistoryRow{.load_factor = 0.5 * k,
+                                         .reactions = step.reactions,
+                                         .contact = {{"cyl_floor", "cylinder.v0", 100.0 * k, 1e-3 * k}}});
     }
     run.summary.status = "completed";
+    run.summary.warnings = "contact pair cyl_floor: penalty is large";
     run.summary.timings = {{"total", 2.0}, {"assembly", 1.0}};
     run.summary.counters = {{"projections", 40}, {"search_s", 3}};
     run.summary.convergence = ramp(7, 4, 0.0);
@@ -103,6 +113,8 @@ void write_run(const SampleRun& run, const std::string& path)
 {
     ResultsWriter writer(path, run.version, run.deck);
     writer.write_bodies(run.bodies);
+    for (const HistoryRow& row : run.history)
+        writer.append_history(row);
     for (const StepData& step : run.steps)
         writer.write_step(step);
     writer.finish(run.summary);
@@ -281,6 +293,53 @@ TEST_F(ResultsCompareTest, ExtraItemsInNewAreNotErrors)
     write_run(smaller, path("smaller.h5"));
     EXPECT_TRUE(compare_results(path("smaller.h5"), path("new.h5"), {}).same());
     EXPECT_FALSE(compare_results(path("new.h5"), path("smaller.h5"), {}).same());
+}
+
+// Second-release items (reactions, obstacle_force, fields, /history, warnings) are
+// compared like the rest, and a first-release reference, which has none of them,
+// still agrees with a new file on everything it has.
+TEST_F(ResultsCompareTest, SecondReleaseItemsAreCompared)
+{
+    write_run(sample_run(), path("new.h5"));
+    const CompareReport same = compare_results(reference_path(), path("new.h5"), {});
+    EXPECT_TRUE(same.same()) << format_report(same, false);
+    for (const char* item : {"/@warnings", "/history/load_factor", "/history/reactions/cylinder.v1",
+                             "/history/contact/cyl_floor/cylinder.v0/normal_force",
+                             "/steps/0002/reactions/cylinder.v1", "/steps/0002/contact/cyl_floor@obstacle_force",
+                             "/steps/0002/fields/cylinder/stress", "/steps/0002/fields/cylinder/von_mises"})
+        EXPECT_NE(find_entry(same, item), nullptr) << item << " was not compared";
+
+    constexpr double relative_change = 1e-3;  // a thousand times the default rtol of 1e-6
+    const CompareReport changed = compare_changed([&](SampleRun& run) {
+        run.history[1].reactions[0].force[1] *= 1 + relative_change;
+        run.steps[0].fields[0].von_mises(2) *= 1 + relative_change;
+    });
+    EXPECT_EQ(paths_not_same(changed),
+              (std::vector<std::string>{"/history/reactions/cylinder.v1", "/steps/0001/fields/cylinder/von_mises"}));
+}
+
+TEST_F(ResultsCompareTest, FirstReleaseReferenceAgreesOnWhatItHas)
+{
+    // A first-release file: no /history, no root attribute warnings, no reactions, fields or obstacle force.
+    SampleRun old = sample_run();
+    old.history.clear();
+    for (StepData& step : old.steps) {
+        step.reactions.clear();
+        step.fields.clear();
+        step.contact[0].obstacle_force.clear();
+    }
+    write_run(old, path("old.h5"));
+    {
+        h5::ErrorSilencer silence;
+        h5::Handle file(H5Fopen(path("old.h5").c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose, "cannot open old.h5");
+        ASSERT_GE(H5Ldelete(file.id(), "history", H5P_DEFAULT), 0);
+        ASSERT_GE(H5Adelete(file.id(), "warnings"), 0);
+    }
+    write_run(sample_run(), path("new.h5"));
+    const CompareReport report = compare_results(path("old.h5"), path("new.h5"), {});
+    EXPECT_TRUE(report.same()) << format_report(report, false);
+    EXPECT_EQ(find_entry(report, "/history"), nullptr);
+    EXPECT_GT(report.n_compared, 40) << "everything else is still compared";
 }
 
 TEST_F(ResultsCompareTest, WrongShapeIsShapeMismatch)

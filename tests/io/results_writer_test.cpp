@@ -461,5 +461,183 @@ TEST_F(ResultsWriterTest, FlushedStepsSurviveACrash)
     expect_dataset(file.id(), "/steps/0001/displacement/cylinder", step_without_contact().displacement[0].second);
 }
 
+// --- second release: reactions, obstacle force, stress fields, /history, warnings ----------
+
+StepData step_with_second_release_items()
+{
+    StepData step = step_with_contact();
+    step.contact[0].obstacle_force = {0.5, -1234.5};
+    step.reactions = {{"cylinder.v1", {1.25, 1234.5}}, {"cylinder.u0", {-0.75, 0.0}}};
+    BodyFields fields;
+    fields.body = "cylinder";
+    fields.reference_coordinates = numbered(9, 2, 10.0);
+    fields.displacement = numbered(9, 2, 20.0);
+    fields.stress = numbered(9, 6, 30.0);
+    fields.von_mises = numbered(9, 40.0);
+    step.fields = {fields};
+    return step;
+}
+
+HistoryRow history_row(double load_factor)
+{
+    HistoryRow row;
+    row.load_factor = load_factor;
+    row.reactions = {{"cylinder.v1", {1.0 * load_factor, 2.0 * load_factor}},
+                     {"cylinder.u0", {-3.0 * load_factor, 0.25}}};
+    row.contact = {{"cyl_floor", "cylinder.v0", 100.0 * load_factor, 1e-4 * load_factor}};
+    return row;
+}
+
+TEST_F(ResultsWriterTest, StepsHoldReactionsObstacleForceAndFields)
+{
+    {
+        ResultsWriter writer(path("run.h5"), version, deck_text);
+        writer.write_bodies({cylinder_body()});
+        writer.write_step(step_without_contact());
+        writer.write_step(step_with_second_release_items());
+        writer.finish(completed_summary());
+    }
+    h5::ErrorSilencer silence;
+    h5::Handle file = h5::open_file(path("run.h5"));
+    const hid_t f = file.id();
+    const StepData step = step_with_second_release_items();
+    for (const Reaction& reaction : step.reactions) {
+        SCOPED_TRACE(reaction.name);
+        expect_real(h5::read_dataset(f, "/steps/0002/reactions/" + reaction.name), {2}, reaction.force.data());
+    }
+    EXPECT_FALSE(h5::exists(f, "/steps/0001/reactions")) << "no reactions given for step 1";
+    const Array obstacle = h5::read_attribute(h5::open_object(f, "/steps/0002/contact/cyl_floor").id(), "obstacle_force");
+    expect_real(obstacle, {2}, step.contact[0].obstacle_force.data());
+    const std::vector<std::string> pair_attributes =
+        h5::attribute_names(h5::open_object(f, "/steps/0001/contact").id());
+    EXPECT_TRUE(pair_attributes.empty()) << "step 1 has no contact pair, so no obstacle_force";
+
+    const BodyFields& fields = step.fields[0];
+    expect_dataset(f, "/steps/0002/fields/cylinder/reference_coordinates", fields.reference_coordinates);
+    expect_dataset(f, "/steps/0002/fields/cylinder/displacement", fields.displacement);
+    expect_dataset(f, "/steps/0002/fields/cylinder/stress", fields.stress);
+    expect_dataset(f, "/steps/0002/fields/cylinder/von_mises", fields.von_mises);
+    EXPECT_FALSE(h5::exists(f, "/steps/0001/fields")) << "fields only when StepData::fields is given";
+    expect_dataset(f, "/results/fields/cylinder/stress", fields.stress);
+}
+
+TEST_F(ResultsWriterTest, ObstacleForceOnlyForPairsThatHaveOne)
+{
+    {
+        ResultsWriter writer(path("run.h5"), version, deck_text);
+        writer.write_bodies({cylinder_body()});
+        writer.write_step(step_with_contact());  // obstacle_force empty: two deformable sides
+        writer.finish(completed_summary());
+    }
+    h5::ErrorSilencer silence;
+    h5::Handle file = h5::open_file(path("run.h5"));
+    const std::vector<std::string> names = h5::attribute_names(h5::open_object(file.id(), "/steps/0002/contact/cyl_floor").id());
+    EXPECT_EQ(std::count(names.begin(), names.end(), "obstacle_force"), 0);
+}
+
+TEST_F(ResultsWriterTest, FieldsWithInconsistentShapesAreABug)
+{
+    ResultsWriter writer(path("run.h5"), version, deck_text);
+    writer.write_bodies({cylinder_body()});
+    StepData step = step_with_second_release_items();
+    step.fields[0].stress = numbered(9, 4, 0.0);  // 4 stress components instead of 6
+    EXPECT_THROW(writer.write_step(step), Error);
+}
+
+TEST_F(ResultsWriterTest, HistoryHasOneRowPerAppendedIncrement)
+{
+    constexpr int n_rows = 3;
+    {
+        ResultsWriter writer(path("run.h5"), version, deck_text);
+        writer.write_bodies({cylinder_body()});
+        for (int k = 1; k <= n_rows; ++k)
+            writer.append_history(history_row(0.25 * k));
+        writer.write_step(step_with_contact());  // only the last increment stored under /steps
+        writer.finish(completed_summary());
+    }
+    h5::ErrorSilencer silence;
+    h5::Handle file = h5::open_file(path("run.h5"));
+    const hid_t f = file.id();
+    const std::vector<double> load_factor{0.25, 0.5, 0.75};
+    expect_real(h5::read_dataset(f, "/history/load_factor"), {n_rows}, load_factor.data());
+    // n x d, row k = the reaction at increment k.
+    const std::vector<double> v1{0.25, 0.5, 0.5, 1.0, 0.75, 1.5};
+    expect_real(h5::read_dataset(f, "/history/reactions/cylinder.v1"), {n_rows, 2}, v1.data());
+    const std::vector<double> u0{-0.75, 0.25, -1.5, 0.25, -2.25, 0.25};
+    expect_real(h5::read_dataset(f, "/history/reactions/cylinder.u0"), {n_rows, 2}, u0.data());
+    const std::vector<double> force{25.0, 50.0, 75.0};
+    expect_real(h5::read_dataset(f, "/history/contact/cyl_floor/cylinder.v0/normal_force"), {n_rows}, force.data());
+    const std::vector<double> penetration{1e-4 * 0.25, 1e-4 * 0.5, 1e-4 * 0.75};  // as history_row computes them
+    expect_real(h5::read_dataset(f, "/history/contact/cyl_floor/cylinder.v0/max_penetration"), {n_rows},
+                penetration.data());
+}
+
+TEST_F(ResultsWriterTest, HistoryAndWarningsAreWrittenForAFailedRun)
+{
+    {
+        ResultsWriter writer(path("failed.h5"), version, deck_text);
+        writer.write_bodies({cylinder_body()});
+        writer.append_history(history_row(0.5));
+        writer.write_step(step_without_contact());
+        RunSummary summary;
+        summary.status = "failed";
+        summary.message = "Newton did not converge";
+        summary.warnings = "penalty is large\ncontact pair touch never closed";
+        writer.finish(summary);
+    }
+    h5::ErrorSilencer silence;
+    h5::Handle file = h5::open_file(path("failed.h5"));
+    EXPECT_EQ(string_attribute(file.id(), "/", "status"), "failed");
+    EXPECT_EQ(string_attribute(file.id(), "/", "warnings"), "penalty is large\ncontact pair touch never closed");
+    const std::vector<double> load_factor{0.5};
+    expect_real(h5::read_dataset(file.id(), "/history/load_factor"), {1}, load_factor.data());
+}
+
+TEST_F(ResultsWriterTest, NoWarningsIsAnEmptyStringAndNoRowsAnEmptyHistory)
+{
+    write_complete_run(path("run.h5"));
+    h5::ErrorSilencer silence;
+    h5::Handle file = h5::open_file(path("run.h5"));
+    EXPECT_EQ(string_attribute(file.id(), "/", "warnings"), "");
+    const Array load_factor = h5::read_dataset(file.id(), "/history/load_factor");
+    EXPECT_EQ(load_factor.dims, std::vector<hsize_t>{0});
+    EXPECT_FALSE(h5::exists(file.id(), "/history/reactions"));
+}
+
+TEST_F(ResultsWriterTest, HistoryRowsWithOtherNamesThanTheFirstAreABug)
+{
+    ResultsWriter writer(path("run.h5"), version, deck_text);
+    writer.append_history(history_row(0.5));
+    HistoryRow renamed = history_row(1.0);
+    renamed.reactions[0].name = "cylinder.v0";
+    EXPECT_THROW(writer.append_history(renamed), Error);
+    HistoryRow shorter = history_row(1.0);
+    shorter.contact.clear();
+    EXPECT_THROW(writer.append_history(shorter), Error);
+}
+
+// The output-cost defect: /steps held its thousands of members in one local heap that every
+// flush rewrote (the old file format). With the HDF5 1.8 format a large /steps is stored dense.
+TEST_F(ResultsWriterTest, ManyStepsUseDenseLinkStorage)
+{
+    constexpr int n_steps = 40;  // well above HDF5's compact-storage limit of 8 links
+    {
+        ResultsWriter writer(path("run.h5"), version, deck_text);
+        writer.write_bodies({cylinder_body()});
+        StepData step = step_without_contact();
+        for (int k = 1; k <= n_steps; ++k) {
+            step.index = k;
+            writer.write_step(step);
+        }
+        writer.finish(completed_summary());
+    }
+    h5::ErrorSilencer silence;
+    h5::Handle file = h5::open_file(path("run.h5"));
+    H5G_info_t info;
+    ASSERT_GE(H5Gget_info(h5::open_object(file.id(), "/steps").id(), &info), 0);
+    EXPECT_EQ(info.nlinks, static_cast<hsize_t>(n_steps));
+    EXPECT_EQ(info.storage_type, H5G_STORAGE_TYPE_DENSE);
+}
+
 }  // namespace
 }  // namespace iga::io

@@ -1,0 +1,74 @@
+#include "summary_json.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstring>
+
+namespace iga::app {
+
+namespace {
+
+std::string json_escape(const std::string& s)
+{
+    std::string out;
+    for (char c : s) {
+        switch (c) {
+        case '"': out += "\\\""; break;
+        case '\\': out += "\\\\"; break;
+        case '\n': out += "\\n"; break;
+        case '\t': out += "\\t"; break;
+        default:
+            if (static_cast<unsigned char>(c) < 0x20)
+                out += fmt::format("\\u{:04x}", static_cast<int>(c));
+            else
+                out += c;
+        }
+    }
+    return out;
+}
+
+std::string json_number(double x)
+{
+    return std::isfinite(x) ? fmt::format("{:.9g}", x) : "null";
+}
+
+}  // namespace
+
+bool summary_json_requested(int argc, char** argv)
+{
+    for (int k = 1; k < argc; ++k) {
+        if (std::strcmp(argv[k], "--summary=json") == 0)
+            return true;
+        if (std::strcmp(argv[k], "--summary") == 0 && k + 1 < argc && std::strcmp(argv[k + 1], "json") == 0)
+            return true;
+    }
+    return false;
+}
+
+std::string summary_json(const analysis::RunOutcome& r, int exit_code)
+{
+    std::string out = fmt::format(
+        "{{\"status\": \"{}\", \"message\": \"{}\", \"exit_code\": {}, \"results\": \"{}\", \"increments\": {}, "
+        "\"newton_iterations\": {}, \"cutbacks\": {}, \"wall_s\": {}",
+        json_escape(r.status), json_escape(r.message), exit_code, json_escape(r.results_file), r.increments,
+        r.newton_iterations, r.cutbacks, json_number(r.wall_s));
+    for (const auto& [key, value] : r.numbers)
+        out += fmt::format(", \"{}\": {}", json_escape(key), json_number(value));
+    out += ", \"errors\": {";
+    bool first = true;
+    for (const auto& [key, value] : r.errors) {
+        out += fmt::format("{}\"{}\": {}", first ? "" : ", ", json_escape(key), json_number(value));
+        first = false;
+    }
+    out += "}}";
+    return out;
+}
+
+std::string error_summary_json(const std::string& status, const std::string& message, int exit_code)
+{
+    return fmt::format("{{\"status\": \"{}\", \"message\": \"{}\", \"exit_code\": {}}}", json_escape(status),
+                       json_escape(message), exit_code);
+}
+
+}  // namespace iga::app

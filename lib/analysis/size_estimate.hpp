@@ -1,0 +1,76 @@
+#pragma once
+// The size of the model a deck asks for, estimated from the deck alone, BEFORE
+// anything is built: a deck with spans: [1e8, 1e8] must be refused in a
+// millisecond with a located message, not die minutes later of std::bad_alloc.
+//
+// Per deformable body and parametric direction i, from the deck's degree p_i and
+// knots (or the built-in shape's: half_disc cubic x linear, quarter_disc quadratic x
+// linear, rectangle bilinear, one span each) and the refinement in its order:
+//   elevate t:  p_i += t, every distinct interior knot gains multiplicity t;
+//   spans n:    at most n - 1 new knots and spans (refine_uniform);
+//   insert k:   k more knots and at most k more spans.
+// n_cp,i = p_i + 1 + (interior knots); dofs = d prod n_cp,i; elements = prod spans_i.
+// Memory (bytes, a lower bound of what the run holds at once; all counts in double
+// precision, so no estimate overflows):
+//   element geometry   elements * prod(p_i+1) Gauss points * (prod(p_i+1) (d+1) + 1) * 8
+//   assembly positions elements * 4 (d prod(p_i+1))^2
+//   tangent + factor   2 * 12 * nonzeros, nonzeros = dofs d prod(2 p_i + 1)
+//   contact            Gauss points (quadrature per span x spans of the side) * 64 d,
+//                      plus the pair's dense block (dofs of its sides)^2 * 16
+//   samples            samples_per_span x spans of each contact side * (2d+1) * 8 * 4
+// Hard limits, whatever the memory (docs/deck.md): a degree above 20 after elevation,
+// contact quadrature above 64 points per span, samples_per_span above 1000.
+//
+// check_size throws DeckError located at the key that makes the model too big
+// (bodies.<name>.refine.spans, ...elevate, ...insert, bodies.<name>.nurbs.degrees,
+// contact.<pair>.quadrature, output.samples_per_span), with the estimated memory and
+// the machine's. The culprit among several keys is the one whose removal shrinks the
+// estimate most. Nothing here allocates per planned increment (steps.count).
+
+#include "io/deck.hpp"
+
+#include <string>
+#include <vector>
+
+namespace iga::analysis {
+
+struct SizeLimits {
+    double memory_bytes = 0.0;  ///< the machine's memory; 0 = unknown (no memory check)
+    int max_degree = 20;
+    int max_quadrature = 64;
+    int max_samples_per_span = 1000;
+};
+
+/// Physical memory of this machine in bytes (sysconf: MemTotal), or 0 if unknown.
+double machine_memory_bytes();
+
+/// The limits for this machine: its memory and the hard limits above.
+SizeLimits machine_limits();
+
+struct BodySize {
+    std::string name;
+    std::vector<double> degrees;         ///< after elevation
+    std::vector<double> spans;           ///< per direction (upper bound)
+    std::vector<double> control_points;  ///< per direction
+    double dofs = 0.0;
+    double elements = 0.0;
+    double nonzeros = 0.0;
+};
+
+struct SizeEstimate {
+    std::vector<BodySize> bodies;  ///< deformable bodies, deck order
+    double dofs = 0.0;
+    double nonzeros = 0.0;
+    double element_gauss_points = 0.0;
+    double contact_gauss_points = 0.0;
+    double samples = 0.0;
+    double bytes = 0.0;  ///< estimated memory (lower bound)
+};
+
+SizeEstimate estimate_size(const io::Deck& deck);
+
+/// Throws DeckError (located, see above) if the deck's model breaks a hard limit or
+/// its estimated memory exceeds limits.memory_bytes.
+void check_size(const io::Deck& deck, const SizeLimits& limits = machine_limits());
+
+}  // namespace iga::analysis

@@ -1,0 +1,140 @@
+// Tests of analysis::estimate_size / check_size (analysis/size_estimate.hpp): the
+// estimate agrees with the model build_scene actually builds, realistic decks pass,
+// and each absurd key (spans, elevate, quadrature, samples_per_span) is refused in
+// no time, with a DeckError that names its key path and located in the deck.
+
+#include "analysis/scene.hpp"
+#include "analysis/size_estimate.hpp"
+#include "io/deck_reader.hpp"
+#include "run_support.hpp"
+
+#include "core/error.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace iga::analysis {
+namespace {
+
+using test::source_path;
+
+// A memory limit that no realistic test deck comes near (the bad-input base deck needs
+// well under a megabyte) and every absurd one exceeds by orders of magnitude.
+constexpr double test_memory_bytes = 4e9;
+
+SizeLimits test_limits()
+{
+    SizeLimits limits;
+    limits.memory_bytes = test_memory_bytes;
+    return limits;
+}
+
+io::Deck base_deck(const std::vector<std::string>& overrides = {})
+{
+    return io::read_deck(source_path("verification/bad_input/base.yaml"), overrides);
+}
+
+/// The message of the DeckError check_size throws ("" if none).
+std::string refusal(const io::Deck& deck)
+{
+    try {
+        check_size(deck, test_limits());
+    } catch (const DeckError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(SizeEstimate, DofsAgreeWithTheBuiltScene)
+{
+    // Uniform spans on a single-span patch: the estimate is exact; knot insertion
+    // (hertz: insert lists) is counted as an upper bound.
+    for (const char* deck_file : {"verification/bad_input/base.yaml", "inputs/lame_cylinder_2d.yaml",
+                                  "inputs/block_stretch_finite_2d.yaml", "inputs/hertz.yaml"}) {
+        SCOPED_TRACE(deck_file);
+        const io::Deck deck = io::read_deck(source_path(deck_file));
+        const SizeEstimate e = estimate_size(deck);
+        const Scene scene = build_scene(deck);
+        const auto actual = static_cast<double>(scene.dofs->n_full());
+        EXPECT_GE(e.dofs, actual);
+        // An upper bound only where knots are inserted or spans do not line up: within 2x here.
+        constexpr double max_overestimate = 2.0;
+        EXPECT_LE(e.dofs, max_overestimate * actual);
+        EXPECT_TRUE(std::isfinite(e.bytes) && e.bytes > 0);
+    }
+    const SizeEstimate base = estimate_size(base_deck());
+    ASSERT_EQ(base.bodies.size(), 1u);
+    EXPECT_EQ(base.dofs, 2.0 * 4 * 4) << "elevate [1, 1] + spans [2, 2] on a bilinear square: 4 x 4 control points";
+    EXPECT_EQ(base.bodies[0].degrees, (std::vector<double>{2, 2}));
+    EXPECT_EQ(base.bodies[0].spans, (std::vector<double>{2, 2}));
+}
+
+TEST(SizeEstimate, RealisticDecksAreAccepted)
+{
+    for (const char* deck_file : {"verification/bad_input/base.yaml", "inputs/hertz.yaml",
+                                  "inputs/hertz_two_cylinders_2d.yaml", "inputs/contact_patch_test_2d.yaml"}) {
+        SCOPED_TRACE(deck_file);
+        EXPECT_EQ(refusal(io::read_deck(source_path(deck_file))), "");
+    }
+    // Legal extremes just inside the hard limits.
+    EXPECT_EQ(refusal(base_deck({"contact.touch.quadrature=64", "output.samples_per_span=1000",
+                                 "bodies.block.refine.elevate=[19, 19]"})),
+              "");
+    // A huge steps.count is legal: nothing is allocated per planned increment.
+    EXPECT_EQ(refusal(base_deck({"steps.count=1000000000"})), "");
+}
+
+TEST(SizeEstimate, EachAbsurdKeyIsRefusedByName)
+{
+    struct Case {
+        std::string set, key, reason;
+    };
+    const std::vector<Case> cases = {
+        {"bodies.block.refine.spans=[1e8, 1e8]", "bodies.block.refine.spans = [100000000, 100000000]: ",
+         "of memory"},
+        {"bodies.block.refine.elevate=[40, 40]", "bodies.block.refine.elevate = [40, 40]: ", "above the limit of 20"},
+        {"contact.touch.quadrature=100000", "contact.touch.quadrature = 100000: ", "more than 64 Gauss points"},
+        {"output.samples_per_span=1e9", "output.samples_per_span = 1000000000: ", "more than 1000 sample points"},
+        // Too big for memory without any single hard limit: spans in one direction only.
+        {"bodies.block.refine.spans=[2, 100000000]", "bodies.block.refine.spans = [2, 100000000]: ", "of memory"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.set);
+        const std::string message = refusal(base_deck({c.set}));
+        EXPECT_NE(message.find("base.yaml:"), std::string::npos) << message;
+        EXPECT_NE(message.find(c.key), std::string::npos) << message;
+        EXPECT_NE(message.find(c.reason), std::string::npos) << message;
+    }
+}
+
+TEST(SizeEstimate, CulpritIsTheKeyThatMakesTheModelBig)
+{
+    // Moderate elevation and an absurd span count: the spans are named, not the elevation.
+    const std::string message = refusal(base_deck({"bodies.block.refine.elevate=[3, 3]",
+                                                   "bodies.block.refine.spans=[100000, 100000]"}));
+    EXPECT_NE(message.find("bodies.block.refine.spans"), std::string::npos) << message;
+    // The memory figures are in the message.
+    EXPECT_NE(message.find("GB of memory"), std::string::npos) << message;
+    EXPECT_NE(message.find("4 GB"), std::string::npos) << "the limit it was compared with: " << message;
+}
+
+TEST(SizeEstimate, BuildSceneRefusesBeforeAllocating)
+{
+    // Without the check this would try to build 1e16 control points (minutes, then bad_alloc).
+    EXPECT_THROW(build_scene(base_deck({"bodies.block.refine.spans=[1e8, 1e8]"})), DeckError);
+}
+
+TEST(SizeEstimate, MachineMemoryIsKnown)
+{
+    // Any machine that runs the tests has more than 64 MB and less than 1 PB.
+    constexpr double plausible_min = 64e6, plausible_max = 1e15;
+    const double bytes = machine_memory_bytes();
+    EXPECT_GT(bytes, plausible_min);
+    EXPECT_LT(bytes, plausible_max);
+}
+
+}  // namespace
+}  // namespace iga::analysis
