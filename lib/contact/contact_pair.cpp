@@ -250,7 +250,7 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
         const DeformableSide& master = std::get<DeformableSide>(surfaces_[c.master]);
         const nurbs::Patch master_patch = master.side.patch.with_control_points(current[c.master]);
         search_time.start();
-        const SpanSearch search(master_patch, SearchOptions{.distance = search_distance_});
+        const ElementSearch search(master_patch, SearchOptions{.distance = search_distance_});
         const bool may_touch = bounding_box(current[c.slave]).overlaps(search.bounds());
         search_time.stop();
         if (!may_touch) {  // the slave side's hull misses every inflated master span box
@@ -271,10 +271,11 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
             ev.candidates += static_cast<long long>(candidates.size());
 
             ProjectionOptions options;
-            options.start = trial_xi_[ci][g];
-            options.candidate_spans = candidates;
+            if (trial_xi_[ci][g])
+                options.start = VecN::Constant(1, *trial_xi_[ci][g]);
+            options.candidate_elements = candidates;  // elements of a curve = its spans, in order
             projection_time.start();
-            Projection proj = project_to_curve(master_patch, master.outward_sign, x, options);
+            Projection proj = project_to_surface(master_patch, master.outward_sign, x, options);
             projection_time.stop();
             ++ev.projections;
             ev.projection_iterations += proj.iterations;
@@ -284,7 +285,7 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
                 flush();
                 return ev;
             }
-            trial_xi_[ci][g] = proj.xi;
+            trial_xi_[ci][g] = proj.xi(0);
             cr.gap(g) = proj.gap;
             if (proj.status != Projection::Status::ok) {
                 cr.state[g] = proj.status == Projection::Status::off_end ? PointState::off_end : PointState::at_kink;

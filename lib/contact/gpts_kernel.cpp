@@ -8,7 +8,8 @@ namespace iga::contact {
 KernelResult gpts_kernel(const Vector& N, double W, const Projection& master, const KernelSettings& settings)
 {
     constexpr int d = 2;
-    IGA_CHECK(master.normal.size() == d && master.tangent.size() == d, "contact: GPTS kernel is 2D only");
+    IGA_CHECK(master.normal.size() == d && master.tangents.rows() == d && master.tangents.cols() == 1,
+              "contact: GPTS kernel is 2D only");
     IGA_CHECK(master.basis.dR.cols() >= 1, "contact: GPTS kernel needs the master basis derivatives");
     const Vector& R = master.basis.R;
     const Vector dR = master.basis.dR.col(0);
@@ -26,9 +27,9 @@ KernelResult gpts_kernel(const Vector& N, double W, const Projection& master, co
         return out;
 
     const VecN& n = master.normal;
-    const VecN& tau = master.tangent;
-    const double m = master.metric;
-    const double b = master.curvature;
+    const VecN tau = master.tangents.col(0);
+    const double m = master.metric(0, 0);
+    const double b = master.curvature(0, 0);
     const double c = m + g_N * b;
     if (!(c > 0.0) || !(m > 0.0)) {
         out.ok = false;

@@ -3,6 +3,8 @@
 #include "contact/gap.hpp"
 #include "core/error.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -12,7 +14,13 @@
 namespace iga::contact {
 namespace {
 
-/// A run of spans [first_span, last_span] (span numbers) joined by C1 knots.
+constexpr double machine_eps = std::numeric_limits<double>::epsilon();
+// Eigenvalues of a computed symmetric matrix carry an error of a few eps times
+// its norm: below this fraction of the largest one a direction is round-off
+// (a collapsed edge) and is dropped from the linear solves.
+constexpr double round_off_eigenvalue = 64.0 * machine_eps;
+
+/// A run of spans [first_span, last_span] (span numbers) of one direction joined by C1 knots.
 struct Piece {
     int first_span;
     int last_span;
@@ -36,234 +44,497 @@ std::vector<Piece> smooth_pieces(const nurbs::KnotVector& knots)
     return pieces;
 }
 
-/// Knot index of the span of `piece` used to evaluate at xi: the span holding
-/// xi, except that a piece's right end is evaluated from inside the piece.
-int span_in_piece(const nurbs::KnotVector& knots, const Piece& piece, double xi)
+/// Per-direction layout of the surface: its pieces and which piece holds each span.
+struct Layout {
+    int n_par = 0;
+    std::array<const nurbs::KnotVector*, 2> knots{nullptr, nullptr};
+    std::array<std::vector<Piece>, 2> pieces;
+    std::array<std::vector<int>, 2> piece_of_span;
+    std::array<int, 2> n_spans{1, 1};
+    std::array<int, 2> n_pieces{1, 1};
+
+    explicit Layout(const nurbs::Patch& surface) : n_par(surface.n_par())
+    {
+        for (int k = 0; k < n_par; ++k) {
+            knots[k] = &surface.knots(k);
+            pieces[k] = smooth_pieces(*knots[k]);
+            n_spans[k] = knots[k]->n_spans();
+            n_pieces[k] = static_cast<int>(pieces[k].size());
+            piece_of_span[k].resize(n_spans[k]);
+            for (int p = 0; p < n_pieces[k]; ++p)
+                for (int s = pieces[k][p].first_span; s <= pieces[k][p].last_span; ++s)
+                    piece_of_span[k][s] = p;
+        }
+    }
+
+    /// Span numbers of element e (u fastest, as Patch::elements()).
+    std::array<int, 2> span_numbers(int e) const { return {e % n_spans[0], n_par > 1 ? e / n_spans[0] : 0}; }
+    int element_index(const std::array<int, 2>& k) const { return k[0] + n_spans[0] * k[1]; }
+    /// Region (a product of pieces, numbered u fastest) holding element e.
+    int region_of(int e) const
+    {
+        const std::array<int, 2> k = span_numbers(e);
+        return piece_of_span[0][k[0]] + n_pieces[0] * (n_par > 1 ? piece_of_span[1][k[1]] : 0);
+    }
+    const Piece& piece(int region, int dir) const
+    {
+        return pieces[dir][dir == 0 ? region % n_pieces[0] : region / n_pieces[0]];
+    }
+    bool region_contains(int region, const VecN& xi) const
+    {
+        for (int k = 0; k < n_par; ++k)
+            if (xi(k) < piece(region, k).lower || xi(k) > piece(region, k).upper)
+                return false;
+        return true;
+    }
+};
+
+/// Knot index of the span used to evaluate at u in direction `dir` of a region:
+/// the span holding u, except that a piece's right end is evaluated from inside it.
+int span_in_piece(const nurbs::KnotVector& knots, const Piece& piece, double u)
 {
-    const int k = std::clamp(knots.span_number(knots.find_span(xi)), piece.first_span, piece.last_span);
+    const int k = std::clamp(knots.span_number(knots.find_span(u)), piece.first_span, piece.last_span);
     return knots.span_start(k);
 }
 
-struct CurveSample {
+struct Sample {
     nurbs::BasisValues basis;
     nurbs::PointDerivatives point;
+    std::array<int, 3> span{0, 0, 0};  ///< knot index per direction
 };
 
-CurveSample evaluate_on_span(const nurbs::Patch& curve, int knot_span, double xi, int n_derivs)
+Sample evaluate_on_spans(const nurbs::Patch& surface, const std::array<int, 3>& span, const VecN& xi, int n_derivs)
 {
-    VecN param(1);
-    param(0) = xi;
-    CurveSample s;
-    s.basis = nurbs::rational_basis(curve, {knot_span, 0, 0}, param, n_derivs);
-    s.point = nurbs::combine(s.basis, curve.control_points());
+    Sample s;
+    s.span = span;
+    s.basis = nurbs::rational_basis(surface, span, xi, n_derivs);
+    s.point = nurbs::combine(s.basis, surface.control_points());
     return s;
 }
 
-bool all_finite(const CurveSample& s)
+bool all_finite(const Sample& s)
 {
     return s.point.x.allFinite() && s.point.dx.allFinite() && s.point.d2x.allFinite();
 }
 
-struct PieceResult {
-    bool finite = false;     ///< false: non-finite values or a zero tangent met
-    bool converged = false;  ///< orthogonality residual below tolerance
-    bool clamped = false;    ///< stopped at a piece end with the step pointing outward
-    double xi = 0.0;
-    int span = 0;
+/// Column of x_m,ab in the packed second derivatives (BasisValues::d2R order).
+int packed(int a, int b, int n)
+{
+    if (a > b)
+        std::swap(a, b);
+    return a * n - a * (a - 1) / 2 + (b - a);
+}
+
+/// A^+ b for a symmetric n x n matrix (n = 1, 2): eigen-directions with an
+/// eigenvalue that is not positive, or at round-off of the largest, are dropped.
+VecN pseudo_solve(const MatN& A, const VecN& b)
+{
+    if (A.rows() == 1) {
+        VecN x(1);
+        x(0) = A(0, 0) > 0.0 ? b(0) / A(0, 0) : 0.0;
+        return x;
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
+    es.computeDirect(Eigen::Matrix2d(A));
+    const double largest = es.eigenvalues().cwiseAbs().maxCoeff();
+    VecN x = VecN::Zero(2);
+    for (int k = 0; k < 2; ++k) {
+        const double lambda = es.eigenvalues()(k);
+        if (lambda > round_off_eigenvalue * largest) {
+            const Eigen::Vector2d v = es.eigenvectors().col(k);
+            x += (v.dot(Eigen::Vector2d(b)) / lambda) * VecN(v);
+        }
+    }
+    return x;
+}
+
+bool positive_definite(const MatN& A)
+{
+    if (A.rows() == 1)
+        return A(0, 0) > 0.0;
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
+    es.computeDirect(Eigen::Matrix2d(A));
+    return es.eigenvalues()(0) > round_off_eigenvalue * es.eigenvalues().cwiseAbs().maxCoeff();
+}
+
+/// |g|_{m^-1}: how far x is, tangentially, from being over the foot point.
+double tangential_offset(const MatN& metric, const VecN& g)
+{
+    return std::sqrt(std::max(0.0, g.dot(pseudo_solve(metric, g))));
+}
+
+MatN sub_matrix(const MatN& A, const std::vector<int>& idx)
+{
+    const Index n = static_cast<Index>(idx.size());
+    MatN out(n, n);
+    for (Index i = 0; i < n; ++i)
+        for (Index j = 0; j < n; ++j)
+            out(i, j) = A(idx[i], idx[j]);
+    return out;
+}
+
+struct RegionResult {
+    bool finite = false;        ///< false: non-finite values or zero tangents met
+    bool converged = false;     ///< orthogonality residual below tolerance
+    bool clamped = false;       ///< stopped on the region's boundary, not orthogonal
+    bool at_patch_end = false;  ///< (clamped) held by a bound that is a patch end
+    VecN xi;
     double distance = std::numeric_limits<double>::infinity();
     int iterations = 0;
-    CurveSample sample;
+    Sample sample;
 };
 
-PieceResult newton_on_piece(const nurbs::Patch& curve, const VecN& x, const Piece& piece, double xi0,
-                            const ProjectionOptions& options, double curve_size)
+/// True when a bound of direction k holds xi (the gradient pushes out of it).
+bool pushed_out(double xi, double g, const Piece& piece)
+{
+    return (xi == piece.lower && g > 0.0) || (xi == piece.upper && g < 0.0);
+}
+
+RegionResult newton_in_region(const nurbs::Patch& surface, const Layout& layout, int region, const VecN& x,
+                              VecN xi, const ProjectionOptions& options, double surface_size)
 {
     // Below this fraction of the tolerance the offset is at round-off level: no
     // polishing step is worth taking.
     constexpr double negligible_fraction = 1e-3;
-    const nurbs::KnotVector& knots = curve.knots(0);
-    const std::vector<double>& kv = knots.knot_values();
-    PieceResult r;
-    double xi = std::clamp(xi0, piece.lower, piece.upper);
-    bool polished = false;  // the last step was below tolerance: this evaluation is the answer
+    const int n = layout.n_par;
+    std::array<const Piece*, 2> piece{&layout.piece(region, 0), n > 1 ? &layout.piece(region, 1) : nullptr};
+    for (int k = 0; k < n; ++k)
+        xi(k) = std::clamp(xi(k), piece[k]->lower, piece[k]->upper);
+
+    RegionResult r;
+    // Decides clamped vs converged for a stop on the region's boundary.
+    auto stop_on_bound = [&](Sample&& s, const VecN& g, double offset, double tol) {
+        r.converged = offset <= tol;
+        r.clamped = !r.converged;
+        if (r.clamped) {
+            bool held = false, at_end = false, at_end_any = false;
+            for (int k = 0; k < n; ++k) {
+                const nurbs::KnotVector& kv = *layout.knots[k];
+                const bool patch_end = xi(k) == kv.front() || xi(k) == kv.back();
+                at_end_any = at_end_any || patch_end;
+                if (pushed_out(xi(k), g(k), *piece[k])) {
+                    held = true;
+                    at_end = at_end || patch_end;
+                }
+            }
+            r.at_patch_end = held ? at_end : at_end_any;
+        }
+        r.sample = std::move(s);
+        return r;
+    };
+
+    enum class Polish { none, interior, on_bound };
+    Polish polished = Polish::none;  // the last step was below tolerance: this evaluation is the answer
     for (int it = 0;; ++it) {
-        const int span = span_in_piece(knots, piece, xi);
-        CurveSample s = evaluate_on_span(curve, span, xi, 2);
+        std::array<int, 3> span{0, 0, 0};
+        for (int k = 0; k < n; ++k)
+            span[k] = span_in_piece(*layout.knots[k], *piece[k], xi(k));
+        Sample s = evaluate_on_spans(surface, span, xi, 2);
         r.xi = xi;
-        r.span = span;
         r.iterations = it;
         if (!all_finite(s))
             return r;
         const VecN d = s.point.x - x;  // x_m - x
-        const VecN t = s.point.dx.col(0);
-        const VecN tt = s.point.d2x.col(0);
-        const double m = t.squaredNorm();
-        if (!(m > 0.0) || !std::isfinite(m))
-            return r;
+        const Matrix& A = s.point.dx;
+        MatN M(n, n);
+        for (int a = 0; a < n; ++a)
+            for (int b = 0; b < n; ++b)
+                M(a, b) = A.col(a).dot(A.col(b));
+        if (!(M.trace() > 0.0) || !std::isfinite(M.trace()))
+            return r;  // zero tangents: no foot point here
         r.finite = true;
         r.distance = d.norm();
-        const double f = t.dot(d);
-        const double offset = std::abs(f) / std::sqrt(m);  // tangential offset of x from the foot point
-        const double tol = options.tolerance * (curve_size + r.distance);
-        if (polished || offset <= negligible_fraction * tol) {
+        const VecN g = A.transpose() * d;
+        const double offset = tangential_offset(M, g);
+        const double tol = options.tolerance * (surface_size + r.distance);
+        if (polished == Polish::interior || (polished == Polish::none && offset <= negligible_fraction * tol)) {
             r.converged = true;
             r.sample = std::move(s);
             return r;
         }
+        if (polished == Polish::on_bound)
+            return stop_on_bound(std::move(s), g, offset, tol);
         if (it >= options.max_iterations) {
             r.converged = offset <= tol;
             r.sample = std::move(s);
             return r;
         }
-        double fp = m + tt.dot(d);
-        if (!(fp > 0.0))
-            fp = m;  // Gauss-Newton: the full f' would step towards a distance maximum
-        const double newton_step = -f / fp;
-        const double max_step = options.max_step_fraction * (kv[span + 1] - kv[span]);
-        const double xi_new = std::clamp(xi + std::clamp(newton_step, -max_step, max_step), piece.lower, piece.upper);
+
+        // Directions held by an active bound are fixed; Newton goes on in the others.
+        std::vector<int> free;
+        for (int k = 0; k < n; ++k)
+            if (!pushed_out(xi(k), g(k), *piece[k]))
+                free.push_back(k);
+        if (free.empty())
+            return stop_on_bound(std::move(s), g, offset, tol);  // a corner (or a 1D end)
+        const bool on_edge = static_cast<int>(free.size()) < n;
+
+        MatN H = M;
+        for (int a = 0; a < n; ++a)
+            for (int b = 0; b < n; ++b)
+                H(a, b) += d.dot(s.point.d2x.col(packed(a, b, n)));
+        const MatN M_free = sub_matrix(M, free);
+        MatN H_free = sub_matrix(H, free);
+        VecN g_free(static_cast<Index>(free.size()));
+        for (std::size_t i = 0; i < free.size(); ++i)
+            g_free(static_cast<Index>(i)) = g(free[i]);
+        if (on_edge && tangential_offset(M_free, g_free) <= negligible_fraction * tol)
+            return stop_on_bound(std::move(s), g, offset, tol);  // converged along the edge
+        if (!positive_definite(H_free))
+            H_free = M_free;  // Gauss-Newton: the full Hessian would step towards a distance maximum
+        const VecN newton_step = -pseudo_solve(H_free, g_free);
+
+        // Trust region: scale the step so that no direction moves more than
+        // max_step_fraction of its current span (the limiting one exactly that).
+        double scale = 1.0;
+        int limiting = -1;
+        VecN max_step(static_cast<Index>(free.size()));
+        for (std::size_t i = 0; i < free.size(); ++i) {
+            const int k = free[i];
+            const std::vector<double>& kv = layout.knots[k]->knot_values();
+            max_step(static_cast<Index>(i)) = options.max_step_fraction * (kv[span[k] + 1] - kv[span[k]]);
+            const double step = std::abs(newton_step(static_cast<Index>(i)));
+            if (step > max_step(static_cast<Index>(i)) && max_step(static_cast<Index>(i)) / step < scale) {
+                scale = max_step(static_cast<Index>(i)) / step;
+                limiting = static_cast<int>(i);
+            }
+        }
+        VecN xi_new = xi;
+        for (std::size_t i = 0; i < free.size(); ++i) {
+            const int k = free[i];
+            const double full = newton_step(static_cast<Index>(i));
+            const double step = static_cast<int>(i) == limiting ? std::copysign(max_step(static_cast<Index>(i)), full)
+                                                                : scale * full;
+            xi_new(k) = std::clamp(xi(k) + step, piece[k]->lower, piece[k]->upper);
+        }
         if (xi_new == xi) {
-            // Pushed against a piece end, or a step below the resolution of xi
-            // (in the interior that is as converged as it gets).
-            const bool at_end = xi == piece.lower || xi == piece.upper;
-            r.converged = !at_end || offset <= tol;
-            r.clamped = !r.converged;
-            r.sample = std::move(s);
-            return r;
+            // Pushed against a bound, or a step below the resolution of xi (in the
+            // interior that is as converged as it gets).
+            bool at_bound = on_edge;
+            for (int k = 0; k < n; ++k)
+                at_bound = at_bound || xi(k) == piece[k]->lower || xi(k) == piece[k]->upper;
+            if (!at_bound) {
+                r.converged = true;
+                r.sample = std::move(s);
+                return r;
+            }
+            return stop_on_bound(std::move(s), g, offset, tol);
         }
         // A full Newton step below tolerance: take it (quadratic convergence puts
         // the result near round-off) and stop after evaluating there.
-        polished = std::abs(newton_step) * std::sqrt(m) <= tol;
+        if (std::sqrt(std::max(0.0, newton_step.dot(M_free * newton_step))) <= tol)
+            polished = on_edge ? Polish::on_bound : Polish::interior;
         xi = xi_new;
     }
 }
 
-/// Start of Newton on a piece: the nearest of a few samples on its candidate spans.
-double nearest_sample(const nurbs::Patch& curve, const VecN& x, const Piece& piece,
-                      const std::vector<char>& span_is_candidate)
+/// Start of Newton in a region: the nearest of (p+2) samples per direction on
+/// each of its candidate elements (ascending), the region's centre if none.
+VecN nearest_sample(const nurbs::Patch& surface, const Layout& layout, int region, const VecN& x,
+                    const std::vector<int>& region_elements)
 {
-    const nurbs::KnotVector& knots = curve.knots(0);
-    const std::vector<double>& kv = knots.knot_values();
-    const int n_samples = knots.degree() + 2;  // enough to separate the local minima of one span
-    double best_xi = 0.5 * (piece.lower + piece.upper);
+    const int n = layout.n_par;
+    VecN best_xi(n);
+    for (int k = 0; k < n; ++k)
+        best_xi(k) = 0.5 * (layout.piece(region, k).lower + layout.piece(region, k).upper);
     double best_dist = std::numeric_limits<double>::infinity();
-    for (int k = piece.first_span; k <= piece.last_span; ++k) {
-        if (!span_is_candidate[k])
-            continue;
-        const int span = knots.span_start(k);
-        for (int j = 0; j < n_samples; ++j) {
-            const double xi = kv[span] + (kv[span + 1] - kv[span]) * j / (n_samples - 1.0);
-            const CurveSample s = evaluate_on_span(curve, span, xi, 0);
-            const double dist = (s.point.x - x).norm();
-            if (dist < best_dist) {
-                best_dist = dist;
-                best_xi = xi;
+    std::array<int, 2> n_samples{1, 1};
+    for (int k = 0; k < n; ++k)
+        n_samples[k] = layout.knots[k]->degree() + 2;  // enough to separate the local minima of one span
+    VecN xi(n);
+    for (const int e : region_elements) {
+        const std::array<int, 2> number = layout.span_numbers(e);
+        std::array<int, 3> span{0, 0, 0};
+        for (int k = 0; k < n; ++k)
+            span[k] = layout.knots[k]->span_start(number[k]);
+        for (int jv = 0; jv < n_samples[1]; ++jv)
+            for (int ju = 0; ju < n_samples[0]; ++ju) {
+                const std::array<int, 2> j{ju, jv};
+                for (int k = 0; k < n; ++k) {
+                    const std::vector<double>& kv = layout.knots[k]->knot_values();
+                    xi(k) = kv[span[k]] + (kv[span[k] + 1] - kv[span[k]]) * j[k] / (n_samples[k] - 1.0);
+                }
+                const Sample s = evaluate_on_spans(surface, span, xi, 0);
+                const double dist = (s.point.x - x).norm();
+                if (dist < best_dist) {
+                    best_dist = dist;
+                    best_xi = xi;
+                }
             }
-        }
     }
     return best_xi;
 }
 
 /// Nearer wins; at (numerically) equal distance an orthogonal foot beats a
 /// clamped one, so a geometrically smooth C0 knot is not called a kink.
-bool is_better(const PieceResult& a, const PieceResult& b, double curve_size)
+bool is_better(const RegionResult& a, const RegionResult& b, double surface_size)
 {
     constexpr double relative_tie = 1e-14;  // a few ulps of the coordinates
-    const double tie = relative_tie * (curve_size + b.distance);
+    const double tie = relative_tie * (surface_size + b.distance);
     if (a.distance < b.distance - tie)
         return true;
     return std::abs(a.distance - b.distance) <= tie && a.converged && !b.converged;
 }
 
-Projection failed_projection(int iterations)
+Projection failed_projection(int d, int iterations, int candidates)
 {
+    const int n = d - 1;
     Projection p;
     p.status = Projection::Status::failed;
-    p.point = p.tangent = p.second = p.normal = VecN::Zero(2);
+    p.xi = VecN::Zero(n);
+    p.point = p.normal = VecN::Zero(d);
+    p.tangents = Matrix::Zero(d, n);
+    p.second = Matrix::Zero(d, n * (n + 1) / 2);
+    p.metric = p.curvature = Matrix::Zero(n, n);
     p.iterations = iterations;
+    p.candidates = candidates;
     return p;
 }
 
 }  // namespace
 
-Projection project_to_curve(const nurbs::Patch& curve, int outward_sign, const VecN& x,
-                            const ProjectionOptions& options)
+VecN side_normal(const Matrix& tangents, const Matrix& second, int sign, const std::array<bool, 2>& near_lower)
 {
-    if (curve.n_par() != 1 || curve.dim() != 2)
-        throw Error("contact: projection onto a side with n_par = " + std::to_string(curve.n_par()) +
-                    " in d = " + std::to_string(curve.dim()) +
-                    " is not supported (only 2D curves; 3D contact is not implemented yet)");
-    IGA_CHECK(x.size() == 2, "contact: projected point must have 2 coordinates");
+    const Index d = tangents.rows();
+    if (d == 2) {
+        const VecN t = tangents.col(0);
+        if (!(t.norm() > 0.0) || !t.allFinite())
+            return VecN::Zero(2);
+        return curve_normal_2d(t, sign);
+    }
+    IGA_CHECK(d == 3 && tangents.cols() == 2 && second.cols() == 3, "contact: side normal needs d x (d-1) tangents");
+    // A tangent below sqrt(eps) of the other is dominated by round-off (it is a
+    // difference of equal control points): its limit direction +-x_m,12 is more
+    // accurate than its computed value, to within the same sqrt(eps).
+    const double collapse_ratio = std::sqrt(machine_eps);
+    Eigen::Vector3d a1 = tangents.col(0), a2 = tangents.col(1);
+    const Eigen::Vector3d mixed = second.col(1);
+    if (a1.norm() < collapse_ratio * a2.norm())
+        a1 = (near_lower[1] ? 1.0 : -1.0) * mixed;  // a_1 ~ (xi_2 - edge) x_m,12 next to the edge
+    else if (a2.norm() < collapse_ratio * a1.norm())
+        a2 = (near_lower[0] ? 1.0 : -1.0) * mixed;
+    const Eigen::Vector3d c = a1.cross(a2);
+    const double length = c.norm();
+    if (!(length > 0.0) || !std::isfinite(length))
+        return VecN::Zero(3);
+    return VecN((static_cast<double>(sign) / length) * c);
+}
+
+Projection project_to_surface(const nurbs::Patch& surface, int outward_sign, const VecN& x,
+                              const ProjectionOptions& options)
+{
+    const int d = surface.dim();
+    const int n = surface.n_par();
+    if ((d != 2 && d != 3) || n != d - 1)
+        throw Error("contact: projection onto a side with n_par = " + std::to_string(n) + " in d = " +
+                    std::to_string(d) + " is not supported (a curve in 2D or a surface in 3D)");
+    IGA_CHECK(x.size() == d, "contact: projected point must have d coordinates");
     IGA_CHECK(outward_sign == 1 || outward_sign == -1, "contact: outward sign must be +1 or -1");
+    IGA_CHECK(!options.start || options.start->size() == n, "contact: warm start must have d-1 parameters");
 
-    if (!x.allFinite() || !curve.control_points().allFinite())
-        return failed_projection(0);
+    const Layout layout(surface);
+    const int n_elements = layout.n_spans[0] * (n > 1 ? layout.n_spans[1] : 1);
 
-    const nurbs::KnotVector& knots = curve.knots(0);
-    const int n_spans = knots.n_spans();
-    const RowMatrix& cps = curve.control_points();
-    const double curve_size = (cps.colwise().maxCoeff() - cps.colwise().minCoeff()).norm();
-
-    std::vector<char> span_is_candidate(n_spans, options.candidate_spans.empty() ? 1 : 0);
-    for (const int k : options.candidate_spans) {
-        IGA_CHECK(k >= 0 && k < n_spans, "contact: candidate span number out of range");
-        span_is_candidate[k] = 1;
+    // Candidate elements grouped by region, ascending within each.
+    const int n_regions = layout.n_pieces[0] * (n > 1 ? layout.n_pieces[1] : 1);
+    std::vector<std::vector<int>> region_elements(n_regions);
+    int n_candidates = 0;
+    if (options.candidate_elements.empty()) {
+        for (int e = 0; e < n_elements; ++e)
+            region_elements[layout.region_of(e)].push_back(e);
+        n_candidates = n_elements;
+    } else {
+        std::vector<char> is_candidate(n_elements, 0);
+        for (const int e : options.candidate_elements) {
+            IGA_CHECK(e >= 0 && e < n_elements, "contact: candidate element index out of range");
+            is_candidate[e] = 1;
+        }
+        for (int e = 0; e < n_elements; ++e)
+            if (is_candidate[e]) {
+                region_elements[layout.region_of(e)].push_back(e);
+                ++n_candidates;
+            }
     }
 
-    const std::vector<Piece> pieces = smooth_pieces(knots);
-    int total_iterations = 0;
-    std::optional<PieceResult> best;
-    for (const Piece& piece : pieces) {
-        bool considered = false;
-        for (int k = piece.first_span; k <= piece.last_span && !considered; ++k)
-            considered = span_is_candidate[k] != 0;
-        if (!considered)
-            continue;
+    if (!x.allFinite() || !surface.control_points().allFinite())
+        return failed_projection(d, 0, n_candidates);
 
-        std::optional<PieceResult> result;
-        if (options.start && std::isfinite(*options.start)) {
-            const double start = std::clamp(*options.start, knots.front(), knots.back());
-            if (start >= piece.lower && start <= piece.upper) {
-                PieceResult r = newton_on_piece(curve, x, piece, start, options, curve_size);
-                total_iterations += r.iterations;
-                if (r.finite && (r.converged || r.clamped))
-                    result = std::move(r);
-            }
+    const RowMatrix& cps = surface.control_points();
+    const double surface_size = (cps.colwise().maxCoeff() - cps.colwise().minCoeff()).norm();
+
+    std::optional<VecN> start;
+    if (options.start && options.start->allFinite()) {
+        start = *options.start;
+        for (int k = 0; k < n; ++k)
+            (*start)(k) = std::clamp((*start)(k), layout.knots[k]->front(), layout.knots[k]->back());
+    }
+    const int start_region = options.start_element >= 0 && options.start_element < n_elements
+                                 ? layout.region_of(options.start_element)
+                                 : -1;
+
+    int total_iterations = 0;
+    std::optional<RegionResult> best;
+    for (int region = 0; region < n_regions; ++region) {
+        if (region_elements[region].empty())
+            continue;
+        std::optional<RegionResult> result;
+        if (start && (start_region < 0 ? layout.region_contains(region, *start) : start_region == region)) {
+            RegionResult r = newton_in_region(surface, layout, region, x, *start, options, surface_size);
+            total_iterations += r.iterations;
+            if (r.finite && (r.converged || r.clamped))
+                result = std::move(r);
         }
-        // No warm start here, it failed, or it ran into a piece end: (also) start
+        // No warm start here, it failed, or it ran into a bound: (also) start
         // from the nearest sample.
         if (!result || result->clamped) {
-            const double start = nearest_sample(curve, x, piece, span_is_candidate);
-            PieceResult r = newton_on_piece(curve, x, piece, start, options, curve_size);
+            const VecN sample_start = nearest_sample(surface, layout, region, x, region_elements[region]);
+            RegionResult r = newton_in_region(surface, layout, region, x, sample_start, options, surface_size);
             total_iterations += r.iterations;
             if (!r.finite || !(r.converged || r.clamped)) {
                 if (!result)
-                    return failed_projection(total_iterations);
-            } else if (!result || is_better(r, *result, curve_size)) {
+                    return failed_projection(d, total_iterations, n_candidates);
+            } else if (!result || is_better(r, *result, surface_size)) {
                 result = std::move(r);
             }
         }
-        if (!best || is_better(*result, *best, curve_size))
+        if (!best || is_better(*result, *best, surface_size))
             best = std::move(result);
     }
     if (!best)
-        return failed_projection(total_iterations);
+        return failed_projection(d, total_iterations, n_candidates);
+
+    const Sample& s = best->sample;
+    std::array<bool, 2> near_lower{true, true};
+    std::array<int, 2> number{0, 0};
+    for (int k = 0; k < n; ++k) {
+        const std::vector<double>& kv = layout.knots[k]->knot_values();
+        near_lower[k] = best->xi(k) - kv[s.span[k]] <= kv[s.span[k] + 1] - best->xi(k);
+        number[k] = layout.knots[k]->span_number(s.span[k]);
+    }
+    const VecN normal = side_normal(s.point.dx, s.point.d2x, outward_sign, near_lower);
+    if (!(normal.norm() > 0.0))
+        return failed_projection(d, total_iterations, n_candidates);
 
     Projection p;
     p.xi = best->xi;
-    p.span = best->span;
-    p.point = best->sample.point.x;
-    p.tangent = best->sample.point.dx.col(0);
-    p.second = best->sample.point.d2x.col(0);
-    p.metric = p.tangent.squaredNorm();
-    p.normal = curve_normal_2d(p.tangent, outward_sign);
+    p.element = layout.element_index(number);
+    p.point = s.point.x;
+    p.tangents = s.point.dx;
+    p.second = s.point.d2x;
+    p.normal = normal;
+    p.metric = p.tangents.transpose() * p.tangents;
+    p.curvature.resize(n, n);
+    for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b)
+            p.curvature(a, b) = p.normal.dot(p.second.col(packed(a, b, n)));
     p.gap = normal_gap(x, p.point, p.normal);
-    p.curvature = p.normal.dot(p.second);
     p.distance = best->distance;
     p.iterations = total_iterations;
+    p.candidates = n_candidates;
     p.basis = std::move(best->sample.basis);
     if (best->converged)
         p.status = Projection::Status::ok;
-    else if (p.xi == knots.front() || p.xi == knots.back())
+    else if (best->at_patch_end)
         p.status = Projection::Status::off_end;
     else
         p.status = Projection::Status::at_kink;

@@ -1,77 +1,106 @@
 #pragma once
-// Closest-point projection of a point onto a 2D NURBS curve (a contact side in
-// its current configuration): find xibar with (x - x_m(xibar)) . x_m,xi(xibar) = 0
-// (Kopacka et al. eq. 9; Piegl & Tiller, The NURBS Book, section 6.1).
+// Closest-point projection of a point x onto a NURBS contact side in its
+// CURRENT configuration: a patch with n_par = d - 1 parameters in d = 2 or 3
+// (a curve in 2D, a surface in 3D). Finds xibar with
+//   (x - x_m(xibar)) . a_alpha(xibar) = 0,   a_alpha = dx_m/dxi^alpha
+// (Kopacka et al. eq. 9; Piegl & Tiller, The NURBS Book, section 6.1), i.e. a
+// local minimum of f(xi) = 1/2 |x - x_m(xi)|^2, the nearest over the candidates.
 //
-// Algorithm (physics.md section 4.5):
-//  - The curve is split at its C0 knots (multiplicity >= degree) into pieces on
-//    which the parametrization is C1; Newton may cross knots inside a piece but
-//    treats a piece's ends like patch ends. Evaluation always uses an explicitly
-//    chosen span, so a C0 knot is evaluated from the side being worked on.
-//  - Each piece that holds a candidate span starts either from the warm start
-//    (when it lies in that piece) or from the nearest of a few samples per
-//    candidate span, then runs Newton on f(xi) = x_xi . (x_m - x) with the full
-//    f' = |x_xi|^2 + x_xixi . (x_m - x) (Gauss-Newton f' = |x_xi|^2 when the full
-//    one is not positive), a trust region of max_step_fraction of the current
-//    span, and clamping to the piece. A warm start that fails falls back to
-//    sampling.
-//  - The nearest piece result wins. A result clamped at a patch end whose gap
-//    vector is not along the normal is off_end; one clamped at an interior C0
-//    knot where the tangent jumps is at_kink (the point lies in the fan between
-//    the one-sided normals). Both are inactive for the penalty kernels.
+// Algorithm (README, "Projection rules", in the user's words):
+//  - Regions. Each parameter direction is split at its C0 knots (multiplicity
+//    >= degree) into pieces on which the parametrization is C1; a region is a
+//    product of pieces (a run of spans in 2D, a block of Bezier elements in 3D).
+//    Newton crosses C1 element boundaries inside a region freely; a region's
+//    bounds (patch ends, C0 creases) are box constraints. Evaluation always uses
+//    an explicitly chosen span per direction, so a C0 knot is evaluated from the
+//    side being worked on.
+//  - Local phase, per region holding a candidate element: start from the warm
+//    start (when it lies in the region) or from the nearest of (p+2)^(d-1)
+//    samples per candidate element, then a safeguarded projected Newton on f:
+//    gradient g = A^T (x_m - x), Hessian H = m_ab + (x_m - x) . x_m,ab with
+//    m_ab = a_a . a_b (Gauss-Newton H = m when H is not positive definite),
+//    a trust region of max_step_fraction of the current span per direction
+//    (the step is scaled, keeping its direction), and clamping to the region box.
+//    A direction whose bound is active with the gradient pointing out is fixed:
+//    Newton continues on the edge (1D), or stops at the corner. A warm start that
+//    fails or stops on a bound is followed by a start from the samples.
+//  - Collapsed edges (a pole, where one tangent vanishes): the linear solves drop
+//    eigen-directions at round-off (a pseudo-inverse), so Newton works on the
+//    remaining direction and never divides by zero; the normal there uses the
+//    mixed derivative x_m,12 in place of the vanishing tangent (its limit).
+//  - The nearest region result wins (at equal distance an orthogonal foot beats a
+//    clamped one). A result clamped at a patch end, gap vector not along the
+//    normal, is off_end; one clamped at an interior C0 crease is at_kink (x lies
+//    in the fan between the one-sided normals). Both are inactive for the kernels.
 // Convergence: a full Newton step moves the foot point by at most tolerance *
-// (curve size + distance), curve size = diagonal of the control-point bounding
-// box; that last step is still taken, so the foot point is accurate to about
-// round-off (which keeps finite-difference checks of the kernels clean). At a
-// piece end the test is the tangential offset |f| / |x_xi| against the same bound.
-// Shapes: points and vectors have d = 2 entries. 3D (surface sides) is not
-// supported: project_to_curve throws iga::Error for n_par != 1 or d != 2.
+// (surface size + distance), surface size = diagonal of the control-point
+// bounding box; that last step is still taken, so the foot point is accurate to
+// about round-off. On a bound the test is the tangential offset
+// |g|_{m^-1} = sqrt(g^T m^+ g) against the same bound.
+// Measured (benchmarks/projection_benchmark.cpp): Newton needs fewer iterations
+// and less time than the second-order geometric iteration of Hu & Wallner (2005)
+// on degree 2 and 4 surfaces, so Newton is the method (README, "Projection rules").
+// Shapes: points and normals d; tangents d x (d-1); second d x (d-1)d/2 packed as
+// BasisValues::d2R (uu; or uu, uv, vv); metric and curvature (d-1) x (d-1).
 // A failed projection is reported by status, with finite fields, never by NaN.
 
 #include "core/types.hpp"
 #include "nurbs/patch.hpp"
 
+#include <array>
 #include <optional>
 #include <span>
 
 namespace iga::contact {
 
 struct ProjectionOptions {
-    std::optional<double> start;      ///< warm start xi (e.g. last converged value); clamped to the domain
-    double tolerance = 1e-12;         ///< relative to the curve size (see above)
-    int max_iterations = 30;          ///< Newton iterations per piece
-    double max_step_fraction = 0.5;   ///< trust region: at most this fraction of the current span per step
-    /// Span numbers k in [0, n_spans) that the search found near the point; empty
-    /// means all spans. Only pieces holding one of them are searched. The viewed
-    /// storage must outlive the call.
-    std::span<const int> candidate_spans;
+    std::optional<VecN> start;      ///< warm start (d-1 parameters), e.g. the last foot point; clamped to the domain
+    int start_element = -1;         ///< its element (index into surface.elements()), if known: its region only
+    double tolerance = 1e-12;       ///< relative to surface size + distance (see above)
+    int max_iterations = 30;        ///< Newton iterations per start
+    double max_step_fraction = 0.5; ///< trust region: at most this fraction of the current span per direction
+    /// Indices into surface.elements() that the search found near the point; empty
+    /// means all. Only regions holding one of them are searched, from samples on
+    /// them. The viewed storage must outlive the call.
+    std::span<const int> candidate_elements;
 };
 
 struct Projection {
     enum class Status {
         ok,       ///< orthogonal projection found (the kernels may use it)
-        off_end,  ///< nearest point at a patch end, gap vector not along the normal: inactive
-        at_kink,  ///< nearest point at a C0 knot where the tangent jumps, x in the normal fan: inactive
-        failed,   ///< no convergence or non-finite data: a numerical failure of the step
+        off_end,  ///< nearest point on the patch boundary, gap vector not along the normal: inactive
+        at_kink,  ///< nearest point on an interior C0 crease, x in the normal fan: inactive
+        failed,   ///< no convergence or non-finite/degenerate data: a numerical failure of the step
     };
     Status status = Status::failed;
-    double xi = 0.0;       ///< parameter of the foot point
-    int span = 0;          ///< knot index of the span used to evaluate at xi
-    VecN point;            ///< x_m(xi), d
-    VecN tangent;          ///< x_m,xi, d
-    VecN second;           ///< x_m,xixi, d
-    VecN normal;           ///< unit outward normal s (t_y, -t_x) / |t|, d
-    double metric = 0.0;   ///< m = tangent . tangent
-    double gap = 0.0;      ///< g_N = -(x - point) . normal, positive = penetration (gap.hpp)
-    double curvature = 0.0;///< b = normal . second
-    double distance = 0.0; ///< |x - point|
-    int iterations = 0;    ///< Newton iterations over all pieces tried
-    nurbs::BasisValues basis;  ///< R, dR (and d2R) on `span` at xi; indices are curve control points
+    VecN xi;            ///< d-1 parameters of the foot point
+    int element = -1;   ///< index into surface.elements() whose spans evaluated xi
+    VecN point;         ///< x_m(xi), d
+    Matrix tangents;    ///< d x (d-1): a_alpha = dx_m/dxi^alpha
+    Matrix second;      ///< d x (d-1)d/2: x_m,alpha beta, packed like BasisValues::d2R
+    VecN normal;        ///< unit outward normal, d: 2D s (t_y, -t_x)/|t|, 3D s (a_1 x a_2)/|a_1 x a_2|
+    Matrix metric;      ///< (d-1) x (d-1): m_ab = a_a . a_b (singular on a collapsed edge)
+    Matrix curvature;   ///< (d-1) x (d-1): b_ab = normal . x_m,ab
+    double gap = 0.0;   ///< g_N = -(x - point) . normal, positive = penetration (gap.hpp)
+    double distance = 0.0;  ///< |x - point|
+    int iterations = 0;     ///< Newton iterations over all starts and regions tried
+    int candidates = 0;     ///< candidate elements considered
+    nurbs::BasisValues basis;  ///< R, dR, d2R on `element` at xi; indices are surface control points
 };
 
-/// Projects x onto `curve` (n_par = 1, d = 2, CURRENT control points) whose
-/// outward normal has orientation sign `outward_sign` (+1/-1, orientation.hpp).
-Projection project_to_curve(const nurbs::Patch& curve, int outward_sign, const VecN& x,
-                            const ProjectionOptions& options = {});
+/// Projects x (d entries) onto `surface` (n_par = d - 1, d = 2 or 3, CURRENT
+/// control points) whose outward normal has orientation sign `outward_sign`
+/// (+1/-1). Throws iga::Error for other shapes and out-of-range candidates
+/// (programming errors); non-finite data gives status failed.
+Projection project_to_surface(const nurbs::Patch& surface, int outward_sign, const VecN& x,
+                              const ProjectionOptions& options = {});
+
+/// Unit outward normal of a side at a point with tangents `tangents` (d x (d-1))
+/// and second derivatives `second` (packed), orientation sign s. In 3D a tangent
+/// that vanishes (below sqrt(eps) of the other: a collapsed edge) is replaced by
+/// +-x_m,12, its limit direction; `near_lower` says, per direction, whether xi is
+/// nearer the lower end of its span (which fixes that sign). Returns a zero vector
+/// when no normal exists (zero tangents).
+VecN side_normal(const Matrix& tangents, const Matrix& second, int sign, const std::array<bool, 2>& near_lower);
 
 }  // namespace iga::contact

@@ -4,8 +4,64 @@
 #include "nurbs/refine.hpp"
 
 #include <algorithm>
+#include <array>
+#include <numeric>
 
 namespace iga::contact {
+namespace {
+
+// Elements per leaf: a few box tests are cheaper than another level of nodes.
+constexpr int leaf_size = 4;
+
+/// Bezier control points of `element` (n_local x d) from extraction operators
+/// computed once per direction (nurbs::bezier_control_points recomputes them per
+/// element; same arithmetic, same result).
+RowMatrix bezier_points(const nurbs::Patch& patch, const nurbs::Element& element,
+                        const std::array<std::vector<Eigen::MatrixXd>, 3>& extraction)
+{
+    const int n = patch.n_par();
+    const int d = patch.dim();
+    std::array<Eigen::MatrixXd, 3> C;
+    std::array<int, 3> n_local{1, 1, 1};
+    for (int k = 0; k < 3; ++k) {
+        if (k < n) {
+            C[k] = extraction[k][patch.knots(k).span_number(element.span[k])];
+            n_local[k] = patch.degree(k) + 1;
+        } else {
+            C[k] = Eigen::MatrixXd::Ones(1, 1);
+        }
+    }
+    const int n_points = n_local[0] * n_local[1] * n_local[2];
+    Matrix Pw(n_points, d + 1);
+    int a = 0;
+    for (int k = 0; k < n_local[2]; ++k)
+        for (int j = 0; j < n_local[1]; ++j)
+            for (int i = 0; i < n_local[0]; ++i, ++a) {
+                std::array<int, 3> ijk{i, j, k};
+                for (int q = 0; q < n; ++q)
+                    ijk[q] += element.span[q] - patch.degree(q);
+                const int index = patch.control_point_index(ijk);
+                const double w = patch.weights()(index);
+                Pw.row(a).head(d) = w * patch.control_points().row(index);
+                Pw(a, d) = w;
+            }
+    Matrix Qw = Matrix::Zero(n_points, d + 1);
+    for (int c = 0; c < n_points; ++c) {
+        const int ci = c % n_local[0], cj = (c / n_local[0]) % n_local[1], ck = c / (n_local[0] * n_local[1]);
+        for (int s = 0; s < n_points; ++s) {
+            const int si = s % n_local[0], sj = (s / n_local[0]) % n_local[1], sk = s / (n_local[0] * n_local[1]);
+            const double factor = C[0](si, ci) * C[1](sj, cj) * C[2](sk, ck);
+            if (factor != 0.0)
+                Qw.row(c) += factor * Pw.row(s);
+        }
+    }
+    RowMatrix out(n_points, d);
+    for (int c = 0; c < n_points; ++c)
+        out.row(c) = Qw.row(c).head(d) / Qw(c, d);
+    return out;
+}
+
+}  // namespace
 
 Box bounding_box(const RowMatrix& points)
 {
@@ -13,43 +69,100 @@ Box bounding_box(const RowMatrix& points)
     return {points.colwise().minCoeff().transpose(), points.colwise().maxCoeff().transpose()};
 }
 
-SpanSearch::SpanSearch(const nurbs::Patch& curve, const SearchOptions& options)
+ElementSearch::ElementSearch(const nurbs::Patch& side, const SearchOptions& options)
 {
-    IGA_CHECK(curve.n_par() == 1, "contact: span search needs a curve (n_par = 1)");
+    IGA_CHECK(side.n_par() == 1 || side.n_par() == 2, "contact: element search needs a curve or a surface side");
     IGA_CHECK(options.distance >= 0.0 && options.span_fraction >= 0.0, "contact: search margins must be >= 0");
-    const nurbs::KnotVector& knots = curve.knots(0);
-    for (const nurbs::Element& element : curve.elements()) {
-        const Box tight = bounding_box(nurbs::bezier_control_points(curve, element));
+    std::array<std::vector<Eigen::MatrixXd>, 3> extraction;
+    for (int k = 0; k < side.n_par(); ++k)
+        extraction[k] = nurbs::bezier_extraction(side.knots(k));
+    const std::vector<nurbs::Element> elements = side.elements();
+    IGA_CHECK(!elements.empty(), "contact: side without elements");
+    element_boxes_.reserve(elements.size());
+    std::vector<VecN> centres;
+    centres.reserve(elements.size());
+    for (const nurbs::Element& element : elements) {
+        const Box tight = bounding_box(bezier_points(side, element, extraction));
         const double margin = std::max(options.span_fraction * tight.diagonal(), options.distance);
-        boxes_.push_back({knots.span_number(element.span[0]), tight.inflated(margin)});
+        element_boxes_.push_back(tight.inflated(margin));
+        centres.push_back(0.5 * (element_boxes_.back().lower + element_boxes_.back().upper));
     }
-    IGA_CHECK(!boxes_.empty(), "contact: curve without spans");
-    std::sort(boxes_.begin(), boxes_.end(),
-              [](const SpanBox& a, const SpanBox& b) { return a.box.lower(0) < b.box.lower(0); });
-    bounds_ = boxes_.front().box;
-    for (const SpanBox& b : boxes_) {
-        bounds_.lower = bounds_.lower.cwiseMin(b.box.lower);
-        bounds_.upper = bounds_.upper.cwiseMax(b.box.upper);
-    }
+    order_.resize(elements.size());
+    std::iota(order_.begin(), order_.end(), 0);
+    nodes_.reserve(2 * elements.size() / leaf_size + 2);
+    build(0, static_cast<int>(order_.size()), centres);
 }
 
-void SpanSearch::candidates(const VecN& x, std::vector<int>& out) const
+int ElementSearch::build(int first, int count, std::vector<VecN>& centres)
+{
+    const int id = static_cast<int>(nodes_.size());
+    nodes_.push_back({});
+    Box box = element_boxes_[order_[first]];
+    for (int i = first + 1; i < first + count; ++i)
+        box = box.merged(element_boxes_[order_[i]]);
+    nodes_[id].box = box;
+    if (count <= leaf_size) {
+        nodes_[id].first = first;
+        nodes_[id].count = count;
+        return id;
+    }
+    // Split at the median centre along the widest axis of the centres.
+    VecN lo = centres[order_[first]], hi = lo;
+    for (int i = first + 1; i < first + count; ++i) {
+        lo = lo.cwiseMin(centres[order_[i]]);
+        hi = hi.cwiseMax(centres[order_[i]]);
+    }
+    Index axis = 0;
+    (hi - lo).maxCoeff(&axis);
+    const int half = count / 2;
+    std::nth_element(order_.begin() + first, order_.begin() + first + half, order_.begin() + first + count,
+                     [&](int a, int b) { return centres[a](axis) < centres[b](axis); });
+    const int left = build(first, half, centres);
+    const int right = build(first + half, count - half, centres);
+    nodes_[id].children[0] = left;
+    nodes_[id].children[1] = right;
+    return id;
+}
+
+template <class Test>
+void ElementSearch::query(const Test& hits, std::vector<int>& out) const
 {
     out.clear();
-    for (const SpanBox& b : boxes_) {
-        if (b.box.lower(0) > x(0))
-            break;  // sorted by lower x: no later box can contain x
-        if (b.box.contains(x))
-            out.push_back(b.span_number);
+    // Depth is about log2(n / leaf_size); 64 covers any element count that fits in memory.
+    std::array<int, 64> stack{};
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const Node& node = nodes_[stack[--top]];
+        if (!hits(node.box))
+            continue;
+        if (node.count > 0) {
+            for (int i = node.first; i < node.first + node.count; ++i)
+                if (hits(element_boxes_[order_[i]]))
+                    out.push_back(order_[i]);
+        } else {
+            stack[top++] = node.children[0];
+            stack[top++] = node.children[1];
+        }
     }
     std::sort(out.begin(), out.end());
 }
 
-std::vector<int> SpanSearch::candidates(const VecN& x) const
+void ElementSearch::candidates(const VecN& x, std::vector<int>& out) const
+{
+    query([&](const Box& b) { return b.contains(x); }, out);
+}
+
+std::vector<int> ElementSearch::candidates(const VecN& x) const
 {
     std::vector<int> out;
     candidates(x, out);
     return out;
+}
+
+void ElementSearch::overlapping(const Box& box, std::vector<int>& out) const
+{
+    query([&](const Box& b) { return b.overlaps(box); }, out);
 }
 
 }  // namespace iga::contact

@@ -1,15 +1,19 @@
 #pragma once
-// Global contact search (Kopacka et al., "Contact detection"): which spans of a
-// master curve can be near a slave point, so that the local search (projection)
-// runs only where a positive gap is possible.
+// Global contact search (Kopacka et al., "Contact detection"): which Bezier
+// elements of a master side (a curve in 2D, a surface in 3D) can be near a slave
+// point, so that the local search (projection) runs only where a positive gap is
+// possible.
 //
-// Each span's box is the axis-aligned bounding box of its Bezier control points
-// in the current configuration (the Bezier piece lies in their convex hull,
-// physics.md section 4.2), inflated by max(span_fraction * box diagonal,
-// distance). A point outside every box is farther than the margin from the
-// curve: with a margin above the largest penalty penetration it cannot have a
-// positive gap, so it is pruned. Boxes are kept sorted by their lower x
-// (a sorted list is enough for 2D).
+// Each element's box is the axis-aligned bounding box of its Bezier control
+// points in the current configuration (a rational Bezier piece with positive
+// weights lies in their convex hull), inflated by max(span_fraction * box
+// diagonal, distance). A point outside every box is farther than the margin from
+// the side: with a margin above the largest penalty penetration it cannot have a
+// positive gap, so it is pruned.
+// The boxes sit in a bounding-volume hierarchy (binary tree, split at the median
+// of the box centres along the widest axis, a few elements per leaf), so a query
+// costs O(log n + k) for n elements and k hits. Element indices are those of
+// Patch::elements() (u fastest; in 1D the span numbers). Built in O(n log n).
 
 #include "core/types.hpp"
 #include "nurbs/patch.hpp"
@@ -33,37 +37,50 @@ struct Box {
     }
     Box inflated(double margin) const { return {(lower.array() - margin).matrix(), (upper.array() + margin).matrix()}; }
     double diagonal() const { return (upper - lower).norm(); }
+    /// The smallest box holding both.
+    Box merged(const Box& other) const { return {lower.cwiseMin(other.lower), upper.cwiseMax(other.upper)}; }
 };
 
 /// Bounding box of the rows of `points` (n x d, n >= 1).
 Box bounding_box(const RowMatrix& points);
 
 struct SearchOptions {
-    double distance = 0.0;       ///< absolute margin added around every span box
-    double span_fraction = 0.5;  ///< relative margin: fraction of each span box's diagonal
+    double distance = 0.0;       ///< absolute margin added around every element box
+    double span_fraction = 0.5;  ///< relative margin: fraction of each element box's diagonal
 };
 
-class SpanSearch {
+class ElementSearch {
 public:
-    /// Boxes of every span of `curve` (n_par = 1, current control points).
-    SpanSearch(const nurbs::Patch& curve, const SearchOptions& options);
+    /// Boxes of every element of `side` (n_par = 1 or 2, current control points).
+    ElementSearch(const nurbs::Patch& side, const SearchOptions& options);
 
-    /// Span numbers k (0..n_spans-1, ascending) whose inflated box contains x.
+    /// Element indices (ascending) whose inflated box contains x.
     std::vector<int> candidates(const VecN& x) const;
     /// Same, into `out` (cleared first): the allocation-free form for the Gauss point loop.
     void candidates(const VecN& x, std::vector<int>& out) const;
+    /// Element indices (ascending) whose inflated box overlaps `box` (e.g. a slave
+    /// element's box: the master elements its Gauss points may project onto).
+    void overlapping(const Box& box, std::vector<int>& out) const;
 
-    /// Union of all inflated span boxes.
-    const Box& bounds() const { return bounds_; }
-    int n_spans() const { return static_cast<int>(boxes_.size()); }
+    /// Union of all inflated element boxes.
+    const Box& bounds() const { return nodes_.front().box; }
+    int n_elements() const { return static_cast<int>(element_boxes_.size()); }
+    /// Inflated box of element e.
+    const Box& element_box(int e) const { return element_boxes_[e]; }
 
 private:
-    struct SpanBox {
-        int span_number;
+    struct Node {
         Box box;
+        int first = 0;       ///< leaf: range [first, first + count) of order_
+        int count = 0;       ///< > 0 for a leaf
+        int children[2]{-1, -1};
     };
-    std::vector<SpanBox> boxes_;  ///< sorted by box.lower(0)
-    Box bounds_;
+    int build(int first, int count, std::vector<VecN>& centres);
+    template <class Test> void query(const Test& hits, std::vector<int>& out) const;
+
+    std::vector<Box> element_boxes_;  ///< by element index
+    std::vector<int> order_;          ///< element indices, grouped by leaf
+    std::vector<Node> nodes_;         ///< nodes_[0] is the root
 };
 
 }  // namespace iga::contact

@@ -72,7 +72,7 @@ KernelResult evaluate_kernel(const Slave& slave, const nurbs::Patch& master, con
     VecN x = VecN::Zero(2);
     for (Index a = 0; a < n_s; ++a)
         x += N(a) * xs.row(a).transpose();
-    const Projection p = project_to_curve(master.with_control_points(xm), test::rational_arch_sign, x);
+    const Projection p = project_to_surface(master.with_control_points(xm), test::rational_arch_sign, x);
     EXPECT_EQ(p.status, Projection::Status::ok);
     EXPECT_EQ(p.basis.indices.size(), static_cast<std::size_t>(n_m));  // one span: local = global numbering
     if (projection)
@@ -106,7 +106,7 @@ TEST_P(KernelFd, SinglePassTangentIsSymmetricDerivative)
         const KernelResult k = evaluate_kernel(slave, master, u, settings, &p);
         ASSERT_TRUE(k.ok);
         ASSERT_GT(p.gap, 0.02) << "the state must penetrate clearly (seed " << seed << ")";
-        ASSERT_GT(std::abs(p.curvature), 0.1) << "the master must be curved here";
+        ASSERT_GT(std::abs(p.curvature(0, 0)), 0.1) << "the master must be curved here";
         const Matrix K_fd = test::central_difference_jacobian(
             [&](const Vector& v) { return evaluate_kernel(slave, master, v, settings).residual; }, u, fd_step);
         const double err = relative_error(k.tangent, K_fd);

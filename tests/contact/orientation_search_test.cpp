@@ -87,17 +87,17 @@ TEST(Search, CandidatesContainTheFootPointSpan)
 {
     nurbs::Patch half = test::two_quarter_half_circle(1.0);
     half = nurbs::insert_knots(half, 0, {0.125, 0.25, 0.375, 0.625, 0.75, 0.875});
-    const SpanSearch search(half, SearchOptions{.distance = 0.05});
-    EXPECT_EQ(search.n_spans(), 8);
+    const ElementSearch search(half, SearchOptions{.distance = 0.05});
+    EXPECT_EQ(search.n_elements(), 8);
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> angle(0.0, 3.14159), radius(0.96, 1.04);
     for (int k = 0; k < 200; ++k) {
         const double t = angle(rng), r = radius(rng);
         const VecN x = vec2(r * std::cos(t), r * std::sin(t));
         const std::vector<int> c = search.candidates(x);
-        const Projection p = project_to_curve(half, +1, x);
+        const Projection p = project_to_surface(half, +1, x);
         ASSERT_EQ(p.status, Projection::Status::ok);
-        const int foot_span = half.knots(0).span_number(p.span);
+        const int foot_span = p.element;
         EXPECT_TRUE(std::find(c.begin(), c.end(), foot_span) != c.end()) << "seed 11, sample " << k;
         EXPECT_TRUE(std::is_sorted(c.begin(), c.end()));
     }
@@ -106,7 +106,7 @@ TEST(Search, CandidatesContainTheFootPointSpan)
 TEST(Search, FarPointsHaveNoCandidates)
 {
     const nurbs::Patch arc = test::quarter_arc(1.0);
-    const SpanSearch search(arc, SearchOptions{.distance = 0.1});
+    const ElementSearch search(arc, SearchOptions{.distance = 0.1});
     EXPECT_TRUE(search.candidates(vec2(5, 5)).empty());
     EXPECT_TRUE(search.candidates(vec2(-2, 0.5)).empty());
     EXPECT_FALSE(search.candidates(vec2(0.7, 0.7)).empty());
