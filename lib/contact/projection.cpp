@@ -4,6 +4,7 @@
 #include "core/error.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -125,42 +126,79 @@ int packed(int a, int b, int n)
     return a * n - a * (a - 1) / 2 + (b - a);
 }
 
-/// A^+ b for a symmetric n x n matrix (n = 1, 2): eigen-directions with an
-/// eigenvalue that is not positive, or at round-off of the largest, are dropped.
-VecN pseudo_solve(const MatN& A, const VecN& b)
+// A parameter direction whose tangent is shorter than this fraction of the
+// longest is collapsed (a pole): its computed tangent is a difference of equal
+// control points, pure round-off (a few eps of the longest). Above it the
+// tangent has at least 1e-4 relative accuracy, enough for Newton to converge.
+constexpr double collapse_floor = 1e4 * machine_eps;
+
+/// Scaling of the parameter directions (n = 2): 1/|a_alpha| from the metric's
+/// diagonal, so that the scaled metric has a unit diagonal and a direction that
+/// is merely short near a pole is solved as accurately as the others; 0 for a
+/// collapsed direction, which the solves then drop.
+Eigen::Vector2d direction_scaling(const MatN& metric)
+{
+    const double longest = std::sqrt(std::max(metric(0, 0), metric(1, 1)));
+    Eigen::Vector2d scaling;
+    for (int k = 0; k < 2; ++k) {
+        const double length = std::sqrt(std::max(metric(k, k), 0.0));
+        scaling(k) = length > collapse_floor * longest ? 1.0 / length : 0.0;
+    }
+    return scaling;
+}
+
+/// A^+ b for a symmetric n x n matrix (n = 1, 2). 1D: b / A when A > 0, else 0.
+/// 2D: on the scaled matrix S A S (S = direction_scaling(metric)), eigen-directions
+/// with an eigenvalue that is not positive, or at round-off of the largest, are
+/// dropped; collapsed directions get no step. Never divides by zero.
+VecN pseudo_solve(const MatN& A, const VecN& b, const MatN& metric)
 {
     if (A.rows() == 1) {
         VecN x(1);
         x(0) = A(0, 0) > 0.0 ? b(0) / A(0, 0) : 0.0;
         return x;
     }
+    const Eigen::Vector2d S = direction_scaling(metric);
+    Eigen::Matrix2d scaled;
+    scaled << S(0) * A(0, 0) * S(0), S(0) * A(0, 1) * S(1), S(1) * A(1, 0) * S(0), S(1) * A(1, 1) * S(1);
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
-    es.computeDirect(Eigen::Matrix2d(A));
+    es.computeDirect(scaled);
     const double largest = es.eigenvalues().cwiseAbs().maxCoeff();
-    VecN x = VecN::Zero(2);
+    const Eigen::Vector2d scaled_b(S(0) * b(0), S(1) * b(1));
+    Eigen::Vector2d y = Eigen::Vector2d::Zero();
     for (int k = 0; k < 2; ++k) {
         const double lambda = es.eigenvalues()(k);
         if (lambda > round_off_eigenvalue * largest) {
             const Eigen::Vector2d v = es.eigenvectors().col(k);
-            x += (v.dot(Eigen::Vector2d(b)) / lambda) * VecN(v);
+            y += (v.dot(scaled_b) / lambda) * v;
         }
     }
+    VecN x(2);
+    x << S(0) * y(0), S(1) * y(1);
     return x;
 }
 
-bool positive_definite(const MatN& A)
+/// A positive definite on the directions that are not collapsed (scaled as in pseudo_solve).
+bool positive_definite(const MatN& A, const MatN& metric)
 {
     if (A.rows() == 1)
         return A(0, 0) > 0.0;
+    const Eigen::Vector2d S = direction_scaling(metric);
+    if (S(0) == 0.0 || S(1) == 0.0) {
+        const int k = S(0) == 0.0 ? 1 : 0;  // the remaining direction
+        return A(k, k) > 0.0;
+    }
+    Eigen::Matrix2d scaled;
+    scaled << S(0) * A(0, 0) * S(0), S(0) * A(0, 1) * S(1), S(1) * A(1, 0) * S(0), S(1) * A(1, 1) * S(1);
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es;
-    es.computeDirect(Eigen::Matrix2d(A));
+    es.computeDirect(scaled);
     return es.eigenvalues()(0) > round_off_eigenvalue * es.eigenvalues().cwiseAbs().maxCoeff();
 }
 
 /// |g|_{m^-1}: how far x is, tangentially, from being over the foot point.
 double tangential_offset(const MatN& metric, const VecN& g)
 {
-    return std::sqrt(std::max(0.0, g.dot(pseudo_solve(metric, g))));
+    return std::sqrt(std::max(0.0, g.dot(pseudo_solve(metric, g, metric))));
 }
 
 MatN sub_matrix(const MatN& A, const std::vector<int>& idx)
@@ -280,9 +318,9 @@ RegionResult newton_in_region(const nurbs::Patch& surface, const Layout& layout,
             g_free(static_cast<Index>(i)) = g(free[i]);
         if (on_edge && tangential_offset(M_free, g_free) <= negligible_fraction * tol)
             return stop_on_bound(std::move(s), g, offset, tol);  // converged along the edge
-        if (!positive_definite(H_free))
+        if (!positive_definite(H_free, M_free))
             H_free = M_free;  // Gauss-Newton: the full Hessian would step towards a distance maximum
-        const VecN newton_step = -pseudo_solve(H_free, g_free);
+        const VecN newton_step = -pseudo_solve(H_free, g_free, M_free);
 
         // Trust region: scale the step so that no direction moves more than
         // max_step_fraction of its current span (the limiting one exactly that).

@@ -1,16 +1,20 @@
-// Closest-point projection onto 2D NURBS curves: exact circles give the analytic
-// foot point, gap and curvature; patch ends and C0 knots give the documented
-// statuses; bad input gives a status, never NaN.
+// Closest-point projection onto NURBS sides: 2D curves and 3D surfaces. Exact
+// circles, cylinders and spheres give the analytic foot point, gap and curvature;
+// patch ends, C0 knots and creases give the documented statuses; a collapsed edge
+// (a sphere's pole) and bad input give finite fields, never NaN.
 
 #include "contact/projection.hpp"
 
 #include "fixtures.hpp"
+#include "surface_fixtures.hpp"
 #include "support/tolerance.hpp"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <gtest/gtest.h>
 #include <limits>
 #include <numbers>
+#include <random>
 
 namespace iga::contact {
 namespace {
@@ -218,10 +222,350 @@ TEST(Projection, NonFiniteInputFailsWithFiniteFields)
     EXPECT_EQ(r.status, Projection::Status::ok);
 }
 
-TEST(Projection, SurfaceSidesAreNotSupported)
+TEST(Projection, SidesOfTheWrongShapeAreClearErrors)
 {
+    // A surface in 2D (n_par = 2, d = 2) is not a side.
     const nurbs::Patch surface = nurbs::rectangle(vec2(0, 0), vec2(1, 1));
     EXPECT_THROW(project_to_surface(surface, +1, vec2(0.5, 2.0)), Error);
+}
+
+}  // namespace
+}  // namespace iga::contact
+
+// ---------------------------------------------------------------------------
+// Surfaces in 3D
+// ---------------------------------------------------------------------------
+namespace iga::contact {
+namespace {
+
+using test::vec3;
+
+// Foot points of exact surfaces: Newton stops one step below 1e-12 (size +
+// distance), so round-off of the rational evaluation is all that is left; the
+// brief's bar for the analytic comparison is 1e-10.
+constexpr double surface_foot_tolerance = 1e-10;
+// Normals and curvature tensors from derivatives at the foot point: a few ulps
+// times the condition of the rational evaluation, with room for the pole region.
+constexpr double surface_derivative_tolerance = 1e-9;
+
+VecN direction(double polar, double azimuth)
+{
+    return vec3(std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth), std::cos(polar));
+}
+
+/// Every field finite (a failed projection too): NaN must never leak.
+::testing::AssertionResult all_fields_finite(const Projection& p)
+{
+    const bool ok = p.xi.allFinite() && p.point.allFinite() && p.tangents.allFinite() && p.second.allFinite() &&
+                    p.normal.allFinite() && p.metric.allFinite() && p.curvature.allFinite() &&
+                    std::isfinite(p.gap) && std::isfinite(p.distance);
+    return ok ? ::testing::AssertionSuccess() : ::testing::AssertionFailure() << "a field is not finite";
+}
+
+nurbs::Patch refined_cylinder()
+{
+    nurbs::Patch cyl = test::quarter_cylinder(2.0, 3.0);
+    cyl = nurbs::insert_knots(cyl, 0, {0.25, 0.5, 0.75});
+    return nurbs::insert_knots(cyl, 1, {0.5});
+}
+
+TEST(SurfaceProjection, QuarterCylinderMatchesAnalyticFootPoint)
+{
+    const double R = 2.0, L = 3.0;
+    const nurbs::Patch cyl = refined_cylinder();
+    for (const double theta : {0.05, 0.4, std::numbers::pi / 4, 1.3, 1.52})
+        for (const double z : {0.1, 1.5, 2.2, 2.95})
+            for (const double r : {0.6 * R, 0.98 * R, R, 1.02 * R, 4.0 * R}) {
+                const VecN x = vec3(r * std::cos(theta), r * std::sin(theta), z);
+                const Projection p = project_to_surface(cyl, +1, x);
+                ASSERT_EQ(p.status, Projection::Status::ok) << x.transpose();
+                const VecN foot = vec3(R * std::cos(theta), R * std::sin(theta), z);
+                const VecN radial = vec3(std::cos(theta), std::sin(theta), 0.0);
+                EXPECT_TRUE(test::at_most((p.point - foot).norm(), surface_foot_tolerance * R)) << x.transpose();
+                EXPECT_TRUE(test::near(p.gap, R - r, surface_foot_tolerance * (R + r)));
+                EXPECT_TRUE(test::near(p.distance, std::abs(R - r), surface_foot_tolerance * (R + r)));
+                EXPECT_TRUE(test::at_most((p.normal - radial).norm(), surface_derivative_tolerance));
+                // Cylinder: b_uu = -m_uu / R around the arc, no curvature along z.
+                const double m_uu = p.metric(0, 0);
+                EXPECT_TRUE(test::near_rel(p.curvature(0, 0), -m_uu / R, surface_derivative_tolerance));
+                EXPECT_TRUE(test::at_most(std::abs(p.curvature(0, 1)) + std::abs(p.curvature(1, 1)),
+                                          surface_derivative_tolerance * m_uu));
+                EXPECT_TRUE(test::at_most((p.metric - p.tangents.transpose() * p.tangents).norm(), 0.0));
+                // The basis is that of the foot point, on the element reported.
+                VecN from_basis = VecN::Zero(3);
+                for (std::size_t b = 0; b < p.basis.indices.size(); ++b)
+                    from_basis += p.basis.R(static_cast<Index>(b)) *
+                                  cyl.control_points().row(p.basis.indices[b]).transpose();
+                EXPECT_TRUE(test::at_most((from_basis - p.point).norm(), surface_foot_tolerance * R));
+                const nurbs::Element e = cyl.elements()[static_cast<std::size_t>(p.element)];
+                for (int k = 0; k < 2; ++k)
+                    EXPECT_TRUE(p.xi(k) >= e.lower[k] && p.xi(k) <= e.upper[k]) << "element " << p.element;
+            }
+}
+
+TEST(SurfaceProjection, SphereOctantMatchesAnalyticFootPoint)
+{
+    const double R = 1.5;
+    nurbs::Patch sphere = test::sphere_octant(R);
+    sphere = nurbs::insert_knots(sphere, 0, {1.0 / 3.0, 2.0 / 3.0});
+    sphere = nurbs::insert_knots(sphere, 1, {0.3, 0.7});
+    for (const double polar : {0.02, 0.3, 0.8, 1.2, 1.55})
+        for (const double azimuth : {0.03, 0.6, 1.1, 1.54})
+            for (const double r : {0.5 * R, 0.99 * R, 1.03 * R, 3.0 * R}) {
+                const VecN dir = direction(polar, azimuth);
+                const VecN x = r * dir;
+                const Projection p = project_to_surface(sphere, +1, x);
+                ASSERT_EQ(p.status, Projection::Status::ok) << x.transpose();
+                EXPECT_TRUE(test::at_most((p.point - R * dir).norm(), surface_foot_tolerance * R)) << x.transpose();
+                EXPECT_TRUE(test::near(p.gap, R - r, surface_foot_tolerance * (R + r)));
+                EXPECT_TRUE(test::at_most((p.normal - dir).norm(), surface_derivative_tolerance)) << x.transpose();
+                // Sphere: b_ab = -m_ab / R in any parametrization.
+                EXPECT_TRUE(test::at_most((p.curvature + p.metric / R).norm(),
+                                          surface_derivative_tolerance * p.metric.norm()));
+                EXPECT_EQ(p.candidates, 9);
+            }
+}
+
+TEST(SurfaceProjection, PointAboveTheCollapsedPole)
+{
+    // v = 1 of the octant is collapsed to the pole: a_u = 0 there. Points on the
+    // axis project onto the pole with the right normal; points next to the axis
+    // project next to it; nothing divides by zero.
+    const double R = 1.0;
+    const nurbs::Patch sphere = test::sphere_octant(R);
+    for (const double z : {1.4, 1.0, 0.8, 0.05}) {
+        const Projection p = project_to_surface(sphere, +1, vec3(0.0, 0.0, z));
+        ASSERT_EQ(p.status, Projection::Status::ok) << "z " << z;
+        EXPECT_TRUE(all_fields_finite(p));
+        EXPECT_TRUE(test::at_most((p.point - vec3(0, 0, R)).norm(), surface_foot_tolerance));
+        EXPECT_TRUE(test::at_most((p.normal - vec3(0, 0, 1)).norm(), surface_derivative_tolerance));
+        EXPECT_TRUE(test::near(p.gap, R - z, surface_foot_tolerance));
+        EXPECT_TRUE(test::near(p.xi(1), 1.0, 0.0));
+    }
+    for (const double polar : {1e-9, 1e-6, 1e-3}) {
+        const VecN dir = direction(polar, 0.7);
+        const Projection p = project_to_surface(sphere, +1, 1.2 * dir);
+        ASSERT_EQ(p.status, Projection::Status::ok) << "polar " << polar;
+        EXPECT_TRUE(all_fields_finite(p));
+        EXPECT_TRUE(test::at_most((p.point - R * dir).norm(), surface_foot_tolerance)) << "polar " << polar;
+        EXPECT_TRUE(test::at_most((p.normal - dir).norm(), surface_derivative_tolerance)) << "polar " << polar;
+    }
+    // A warm start at the pole with another azimuth converges too.
+    ProjectionOptions options;
+    options.start = test::vec2(0.9, 1.0);
+    const Projection warm = project_to_surface(sphere, +1, 1.1 * direction(0.2, 0.3), options);
+    ASSERT_EQ(warm.status, Projection::Status::ok);
+    EXPECT_TRUE(test::at_most((warm.point - R * direction(0.2, 0.3)).norm(), surface_foot_tolerance));
+}
+
+TEST(SurfaceProjection, WarmStartNeedsFewerIterations)
+{
+    const nurbs::Patch sphere = nurbs::insert_knots(test::sphere_octant(1.0), 0, {0.5});
+    const VecN x = 0.97 * direction(0.9, 0.5);
+    const Projection cold = project_to_surface(sphere, +1, x);
+    ASSERT_EQ(cold.status, Projection::Status::ok);
+    EXPECT_GE(cold.iterations, 2);  // the sampling start is not the foot point
+
+    ProjectionOptions options;
+    options.start = cold.xi;
+    options.start_element = cold.element;
+    const Projection warm = project_to_surface(sphere, +1, x, options);
+    ASSERT_EQ(warm.status, Projection::Status::ok);
+    EXPECT_LE(warm.iterations, 1);  // already converged at the start
+    EXPECT_TRUE(test::at_most((warm.point - cold.point).norm(), surface_foot_tolerance));
+
+    // A slightly moved point from the old foot point: quadratic convergence.
+    const Projection moved = project_to_surface(sphere, +1, x + vec3(1e-3, -2e-3, 1e-3), options);
+    ASSERT_EQ(moved.status, Projection::Status::ok);
+    EXPECT_LE(moved.iterations, 3);
+
+    // A wrong warm start (far corner of the domain) still finds the foot point.
+    options.start = test::vec2(1.0, 0.0);
+    options.start_element = -1;
+    const Projection wrong = project_to_surface(sphere, +1, x, options);
+    ASSERT_EQ(wrong.status, Projection::Status::ok);
+    EXPECT_TRUE(test::at_most((wrong.point - cold.point).norm(), surface_foot_tolerance));
+}
+
+TEST(SurfaceProjection, BeyondThePatchBoundaryIsOffEnd)
+{
+    const double R = 2.0, L = 3.0;  // refined_cylinder()
+    const nurbs::Patch cyl = refined_cylinder();
+    // Above the top edge z = L: Newton stops on the bound v = 1 and continues
+    // along the edge to the nearest point of the top circle.
+    const double theta = 0.6;
+    const Projection top = project_to_surface(cyl, +1, vec3(2.3 * std::cos(theta), 2.3 * std::sin(theta), L + 0.4));
+    EXPECT_EQ(top.status, Projection::Status::off_end);
+    EXPECT_TRUE(test::near(top.xi(1), 1.0, 0.0));
+    EXPECT_TRUE(test::at_most((top.point - vec3(R * std::cos(theta), R * std::sin(theta), L)).norm(),
+                              surface_foot_tolerance * R));
+    EXPECT_TRUE(all_fields_finite(top));
+    // Past the side edge theta = pi/2 (the line x = 0): off_end on u = 1.
+    const Projection side = project_to_surface(cyl, +1, vec3(-0.5, 2.2, 1.0));
+    EXPECT_EQ(side.status, Projection::Status::off_end);
+    EXPECT_TRUE(test::near(side.xi(0), 1.0, 0.0));
+    EXPECT_TRUE(test::at_most((side.point - vec3(0.0, R, 1.0)).norm(), surface_foot_tolerance * R));
+    // Past both: the corner.
+    const Projection corner = project_to_surface(cyl, +1, vec3(-0.5, 2.2, -0.3));
+    EXPECT_EQ(corner.status, Projection::Status::off_end);
+    EXPECT_TRUE(test::at_most((corner.point - vec3(0.0, R, 0.0)).norm(), surface_foot_tolerance * R));
+    // Just inside the domain the projection is an ordinary one.
+    EXPECT_EQ(project_to_surface(cyl, +1, vec3(0.3, 2.1, 2.9)).status, Projection::Status::ok);
+}
+
+/// Quarter cylinder (R = 1, L = 2) with a double knot at u = 1/2 (multiplicity =
+/// degree: C0) whose row of control points is pushed out by `raise`: a ridge
+/// along z at 45 degrees.
+nurbs::Patch creased_cylinder(double raise)
+{
+    nurbs::Patch cyl = nurbs::insert_knots(test::quarter_cylinder(1.0, 2.0), 0, {0.5, 0.5});
+    RowMatrix P = cyl.control_points();
+    const int n_u = cyl.n_basis(0);
+    for (int j = 0; j < cyl.n_basis(1); ++j) {
+        const Index a = 2 + n_u * j;  // the interpolated control point at u = 1/2
+        const double r = std::hypot(P(a, 0), P(a, 1));
+        P(a, 0) *= (r + raise) / r;
+        P(a, 1) *= (r + raise) / r;
+    }
+    return cyl.with_control_points(P);
+}
+
+TEST(SurfaceProjection, C0CreaseIsAtKinkInsideTheFanAndOkOnEachSide)
+{
+    const double raise = 0.2;
+    const nurbs::Patch creased = creased_cylinder(raise);
+    const double s = std::sqrt(0.5);
+    const VecN ridge_dir = vec3(s, s, 0.0), along = vec3(-s, s, 0.0);  // along: towards larger u
+    const VecN ridge = (1.0 + raise) * ridge_dir + vec3(0, 0, 0.8);
+    // Outside, right above the ridge: both faces clamp to the crease.
+    for (const double offset : {-0.01, 0.0005, 0.02}) {
+        const Projection p = project_to_surface(creased, +1, ridge + 0.3 * ridge_dir + offset * along);
+        EXPECT_EQ(p.status, Projection::Status::at_kink) << "offset " << offset;
+        EXPECT_TRUE(test::near(p.xi(0), 0.5, 0.0));
+        EXPECT_TRUE(test::near(p.point(2), 0.8, surface_foot_tolerance));
+        EXPECT_TRUE(test::at_most(p.gap, 0.0));
+        EXPECT_TRUE(all_fields_finite(p));
+    }
+    // Just below the ridge (penetrating): orthogonal on the nearer face, ok.
+    for (const double offset : {-0.01, -0.001, 0.001, 0.01}) {
+        const Projection p = project_to_surface(creased, +1, ridge - 0.05 * ridge_dir + offset * along);
+        ASSERT_EQ(p.status, Projection::Status::ok) << "offset " << offset;
+        EXPECT_EQ(p.xi(0) > 0.5, offset > 0.0) << "offset " << offset;
+        EXPECT_TRUE(test::at_least(p.gap, 0.0));
+    }
+}
+
+TEST(SurfaceProjection, FarPointWithAllElementsAsCandidates)
+{
+    const double R = 1.0;
+    nurbs::Patch sphere = test::sphere_octant(R);
+    sphere = nurbs::refine_uniform(nurbs::refine_uniform(sphere, 0, 4), 1, 4);
+    const VecN dir = direction(0.7, 0.9);
+    const Projection p = project_to_surface(sphere, +1, 50.0 * dir);
+    ASSERT_EQ(p.status, Projection::Status::ok);
+    EXPECT_EQ(p.candidates, 16);
+    EXPECT_TRUE(test::at_most((p.point - R * dir).norm(), surface_foot_tolerance));
+    EXPECT_TRUE(test::near(p.gap, R - 50.0, surface_foot_tolerance * 50.0));
+}
+
+TEST(SurfaceProjection, DerivativesMatchFiniteDifferencesOfTheSurface)
+{
+    // A general rational surface: a refined sphere octant with perturbed control
+    // points and weights (no symmetry to hide a transposed index).
+    nurbs::Patch base = nurbs::insert_knots(test::sphere_octant(1.0), 0, {0.4});
+    base = nurbs::insert_knots(base, 1, {0.6});
+    RowMatrix P = base.control_points();
+    Vector w = base.weights();
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    for (Index a = 0; a < P.rows(); ++a) {
+        P.row(a) += 0.05 * Eigen::RowVector3d(unit(rng), unit(rng), unit(rng));
+        w(a) *= 1.0 + 0.2 * unit(rng);
+    }
+    const nurbs::Patch surface(base.all_knots(), P, w);
+    // Central differences with h = 1e-5 on a unit-size surface: truncation
+    // h^2 |x'''| ~ 1e-9, round-off eps / h ~ 1e-11; 1e-7 leaves a margin, yet a
+    // wrong column or a missing term is O(1).
+    constexpr double h = 1e-5;
+    constexpr double fd_tolerance = 1e-7;
+    for (const VecN& x : {vec3(0.9, 0.3, 0.5), vec3(0.3, 0.5, 0.7), vec3(0.6, 0.6, 0.2)}) {
+        const Projection p = project_to_surface(surface, +1, x);
+        ASSERT_EQ(p.status, Projection::Status::ok) << "seed 17, x " << x.transpose();
+        const nurbs::Element e = surface.elements()[static_cast<std::size_t>(p.element)];
+        Matrix fd_tangents(3, 2), fd_second(3, 3);
+        Matrix fd_d2(3, 4);  // d(a_alpha)/dxi^beta, column alpha + 2 beta
+        for (int k = 0; k < 2; ++k) {
+            ASSERT_TRUE(p.xi(k) - h > e.lower[k] && p.xi(k) + h < e.upper[k]) << "foot too close to a knot line";
+            VecN plus = p.xi, minus = p.xi;
+            plus(k) += h;
+            minus(k) -= h;
+            const nurbs::PointDerivatives xp = nurbs::evaluate(surface, plus, 1), xm = nurbs::evaluate(surface, minus, 1);
+            fd_tangents.col(k) = (xp.x - xm.x) / (2 * h);
+            for (int a = 0; a < 2; ++a)
+                fd_d2.col(a + 2 * k) = (xp.dx.col(a) - xm.dx.col(a)) / (2 * h);
+        }
+        fd_second.col(0) = fd_d2.col(0);                            // uu
+        fd_second.col(1) = 0.5 * (fd_d2.col(1) + fd_d2.col(2));     // uv (= vu)
+        fd_second.col(2) = fd_d2.col(3);                            // vv
+        EXPECT_TRUE(test::at_most((p.tangents - fd_tangents).norm() / fd_tangents.norm(), fd_tolerance));
+        EXPECT_TRUE(test::at_most((p.second - fd_second).norm() / fd_second.norm(), fd_tolerance));
+        Matrix fd_curvature(2, 2);
+        fd_curvature << p.normal.dot(fd_second.col(0)), p.normal.dot(fd_second.col(1)),
+            p.normal.dot(fd_second.col(1)), p.normal.dot(fd_second.col(2));
+        EXPECT_TRUE(test::at_most((p.curvature - fd_curvature).norm() / fd_second.norm(), fd_tolerance));
+        // Orthogonality and the outward convention n = (a_1 x a_2) / |a_1 x a_2|.
+        const Eigen::Vector3d a1 = p.tangents.col(0), a2 = p.tangents.col(1);
+        EXPECT_TRUE(test::at_most((Eigen::Vector3d(p.normal) - a1.cross(a2).normalized()).norm(),
+                                  surface_derivative_tolerance));
+        EXPECT_TRUE(test::at_most(((x - p.point).transpose() * p.tangents).norm(), surface_foot_tolerance));
+    }
+}
+
+TEST(SurfaceProjection, DegenerateAndNonFiniteDataFailWithFiniteFields)
+{
+    const nurbs::Patch sphere = test::sphere_octant(1.0);
+    // All control points equal: no tangent anywhere.
+    const RowMatrix same = RowMatrix::Constant(sphere.n_control_points(), 3, 0.25);
+    const Projection p = project_to_surface(sphere.with_control_points(same), +1, vec3(1, 1, 1));
+    EXPECT_EQ(p.status, Projection::Status::failed);
+    EXPECT_TRUE(all_fields_finite(p));
+
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const Projection q = project_to_surface(sphere, +1, vec3(nan, 0.5, 0.5));
+    EXPECT_EQ(q.status, Projection::Status::failed);
+    EXPECT_TRUE(all_fields_finite(q));
+    RowMatrix P = sphere.control_points();
+    P(4, 2) = nan;
+    const Projection r = project_to_surface(sphere.with_control_points(P), +1, vec3(0.5, 0.5, 0.5));
+    EXPECT_EQ(r.status, Projection::Status::failed);
+    EXPECT_TRUE(all_fields_finite(r));
+
+    // A NaN warm start is ignored, not propagated.
+    ProjectionOptions options;
+    options.start = test::vec2(nan, 0.5);
+    const Projection s = project_to_surface(sphere, +1, vec3(0.5, 0.5, 0.5), options);
+    EXPECT_EQ(s.status, Projection::Status::ok);
+}
+
+TEST(SurfaceProjection, CandidateElementsRestrictTheSearch)
+{
+    nurbs::Patch sphere = nurbs::refine_uniform(nurbs::refine_uniform(test::sphere_octant(1.0), 0, 2), 1, 2);
+    const VecN x = 1.1 * direction(1.2, 0.3);  // foot on element 0 (low azimuth, near the equator)
+    const Projection all = project_to_surface(sphere, +1, x);
+    ASSERT_EQ(all.status, Projection::Status::ok);
+    EXPECT_EQ(all.element, 0);
+    const std::vector<int> far_one{3};
+    ProjectionOptions options;
+    options.candidate_elements = far_one;
+    // The region is the whole C1 surface: Newton from element 3's samples still
+    // reaches the true foot point across element boundaries.
+    const Projection restricted = project_to_surface(sphere, +1, x, options);
+    EXPECT_EQ(restricted.status, Projection::Status::ok);
+    EXPECT_EQ(restricted.candidates, 1);
+    EXPECT_TRUE(test::at_most((restricted.point - all.point).norm(), surface_foot_tolerance));
+    const std::vector<int> bad{4};
+    options.candidate_elements = bad;
+    EXPECT_THROW(project_to_surface(sphere, +1, x, options), Error);
 }
 
 }  // namespace
