@@ -58,7 +58,7 @@ TEST(ElementSearch, CandidatesHoldTheFootPointElement)
     const ElementSearch search(sphere, SearchOptions{.distance = margin});
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> polar(0.0, 1.5707), azimuth(0.0, 1.5707), radius(1.0 - margin, 1.0 + margin);
-    for (int k = 0; k < 500; ++k) {
+    for (int k = 0; k < 200; ++k) {
         const double t = polar(rng), f = azimuth(rng);
         const VecN x = radius(rng) * vec3(std::sin(t) * std::cos(f), std::sin(t) * std::sin(f), std::cos(t));
         const Projection p = project_to_surface(sphere, +1, x);  // all elements
