@@ -53,9 +53,28 @@ struct Layout {
     std::array<std::vector<int>, 2> piece_of_span;
     std::array<int, 2> n_spans{1, 1};
     std::array<int, 2> n_pieces{1, 1};
+    /// collapsed[k][end]: the patch edge xi_k = front (end 0) / back (end 1) is a
+    /// single point (a pole), within sqrt(eps) of the surface size. Surfaces only.
+    std::array<std::array<bool, 2>, 2> collapsed{};
 
-    explicit Layout(const nurbs::Patch& surface) : n_par(surface.n_par())
+    Layout(const nurbs::Patch& surface, double surface_size) : n_par(surface.n_par())
     {
+        if (n_par == 2) {
+            const RowMatrix& cps = surface.control_points();
+            const int n_u = surface.n_basis(0), n_v = surface.n_basis(1);
+            for (int k = 0; k < 2; ++k)
+                for (int end = 0; end < 2; ++end) {
+                    const int fixed = end == 0 ? 0 : (k == 0 ? n_u : n_v) - 1;
+                    const int n_along = k == 0 ? n_v : n_u;
+                    VecN lower = cps.row(k == 0 ? fixed : n_u * fixed).transpose(), upper = lower;
+                    for (int t = 1; t < n_along; ++t) {
+                        const Index a = k == 0 ? fixed + n_u * t : t + n_u * fixed;
+                        lower = lower.cwiseMin(cps.row(a).transpose());
+                        upper = upper.cwiseMax(cps.row(a).transpose());
+                    }
+                    collapsed[k][end] = (upper - lower).norm() <= std::sqrt(machine_eps) * surface_size;
+                }
+        }
         for (int k = 0; k < n_par; ++k) {
             knots[k] = &surface.knots(k);
             pieces[k] = smooth_pieces(*knots[k]);
@@ -104,12 +123,46 @@ struct Sample {
     std::array<int, 3> span{0, 0, 0};  ///< knot index per direction
 };
 
+/// x = P_ref + sum_A R_A (P_A - P_ref), and the derivatives from the same
+/// differences (sum_A dR_A = 0), with P_ref the control point of the largest R_A.
+/// Next to a collapsed edge its coincident control points then cancel exactly,
+/// so the vanishing tangent keeps its relative accuracy instead of drowning in
+/// round-off of the coordinates (which would stall Newton near a pole).
+nurbs::PointDerivatives combine_relative(const nurbs::BasisValues& basis, const RowMatrix& points)
+{
+    const int d = static_cast<int>(points.cols());
+    const int n_local = static_cast<int>(basis.indices.size());
+    Index dominant = 0;
+    basis.R.maxCoeff(&dominant);
+    const VecN reference = points.row(basis.indices[static_cast<std::size_t>(dominant)]).transpose();
+    nurbs::PointDerivatives out;
+    out.x = VecN::Zero(d);
+    if (basis.dR.size() > 0)
+        out.dx = Matrix::Zero(d, basis.dR.cols());
+    if (basis.d2R.size() > 0)
+        out.d2x = Matrix::Zero(d, basis.d2R.cols());
+    for (int a = 0; a < n_local; ++a) {
+        const VecN P = points.row(basis.indices[static_cast<std::size_t>(a)]).transpose() - reference;
+        out.x += basis.R(a) * P;
+        if (basis.dR.size() > 0)
+            out.dx += P * basis.dR.row(a);
+        if (basis.d2R.size() > 0)
+            out.d2x += P * basis.d2R.row(a);
+    }
+    out.x += reference;
+    return out;
+}
+
+/// Point and derivatives on given spans. Curves use nurbs::combine (the 2D
+/// results are those of the first release, bit for bit); surfaces combine
+/// relative to a control point (combine_relative).
 Sample evaluate_on_spans(const nurbs::Patch& surface, const std::array<int, 3>& span, const VecN& xi, int n_derivs)
 {
     Sample s;
     s.span = span;
     s.basis = nurbs::rational_basis(surface, span, xi, n_derivs);
-    s.point = nurbs::combine(s.basis, surface.control_points());
+    s.point = surface.n_par() == 1 ? nurbs::combine(s.basis, surface.control_points())
+                                   : combine_relative(s.basis, surface.control_points());
     return s;
 }
 
@@ -283,7 +336,23 @@ RegionResult newton_in_region(const nurbs::Patch& surface, const Layout& layout,
         r.finite = true;
         r.distance = d.norm();
         const VecN g = A.transpose() * d;
-        const double offset = tangential_offset(M, g);
+        double offset = tangential_offset(M, g);
+        if (n == 2) {
+            const Eigen::Vector2d S = direction_scaling(M);
+            if (S(0) == 0.0 || S(1) == 0.0) {
+                // On a collapsed edge the parameter gradient misses the offset
+                // along the vanishing tangent: measure it in space, against the
+                // tangent plane of the limit normal.
+                std::array<bool, 2> near_lower{true, true};
+                for (int k = 0; k < 2; ++k) {
+                    const std::vector<double>& kv = layout.knots[k]->knot_values();
+                    near_lower[k] = xi(k) - kv[span[k]] <= kv[span[k] + 1] - xi(k);
+                }
+                const VecN normal = side_normal(A, s.point.d2x, 1, near_lower);
+                if (normal.norm() > 0.0)
+                    offset = std::max(offset, (d - d.dot(normal) * normal).norm());
+            }
+        }
         const double tol = options.tolerance * (surface_size + r.distance);
         if (polished == Polish::interior || (polished == Polish::none && offset <= negligible_fraction * tol)) {
             r.converged = true;
@@ -410,6 +479,7 @@ VecN nearest_sample(const nurbs::Patch& surface, const Layout& layout, int regio
     for (int k = 0; k < n; ++k)
         n_samples[k] = layout.knots[k]->degree() + 2;  // enough to separate the local minima of one span
     const int per_element = n_samples[0] * n_samples[1];
+    constexpr double pole_shift = 0.25;  // in sample spacings
 
     std::vector<std::pair<double, int>> order;  // (distance bound, element)
     order.reserve(region_elements.size());
@@ -430,7 +500,16 @@ VecN nearest_sample(const nurbs::Patch& surface, const Layout& layout, int regio
                 const std::array<int, 2> j{ju, jv};
                 for (int k = 0; k < n; ++k) {
                     const std::vector<double>& kv = layout.knots[k]->knot_values();
-                    xi(k) = kv[span[k]] + (kv[span[k] + 1] - kv[span[k]]) * j[k] / (n_samples[k] - 1.0);
+                    const double length = kv[span[k] + 1] - kv[span[k]];
+                    double t = static_cast<double>(j[k]);
+                    // A sample on a collapsed edge (a pole) has no direction along
+                    // the edge to start from: take it a quarter spacing inside.
+                    if (n == 2 && j[k] == 0 && layout.collapsed[k][0] && kv[span[k]] == layout.knots[k]->front())
+                        t = pole_shift;
+                    if (n == 2 && j[k] == n_samples[k] - 1 && layout.collapsed[k][1] &&
+                        kv[span[k] + 1] == layout.knots[k]->back())
+                        t = j[k] - pole_shift;
+                    xi(k) = kv[span[k]] + length * t / (n_samples[k] - 1.0);
                 }
                 const Sample s = evaluate_on_spans(surface, span, xi, 0);
                 const double dist = (s.point.x - x).norm();
@@ -512,7 +591,9 @@ Projection project_to_surface(const nurbs::Patch& surface, int outward_sign, con
     IGA_CHECK(outward_sign == 1 || outward_sign == -1, "contact: outward sign must be +1 or -1");
     IGA_CHECK(!options.start || options.start->size() == n, "contact: warm start must have d-1 parameters");
 
-    const Layout layout(surface);
+    const RowMatrix& cps = surface.control_points();
+    const double surface_size = (cps.colwise().maxCoeff() - cps.colwise().minCoeff()).norm();
+    const Layout layout(surface, surface_size);
     const int n_elements = layout.n_spans[0] * (n > 1 ? layout.n_spans[1] : 1);
 
     // Candidate elements grouped by region, ascending within each.
@@ -539,8 +620,6 @@ Projection project_to_surface(const nurbs::Patch& surface, int outward_sign, con
     if (!x.allFinite() || !surface.control_points().allFinite())
         return failed_projection(d, 0, n_candidates);
 
-    const RowMatrix& cps = surface.control_points();
-    const double surface_size = (cps.colwise().maxCoeff() - cps.colwise().minCoeff()).norm();
 
     std::optional<VecN> start;
     if (options.start && options.start->allFinite()) {

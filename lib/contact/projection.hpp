@@ -24,10 +24,15 @@
 //    A direction whose bound is active with the gradient pointing out is fixed:
 //    Newton continues on the edge (1D), or stops at the corner. A warm start that
 //    fails or stops on a bound is followed by a start from the samples.
-//  - Collapsed edges (a pole, where one tangent vanishes): the linear solves drop
-//    eigen-directions at round-off (a pseudo-inverse), so Newton works on the
-//    remaining direction and never divides by zero; the normal there uses the
-//    mixed derivative x_m,12 in place of the vanishing tangent (its limit).
+//  - Collapsed edges (a pole, where one tangent vanishes): surfaces are evaluated
+//    relative to a control point, so the coincident control points cancel exactly
+//    and a short tangent keeps its relative accuracy; the linear solves scale each
+//    direction by 1/|a_alpha| and drop a direction shorter than 1e4 eps of the
+//    other (a pseudo-inverse), so Newton works on the remaining direction and
+//    never divides by zero. Samples on a collapsed edge are taken a quarter
+//    spacing inside (on the pole itself the azimuth is undefined), and on the
+//    edge orthogonality is measured in space against the limit normal, which uses
+//    the mixed derivative x_m,12 in place of the vanishing tangent.
 //  - The nearest region result wins (at equal distance an orthogonal foot beats a
 //    clamped one). A result clamped at a patch end, gap vector not along the
 //    normal, is off_end; one clamped at an interior C0 crease is at_kink (x lies

@@ -271,10 +271,10 @@ nurbs::Patch refined_cylinder()
 
 TEST(SurfaceProjection, QuarterCylinderMatchesAnalyticFootPoint)
 {
-    const double R = 2.0, L = 3.0;
+    const double R = 2.0, L = 3.0;  // refined_cylinder()
     const nurbs::Patch cyl = refined_cylinder();
     for (const double theta : {0.05, 0.4, std::numbers::pi / 4, 1.3, 1.52})
-        for (const double z : {0.1, 1.5, 2.2, 2.95})
+        for (const double z : {0.03 * L, 0.5 * L, 0.73 * L, 0.98 * L})
             for (const double r : {0.6 * R, 0.98 * R, R, 1.02 * R, 4.0 * R}) {
                 const VecN x = vec3(r * std::cos(theta), r * std::sin(theta), z);
                 const Projection p = project_to_surface(cyl, +1, x);
@@ -349,6 +349,16 @@ TEST(SurfaceProjection, PointAboveTheCollapsedPole)
         EXPECT_TRUE(all_fields_finite(p));
         EXPECT_TRUE(test::at_most((p.point - R * dir).norm(), surface_foot_tolerance)) << "polar " << polar;
         EXPECT_TRUE(test::at_most((p.normal - dir).norm(), surface_derivative_tolerance)) << "polar " << polar;
+    }
+    // Next to the axis at the azimuth of the patch edge u = 1 (90 degrees): a
+    // start on the pole with the azimuth of u = 0 would see no gradient along its
+    // meridian (perpendicular to the offset) and stop at the pole.
+    for (const double rho : {1e-2, 1e-4, 1e-7}) {
+        const VecN x = vec3(0.0, rho, 1.2);
+        const Projection p = project_to_surface(sphere, +1, x);
+        ASSERT_EQ(p.status, Projection::Status::ok) << "rho " << rho;
+        EXPECT_TRUE(test::at_most((p.point - R * x.normalized()).norm(), surface_foot_tolerance)) << "rho " << rho;
+        EXPECT_TRUE(test::at_most((p.normal - x.normalized()).norm(), surface_derivative_tolerance));
     }
     // A warm start at the pole with another azimuth converges too.
     ProjectionOptions options;
