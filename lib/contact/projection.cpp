@@ -316,6 +316,11 @@ RegionResult newton_in_region(const nurbs::Patch& surface, const Layout& layout,
 
     enum class Polish { none, interior, on_bound };
     Polish polished = Polish::none;  // the last step was below tolerance: this evaluation is the answer
+    // Safeguard: the last point that did not increase the distance, and the
+    // trust region's size relative to max_step_fraction.
+    std::optional<VecN> accepted_xi;
+    double accepted_distance = std::numeric_limits<double>::infinity();
+    double radius = 1.0;
     for (int it = 0;; ++it) {
         std::array<int, 3> span{0, 0, 0};
         for (int k = 0; k < n; ++k)
@@ -366,6 +371,19 @@ RegionResult newton_in_region(const nurbs::Patch& surface, const Layout& layout,
             r.sample = std::move(s);
             return r;
         }
+        // A step that increased the distance (beyond round-off) is taken back and
+        // tried again with half the trust region; accepted steps let it grow back.
+        // Newton alone can cycle between two points where f is far from quadratic.
+        constexpr double uphill_tie = 1e-14;  // a few ulps of the coordinates
+        if (accepted_xi && r.distance > accepted_distance + uphill_tie * (surface_size + accepted_distance)) {
+            xi = *accepted_xi;
+            radius *= 0.5;
+            continue;
+        }
+        if (accepted_xi && r.distance < accepted_distance)
+            radius = std::min(1.0, 2.0 * radius);
+        accepted_xi = xi;
+        accepted_distance = r.distance;
 
         // Directions held by an active bound are fixed; Newton goes on in the others.
         std::vector<int> free;
@@ -399,7 +417,7 @@ RegionResult newton_in_region(const nurbs::Patch& surface, const Layout& layout,
         for (std::size_t i = 0; i < free.size(); ++i) {
             const int k = free[i];
             const std::vector<double>& kv = layout.knots[k]->knot_values();
-            max_step(static_cast<Index>(i)) = options.max_step_fraction * (kv[span[k] + 1] - kv[span[k]]);
+            max_step(static_cast<Index>(i)) = radius * options.max_step_fraction * (kv[span[k] + 1] - kv[span[k]]);
             const double step = std::abs(newton_step(static_cast<Index>(i)));
             if (step > max_step(static_cast<Index>(i)) && max_step(static_cast<Index>(i)) / step < scale) {
                 scale = max_step(static_cast<Index>(i)) / step;
