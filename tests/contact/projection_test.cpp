@@ -201,6 +201,23 @@ TEST(Projection, CandidateSpansRestrictTheSearch)
     EXPECT_LT(all.distance, p.distance);
 }
 
+TEST(Projection, SafeguardedNewtonDoesNotCycle)
+{
+    // Far below the rational arch, plain Newton (full Hessian, trust region of
+    // half a span) jumps between two points for ever; taking back the steps that
+    // move away converges to the orthogonal foot, nearer than either end.
+    const nurbs::Patch arch = test::rational_arch();
+    {
+        const VecN x = vec2(0.785831, -1.26881);
+        const Projection p = project_to_surface(arch, test::rational_arch_sign, x);
+        ASSERT_EQ(p.status, Projection::Status::ok) << x.transpose();
+        EXPECT_TRUE(test::at_most(std::abs((x - p.point).dot(p.tangents.col(0))), distance_tolerance * p.distance));
+        EXPECT_LT(p.distance, (x - arch.control_points().row(0).transpose()).norm());
+        EXPECT_LT(p.distance, (x - arch.control_points().row(2).transpose()).norm());
+        EXPECT_LE(p.iterations, 20);
+    }
+}
+
 TEST(Projection, NonFiniteInputFailsWithFiniteFields)
 {
     const nurbs::Patch arc = test::quarter_arc(1.0);
