@@ -371,11 +371,15 @@ RegionResult newton_in_region(const nurbs::Patch& surface, const Layout& layout,
             r.sample = std::move(s);
             return r;
         }
-        // A step that increased the distance (beyond round-off) is taken back and
-        // tried again with half the trust region; accepted steps let it grow back.
         // Newton alone can cycle between two points where f is far from quadratic.
+        // After safeguard_after iterations (plain Newton converges well before:
+        // its paths, and the 2D results of the first release, stay the same), a
+        // step that increased the distance beyond round-off is taken back and
+        // tried again with half the trust region; accepted steps let it grow back.
+        constexpr int safeguard_after = 10;
         constexpr double uphill_tie = 1e-14;  // a few ulps of the coordinates
-        if (accepted_xi && r.distance > accepted_distance + uphill_tie * (surface_size + accepted_distance)) {
+        if (it > safeguard_after && accepted_xi &&
+            r.distance > accepted_distance + uphill_tie * (surface_size + accepted_distance)) {
             xi = *accepted_xi;
             radius *= 0.5;
             continue;

@@ -20,7 +20,10 @@
 //    gradient g = A^T (x_m - x), Hessian H = m_ab + (x_m - x) . x_m,ab with
 //    m_ab = a_a . a_b (Gauss-Newton H = m when H is not positive definite),
 //    a trust region of max_step_fraction of the current span per direction
-//    (the step is scaled, keeping its direction), and clamping to the region box.
+//    (the step is scaled, keeping its direction), and clamping to the region box;
+//    from the 11th iteration on (plain Newton has converged long before, unless
+//    it cycles), a step that increases the distance is taken back and retried
+//    with half the trust region.
 //    A direction whose bound is active with the gradient pointing out is fixed:
 //    Newton continues on the edge (1D), or stops at the corner. A warm start that
 //    fails or stops on a bound is followed by a start from the samples.

@@ -214,7 +214,7 @@ TEST(Projection, SafeguardedNewtonDoesNotCycle)
         EXPECT_TRUE(test::at_most(std::abs((x - p.point).dot(p.tangents.col(0))), distance_tolerance * p.distance));
         EXPECT_LT(p.distance, (x - arch.control_points().row(0).transpose()).norm());
         EXPECT_LT(p.distance, (x - arch.control_points().row(2).transpose()).norm());
-        EXPECT_LE(p.iterations, 20);
+        EXPECT_LE(p.iterations, 25);  // converges after the safeguard starts (iteration 10), well before 30
     }
 }
 
