@@ -180,7 +180,7 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
         const int n_g = static_cast<int>(c.points.size());
         CarrierResult cr;
         cr.surface = c.slave;
-        cr.parameter.resize(n_g);
+        cr.parameter.resize(n_g, 1);
         cr.reference_coordinates.resize(n_g, d);
         cr.coordinates.resize(n_g, d);
         cr.gap = Vector::Constant(n_g, -search_distance_);
@@ -192,7 +192,7 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
             VecN x = VecN::Zero(d);
             for (std::size_t a = 0; a < gp.indices.size(); ++a)
                 x += gp.N(a) * current[c.slave].row(gp.indices[a]).transpose();
-            cr.parameter[g] = gp.eta;
+            cr.parameter(g, 0) = gp.eta;
             cr.reference_coordinates.row(g) = gp.reference.transpose();
             cr.coordinates.row(g) = x.transpose();
             cr.weight(g) = gp.weight;

@@ -74,7 +74,7 @@ enum class PointState {
 /// Gauss point data of one carrying side, n_g points in span order (eta ascending).
 struct CarrierResult {
     int surface = 0;                    ///< 0: the pair's first surface, 1: the second
-    std::vector<double> parameter;      ///< n_g, eta on the side
+    RowMatrix parameter;                ///< n_g x q, the Gauss point's parameters on the side
     RowMatrix reference_coordinates;    ///< n_g x d
     RowMatrix coordinates;              ///< n_g x d, current configuration
     Vector gap;                         ///< n_g, g_N (positive = penetration); far: -search distance, a bound
