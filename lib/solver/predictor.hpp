@@ -16,8 +16,10 @@
 //     dr/dlambda (prescribed displacements through the free-constrained coupling
 //     K_fc u_bar, dead loads, obstacle motion) by a forward difference in lambda
 //     over delta = fd_fraction * dlambda: small enough that the perturbed state is
-//     as admissible as the converged one, large enough that the difference
-//     quotient is far above round-off (relative error ~ eps / fd_fraction).
+//     as admissible as the converged one and the truncation error (relative,
+//     ~fd_fraction times the curvature of r in lambda over the increment) is far
+//     below what one Newton iteration removes, large enough that the round-off of
+//     the difference (eps ||f|| / delta for forces f in play) stays ~1e-10 of them.
 //   extrapolated: u_n + (dlambda / dlambda_prev) (u_n - u_{n-1}) (the linearized
 //     predictor on the first increment, where there is no previous one).
 //
@@ -37,7 +39,7 @@ namespace iga::solver {
 enum class Predictor { none, linearized, extrapolated };
 
 /// Forward-difference step in lambda, as a fraction of the increment (see above).
-inline constexpr double predictor_fd_fraction = 1e-4;
+inline constexpr double predictor_fd_fraction = 1e-6;
 /// Halvings of the predicted step tried before falling back to u_n.
 inline constexpr int predictor_max_halvings = 4;
 
