@@ -69,11 +69,18 @@ Vector predict(const NonlinearSystem& system, Predictor kind, const Vector& u_n,
         return u_n;
     }
 
-    Evaluation trial;
+    Evaluation trial, unpredicted;
     double beta = 1.0;
     for (int halving = 0; halving <= predictor_max_halvings; ++halving, beta *= 0.5) {
         Vector u = u_n + beta * du;
         if (evaluate(system, u, lambda_next, false, trial, context)) {
+            // Safeguard: the prediction must not start Newton further from equilibrium
+            // than no prediction (a contact that the linearization does not see).
+            if (evaluate(system, u_n, lambda_next, false, unpredicted, context) &&
+                unpredicted.residual.norm() <= trial.residual.norm()) {
+                report.note = "the unpredicted start has the smaller residual";
+                return u_n;
+            }
             report.used = true;
             report.fraction = beta;
             if (beta < 1.0) {

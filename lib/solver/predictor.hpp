@@ -25,9 +25,14 @@
 //
 // Admissibility: the predicted state u_n + beta du is evaluated at lambda_{n+1}
 // for beta = 1, 1/2, ..., 1/2^max_halvings; the first whose evaluation succeeds
-// is returned. If none does, or the linearization cannot be formed (failed
+// is kept. If none does, or the linearization cannot be formed (failed
 // evaluation, singular tangent), u_n is returned and Newton starts there as it
-// would without a predictor. Shapes: every vector has n_free entries.
+// would without a predictor. Safeguard: the unpredicted start u_n is also
+// evaluated at lambda_{n+1}; when it is admissible and its ||r|| is not larger
+// than the prediction's, u_n is returned. The linearization does not see contact
+// that the increment closes (two bodies driven towards each other are predicted
+// to overlap by the whole increment), and such a prediction starts Newton far
+// from equilibrium. Shapes: every vector has n_free entries.
 
 #include "core/run_context.hpp"
 #include "core/types.hpp"
