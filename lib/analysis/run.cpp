@@ -225,9 +225,17 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     outcome.warnings = warnings;
     outcome.status = result.completed ? "completed" : "failed";
     outcome.message = result.message;
-    // Name the usual cause of a stiff failure: a penalty so large against E that the
-    // residual's round-off floor (about eps * penalty / E relative) exceeds the tolerance.
-    if (!result.completed && scene.has_contact()) {
+    // Name the cause of a failure with contact. A residual that alternates between two
+    // levels is an active-set (or projection) flip-flop, whatever the penalty. Else the
+    // usual cause of a stiff failure: a penalty so large against E that the residual's
+    // round-off floor (about eps * penalty / E relative) exceeds the tolerance.
+    if (!result.completed && scene.has_contact() &&
+        result.last_failure.trend == solver::ResidualTrend::two_state_cycle) {
+        outcome.message += ". The Newton residual cycles between two states: an active-set (or projection) "
+                           "flip-flop, Gauss points entering and leaving contact (or switching the segment they "
+                           "project onto) on alternate iterations. Use smaller increments (a larger steps.count) "
+                           "or a smaller penalty (about 1e2-1e3 E/h is plenty)";
+    } else if (!result.completed && scene.has_contact()) {
         double E_min = std::numeric_limits<double>::infinity(), penalty_max = 0.0;
         for (const BodyModel& b : scene.bodies)
             E_min = std::min(E_min, b.material.E);

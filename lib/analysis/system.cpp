@@ -23,6 +23,33 @@ Matrix local_displacement(const Vector& u_full, const std::vector<int>& dofs, in
     return u;
 }
 
+std::string point_text(const VecN& p)
+{
+    std::string out = "(";
+    for (Index i = 0; i < p.size(); ++i)
+        out += fmt::format("{}{:.4g}", i > 0 ? ", " : "", p(i));
+    return out + ")";
+}
+
+/// Names the body, the parameter point and the reference and current position
+/// of the Gauss point where an element's evaluation failed.
+std::string inadmissible_message(const std::string& body, const mechanics::ElementGeometry& element,
+                                 const mechanics::ElementResponse& response, const Matrix& u_local)
+{
+    const std::string what =
+        response.status == mechanics::ResponseStatus::inverted
+            ? fmt::format("inadmissible deformation (det F = {:.3g})", response.det_F)
+        : response.status == mechanics::ResponseStatus::ok
+            ? std::string("non-finite internal force")
+            : fmt::format("material evaluation failed (plane-stress iteration, det F = {:.3g})", response.det_F);
+    if (response.failed_point < 0 || response.failed_point >= static_cast<int>(element.points.size()))
+        return fmt::format("{} in body '{}'", what, body);
+    const mechanics::QuadraturePoint& q = element.points[static_cast<std::size_t>(response.failed_point)];
+    const VecN x = q.X + mechanics::point_displacement(q, u_local);
+    return fmt::format("{} in body '{}' at parameter {}, X = {}, x = {}", what, body, point_text(q.xi), point_text(q.X),
+                       point_text(x));
+}
+
 }  // namespace
 
 SceneSystem::SceneSystem(Scene& scene, RunContext& context, int requested_threads)
@@ -59,6 +86,9 @@ solver::NonlinearSystem SceneSystem::nonlinear_system()
     system.symmetric = !scene_.has_contact() && !follower;
     // A trust radius only where a singular first touch can send a step far away.
     system.max_step = scene_.has_contact() ? 0.05 * scene_.model_size : 0.0;
+    const assembly::DofMap& dofs = *scene_.dofs;
+    for (int k = 0; k < dofs.n_full() && !system.prescribed_motion; ++k)
+        system.prescribed_motion = dofs.is_constrained(k) && dofs.prescribed(k) != 0.0;
     return system;
 }
 
@@ -139,21 +169,23 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
         std::atomic<bool> failed{false};
         std::mutex message_mutex;
         std::string failure;
+        int failed_block = scene_.n_element_blocks;  // the lowest failed block names the failure (deterministic)
         pattern.for_each_block(
             [&](int block) {
                 if (block >= scene_.n_element_blocks)
                     return;
                 const std::vector<int>& dofs = dofs_of(block);
                 Vector& f = element_force_[static_cast<std::size_t>(block)];
-                const mechanics::ElementResponse response = mechanics::element_response(
-                    element_of(block), body_of(block).material, scene_.kinematics, local_displacement(u_full, dofs, d));
+                const Matrix u_local = local_displacement(u_full, dofs, d);
+                const mechanics::ElementResponse response =
+                    mechanics::element_response(element_of(block), body_of(block).material, scene_.kinematics, u_local);
                 if (response.status != mechanics::ResponseStatus::ok || !response.f_int.allFinite()) {
                     failed.store(true);
                     std::lock_guard<std::mutex> lock(message_mutex);
-                    if (failure.empty())
-                        failure = fmt::format("body '{}': inadmissible deformation in element {} (det F <= 0 or "
-                                              "material evaluation failed)",
-                                              body_of(block).name, owner_[static_cast<std::size_t>(block)].element);
+                    if (block < failed_block) {
+                        failed_block = block;
+                        failure = inadmissible_message(body_of(block).name, element_of(block), response, u_local);
+                    }
                     f = Vector::Zero(static_cast<Index>(dofs.size()));
                     return;
                 }
