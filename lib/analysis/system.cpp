@@ -89,6 +89,12 @@ solver::NonlinearSystem SceneSystem::nonlinear_system()
     const assembly::DofMap& dofs = *scene_.dofs;
     for (int k = 0; k < dofs.n_full() && !system.prescribed_motion; ++k)
         system.prescribed_motion = dofs.is_constrained(k) && dofs.prescribed(k) != 0.0;
+    // A moving rigid obstacle drives the bodies like a prescribed displacement does.
+    for (const PairModel& pair : scene_.pairs)
+        if (pair.obstacle >= 0) {
+            const auto& obstacle = std::get<contact::RigidObstacle>(pair.pair.surface(pair.obstacle));
+            system.prescribed_motion = system.prescribed_motion || (obstacle.motion.size() > 0 && obstacle.motion.norm() > 0.0);
+        }
     return system;
 }
 
