@@ -183,6 +183,8 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
             r.postprocessed.coordinates = recovered.coordinates;
             r.postprocessed.reference_coordinates = recovered.reference_coordinates;
             r.postprocessed.pressure = recovered.pressure;
+            if (recovered.parameter.cols() == 2)
+                r.postprocessed.grid = {recovered.grid[1], recovered.grid[0]};  // [n_v, n_u]
             r.normal_force = recovered.normal_force;
             int active = 0;
             double penetration = 0.0, contact_measure = 0.0;

@@ -127,7 +127,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
                 x.sides.push_back({"/steps/" + io::step_group_name(step.index) + "/contact/" + pair.name + "/" +
                                        side.side_name,
                                    pair.name + " " + side.side_name, side.gauss_points.coordinates.rows(),
-                                   side.postprocessed.coordinates.rows(), scene.dim});
+                                   side.postprocessed.coordinates.rows(), scene.dim, side.postprocessed.grid[1],
+                                   side.postprocessed.grid[0]});
         return x;
     };
 

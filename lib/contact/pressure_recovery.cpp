@@ -66,6 +66,7 @@ RecoveredPressure recover_pressure(const nurbs::Patch& side_reference, const Row
     const Index n_u = static_cast<Index>(axis[0].size());
     const Index n_v = q == 2 ? static_cast<Index>(axis[1].size()) : 1;
     const Index n_s = n_u * n_v;
+    out.grid = {n_u, n_v};
     const int d = side_reference.dim();
     const RowMatrix current = side_reference.control_points() + side_displacement;
     out.parameter.resize(n_s, q);

@@ -20,6 +20,7 @@
 #include "core/types.hpp"
 #include "nurbs/patch.hpp"
 
+#include <array>
 #include <vector>
 
 namespace iga::contact {
@@ -27,6 +28,7 @@ namespace iga::contact {
 struct RecoveredPressure {
     Vector control_point_pressure;   ///< n_cp, p_A
     RowMatrix parameter;             ///< n_s x q, sample parameters (u fastest)
+    std::array<Index, 2> grid{0, 0}; ///< surfaces: (n_u, n_v) samples per direction; curves: (n_s, 1)
     RowMatrix coordinates;           ///< n_s x d, current configuration
     RowMatrix reference_coordinates; ///< n_s x d
     Vector pressure;                 ///< n_s, p^h at the samples
