@@ -4,7 +4,6 @@
 // makes its normal point out of the parent and one rule for collapsed and degenerate
 // sides. Loads (mechanics/loads) and contact both read sides through this object, in
 // the spirit of deal.II's FEFaceValues<dim, spacedim> and G+Smo's boundaryBasis(side).
-// The derivation is in docs/theory.md, "Side geometry".
 //
 // Notation (d = 2 or 3, Greek indices alpha, beta = 1..d-1 run over the side's own
 // parameters s, in the parent's order with the fixed direction removed):
