@@ -2,6 +2,7 @@
 #include "analysis/size_estimate.hpp"
 
 #include "analysis/constraints.hpp"
+#include "boundary/patch_side.hpp"
 #include "analysis/geometry.hpp"
 #include "analysis/obstacles.hpp"
 #include "io/locate.hpp"
@@ -159,7 +160,12 @@ Scene build_scene(const io::Deck& deck)
             }
             continue;
         }
-        mechanics::SideQuadrature side = mechanics::side_quadrature(body.patch, *load.side);
+        mechanics::SideQuadrature side;
+        try {
+            side = mechanics::side_quadrature(body.patch, *load.side);
+        } catch (const boundary::FoldedSide& e) {
+            throw DeckError(body_issue(deck, fmt::format("loads.{}.side", load_index), e.what()));
+        }
         if (load.kind == io::LoadKind::traction || load.kind == io::LoadKind::force) {
             VecN traction = to_vec(load.vector);
             if (load.kind == io::LoadKind::force) {
