@@ -30,6 +30,10 @@ public:
     explicit Condensation(std::vector<int> condensed_dofs);
     ~Condensation();
 
+    /// The next factorize() rebuilds its block maps and interior factorization:
+    /// K's sparsity pattern changed (LinearSolver calls it; a change of the number
+    /// of nonzeros or rows is detected without it).
+    void new_pattern() { pattern_nnz_ = -1; }
     /// Factorizes K (see above). ok, or singular when K_II or S is singular.
     LinearStatus factorize(const SparseMatrix& K);
     /// x = K^-1 b with the last successful factorization.
