@@ -148,7 +148,9 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     // the decks in inputs/; README "Contact cost"), linear_solve seconds, condensed
     // vs one sparse LU per iteration: n_C = 99 (punch, 1.7k dofs) 0.10 vs 0.80;
     // 153 (hertz, 3.1k) 0.45 vs 0.53; 306 (two cylinders, 6.0k) 1.08 vs 2.68;
-    // 652 (squeeze, 26k) 10.8 vs 32.9; SQUEEZE_BIG. Rule: condense under small
+    // 652 (squeeze, 26k) 10.8 vs 32.9; 2012 (squeeze refined, 81k) 371 vs more than
+    // 600 s (stopped at half the load); 1.2 GB for the condensed run. The dense
+    // S and W (2 n_C^2 doubles each per cached interior) bound n_C by memory first. Rule: condense under small
     // kinematics, without follower pressures, when n_C <= max_condensed_dofs.
     {
         std::vector<int> condensed = contact_free_dofs(scene);
