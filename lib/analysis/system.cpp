@@ -145,17 +145,21 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
     };
 
     // Small kinematics: the element stiffness matrices are computed and assembled
-    // once; afterwards f_int = K_e u_e element by element.
-    if (small && !small_stiffness_) {
-        SparseMatrix K0 = pattern.make_matrix();
+    // once (again, from the stored K_e, when a contact coupling extended the
+    // pattern); afterwards f_int = K_e u_e element by element.
+    if (small && element_stiffness_.empty()) {
         element_stiffness_.resize(static_cast<std::size_t>(scene_.n_element_blocks));
         for (int block = 0; block < scene_.n_element_blocks; ++block) {  // once per run: not worth threads
             const mechanics::ElementGeometry& geometry = element_of(block);
             mechanics::ElementResponse response = mechanics::element_response(
                 geometry, body_of(block).material, scene_.kinematics, Matrix::Zero(geometry.n_local(), d));
-            pattern.add(block, response.K, K0);
             element_stiffness_[static_cast<std::size_t>(block)] = std::move(response.K);
         }
+    }
+    if (small && (!small_stiffness_ || !pattern.matches(*small_stiffness_))) {
+        SparseMatrix K0 = pattern.make_matrix();
+        for (int block = 0; block < scene_.n_element_blocks; ++block)
+            pattern.add(block, element_stiffness_[static_cast<std::size_t>(block)], K0);
         small_stiffness_ = std::move(K0);
     }
 
@@ -237,6 +241,21 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
     const int d = scene_.dim;
     const Vector u_full = dofs.expand(u_free, load_factor);
 
+    // Contact first: a coupling that the pattern lacks (a Gauss point slid onto a
+    // master element not registered yet) extends it before the tangent is made, so
+    // every block of this evaluation has its place and K has one pattern throughout.
+    std::vector<contact::PairEvaluation> contact;
+    if (scene_.has_contact()) {  // no pairs: not even a timer runs
+        ScopedTimer timer(context, "contact");
+        contact.reserve(scene_.pairs.size());
+        for (std::size_t p = 0; p < scene_.pairs.size(); ++p)
+            contact.push_back(scene_.pairs[p].pair.evaluate(side_displacement(u_full, static_cast<int>(p), 0),
+                                                            side_displacement(u_full, static_cast<int>(p), 1),
+                                                            need_tangent, context, load_factor));
+        if (need_tangent)
+            register_couplings(contact, context);
+    }
+
     Vector r_full = Vector::Zero(dofs.n_full());
     if (need_tangent) {
         if (!pattern.matches(out.tangent))
@@ -275,17 +294,14 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
         }
     }
 
-    // Contact pairs.
+    // Contact pairs: residuals, and each coupling's block into its pattern block.
     double contact_norm = 0.0;
     int active = 0;
-    if (scene_.has_contact()) {  // no pairs: not even a timer runs
+    if (scene_.has_contact()) {
         ScopedTimer timer(context, "contact");
         for (std::size_t p = 0; p < scene_.pairs.size(); ++p) {
-            PairModel& pair = scene_.pairs[p];
-            const contact::PairEvaluation c =
-                pair.pair.evaluate(side_displacement(u_full, static_cast<int>(p), 0),
-                                   side_displacement(u_full, static_cast<int>(p), 1), need_tangent, context,
-                                   load_factor);
+            const PairModel& pair = scene_.pairs[p];
+            const contact::PairEvaluation& c = contact[p];
             if (!c.ok) {
                 out.ok = false;
                 out.message = fmt::format("contact pair '{}': {}", pair.name, c.message);
@@ -295,13 +311,9 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
             for (std::size_t k = 0; k < pair.local_to_full.size(); ++k)
                 r_full(pair.local_to_full[k]) += c.residual(static_cast<Index>(k));
             contact_norm += c.residual.norm();
-            if (need_tangent && !c.tangent.empty()) {
-                const Index n = static_cast<Index>(pair.local_to_full.size());
-                Matrix K_local = Matrix::Zero(n, n);
-                for (const Triplet& t : c.tangent)
-                    K_local(t.row(), t.col()) += t.value();
-                pattern.add(pair.block, K_local, out.tangent);
-            }
+            if (need_tangent)
+                for (const contact::LocalBlock& block : c.tangent)
+                    pattern.add(pair.blocks.at(block.element), block.K, out.tangent);
         }
     }
     last_active_ = active;
@@ -314,6 +326,30 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
         out.ok = false;
         out.message = "the residual is not finite";
     }
+}
+
+void SceneSystem::register_couplings(const std::vector<contact::PairEvaluation>& contact, RunContext* context)
+{
+    std::vector<std::vector<int>> new_blocks;
+    std::vector<std::pair<std::size_t, contact::Coupling>> owners;
+    for (std::size_t p = 0; p < scene_.pairs.size(); ++p) {
+        const PairModel& pair = scene_.pairs[p];
+        for (const contact::LocalBlock& block : contact[p].tangent)
+            if (!pair.blocks.contains(block.element)) {
+                owners.emplace_back(p, block.element);
+                new_blocks.push_back(coupling_full_dofs(pair, block.element));
+            }
+    }
+    if (new_blocks.empty())
+        return;
+    const Index nnz_before = scene_.pattern->n_nonzeros();
+    const int first = scene_.pattern->extend(std::move(new_blocks));
+    for (std::size_t k = 0; k < owners.size(); ++k)
+        scene_.pairs[owners[k].first].blocks.emplace(owners[k].second, first + static_cast<int>(k));
+    if (context)
+        context->log(Verbosity::verbose,
+                     fmt::format("  contact: {} new coupling(s) registered, {} new tangent entries", owners.size(),
+                                 scene_.pattern->n_nonzeros() - nnz_before));
 }
 
 std::vector<contact::PairEvaluation> SceneSystem::contact_state(const Vector& u_free, double load_factor)
