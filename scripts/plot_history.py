@@ -8,8 +8,8 @@ Reads /history (results.md, "Additions"): load_factor (n), reactions/<body.side>
 increment. Draws every reaction component that is not zero throughout and every
 contact normal force. The abscissa is the load factor, or, when the deck (the
 /deck text) prescribes a displacement, the prescribed displacement of the first
-constraint with a non-zero prescribed component: x = load factor x that value
-(prescribed displacements scale with the load factor). Writes RESULTS_history.png
+constraint with a non-zero prescribed component, else the first non-zero motion of a
+rigid obstacle: x = load factor x that value (both scale with the load factor). Writes RESULTS_history.png
 (or -o) with the Agg backend and prints its path.
 Needs numpy, h5py, matplotlib and yaml (/usr/bin/python3 on the project machines).
 """
@@ -61,6 +61,14 @@ def prescribed_displacement(deck):
             if value is not None and float(value) != 0.0:
                 where = c.get("side") or c.get("surface") or "?"
                 return f"{c.get('body', '?')}.{where} u_{COMPONENTS[k]}", float(value)
+    # No prescribed displacement: a moving rigid obstacle drives the scene.
+    for b in deck.get("bodies") or []:
+        rigid = b.get("rigid") if isinstance(b, dict) else None
+        motion = rigid.get("motion") if isinstance(rigid, dict) else None
+        if isinstance(motion, list):
+            for k, value in enumerate(motion):
+                if value is not None and float(value) != 0.0:
+                    return f"{b.get('name', '?')} motion {COMPONENTS[k]}", float(value)
     return None
 
 
@@ -75,7 +83,7 @@ def history_series(h5):
         x, x_label = load, "load factor"
     else:
         label, value = prescribed
-        x, x_label = load * value, f"prescribed displacement {label} (load factor x {value:g})"
+        x, x_label = load * value, f"imposed displacement {label} (load factor x {value:g})"
 
     curves = []
     if "reactions" in history:

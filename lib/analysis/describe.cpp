@@ -46,9 +46,7 @@ std::string describe_bodies(const io::Deck& deck)
         }
         out += fmt::format("#   {}: degrees [{}], spans [{}], {} control points\n", body.name, degrees, spans,
                            patch.n_control_points());
-        std::vector<std::pair<std::string, std::string>> meanings;
-        if (body.shape)
-            meanings = nurbs::shape_side_names(std::string(io::deck_name(body.shape->type)));
+        const std::vector<std::pair<std::string, std::string>> meanings = side_meanings(body);
         for (int k = 0; k < 2 * patch.n_par(); ++k) {
             const Side side = static_cast<Side>(k);
             std::string meaning = generic_side_meaning(side);

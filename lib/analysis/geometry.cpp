@@ -1,5 +1,6 @@
 #include "analysis/geometry.hpp"
 
+#include "io/deck_names.hpp"
 #include "nurbs/refine.hpp"
 #include "nurbs/shapes.hpp"
 
@@ -24,17 +25,32 @@ nurbs::Patch raw_patch(const io::NurbsData& data, int dimension)
     return nurbs::Patch(std::move(knots), std::move(points), std::move(weights));
 }
 
-nurbs::Patch shape_patch(const io::Shape& shape)
+nurbs::Patch planar_or_solid_shape(const io::Shape& shape)
 {
     switch (shape.type) {
     case io::ShapeType::half_disc: return nurbs::half_disc(to_vec(shape.center), shape.radius);
     case io::ShapeType::quarter_disc: return nurbs::quarter_disc(to_vec(shape.center), shape.radius);
     case io::ShapeType::rectangle: return nurbs::rectangle(to_vec(shape.corner), to_vec(shape.size));
+    case io::ShapeType::sphere_octant: return nurbs::sphere_octant(to_vec(shape.center), shape.radius);
+    case io::ShapeType::box: return nurbs::box(to_vec(shape.corner), to_vec(shape.size));
     }
     throw Error("unknown shape type");
 }
 
+nurbs::Patch shape_patch(const io::Shape& shape)
+{
+    nurbs::Patch patch = planar_or_solid_shape(shape);
+    return shape.extrude ? nurbs::extrude(patch, *shape.extrude) : patch;
+}
+
 }  // namespace
+
+std::vector<std::pair<std::string, std::string>> side_meanings(const io::Body& body)
+{
+    if (!body.shape)
+        return {};
+    return nurbs::shape_side_names(std::string(io::deck_name(body.shape->type)), body.shape->extrude.has_value());
+}
 
 nurbs::Patch build_patch(const io::Body& body, int dimension)
 {

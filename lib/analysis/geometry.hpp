@@ -1,10 +1,15 @@
 #pragma once
 // From a deck body to the analysed NURBS patch: the raw NURBS data or the
-// built-in shape, then the refinement of the deck in its fixed order
-// (elevate, uniform spans, inserted knots). Refinement preserves the geometry.
+// built-in shape (a 2D shape extruded along z in a 3D deck), then the
+// refinement of the deck in its fixed order (elevate, uniform spans, inserted
+// knots). Refinement preserves the geometry.
 
 #include "io/deck.hpp"
 #include "nurbs/patch.hpp"
+
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace iga::analysis {
 
@@ -13,6 +18,11 @@ inline VecN to_vec(const std::vector<double>& v)
 {
     return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Index>(v.size()));
 }
+
+/// Side name -> one-line meaning for a body made from a built-in shape (extruded
+/// or not), as `check` prints them and the results file stores them; empty for
+/// a body given as raw NURBS.
+std::vector<std::pair<std::string, std::string>> side_meanings(const io::Body& body);
 
 /// The refined patch of a deformable body. Precondition: !body.rigid.
 nurbs::Patch build_patch(const io::Body& body, int dimension);

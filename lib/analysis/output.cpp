@@ -175,9 +175,7 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
             r.side_name = model.label[static_cast<std::size_t>(carrier.surface)];
             r.gauss_points.coordinates = carrier.coordinates;
             r.gauss_points.reference_coordinates = carrier.reference_coordinates;
-            r.gauss_points.parameter.resize(static_cast<Index>(carrier.parameter.size()), 1);
-            for (std::size_t g = 0; g < carrier.parameter.size(); ++g)
-                r.gauss_points.parameter(static_cast<Index>(g), 0) = carrier.parameter[g];
+            r.gauss_points.parameter = carrier.parameter;
             r.gauss_points.gap = carrier.gap;
             r.gauss_points.pressure = carrier.pressure;
             r.gauss_points.weight = carrier.weight;
@@ -185,6 +183,8 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
             r.postprocessed.coordinates = recovered.coordinates;
             r.postprocessed.reference_coordinates = recovered.reference_coordinates;
             r.postprocessed.pressure = recovered.pressure;
+            if (recovered.parameter.cols() == 2)
+                r.postprocessed.grid = {recovered.grid[1], recovered.grid[0]};  // [n_v, n_u]
             r.normal_force = recovered.normal_force;
             int active = 0;
             double penetration = 0.0, contact_measure = 0.0;

@@ -17,12 +17,16 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <limits>
 #include <optional>
 
 namespace iga::analysis {
 
 namespace {
+
+/// Condensation onto the contact dofs only up to this many of them (see run()).
+constexpr int max_condensed_dofs = 1500;
 
 solver::NewtonSettings newton_settings(const io::Newton& n)
 {
@@ -127,7 +131,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
                 x.sides.push_back({"/steps/" + io::step_group_name(step.index) + "/contact/" + pair.name + "/" +
                                        side.side_name,
                                    pair.name + " " + side.side_name, side.gauss_points.coordinates.rows(),
-                                   side.postprocessed.coordinates.rows(), scene.dim});
+                                   side.postprocessed.coordinates.rows(), scene.dim, side.postprocessed.grid[1],
+                                   side.postprocessed.grid[0]});
         return x;
     };
 
@@ -135,10 +140,33 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     solver::LinearSolver linear(nonlinear.symmetric ? solver::LinearSolver::Kind::cholesky
                                                     : solver::LinearSolver::Kind::lu);
     Vector u = Vector::Zero(scene.dofs->n_free());
-    // Small kinematics with contact: only the contact sides' rows of the tangent change,
-    // so condense onto them (the elastic interior is factorized once per run).
-    if (scene.kinematics == mechanics::Kinematics::small && scene.has_contact() && scene.followers.empty())
-        linear.set_condensed_dofs(contact_free_dofs(scene));
+    // Small kinematics with contact: only the contact sides' rows and columns of the
+    // tangent change, so condensing onto them (solver/condensation.hpp) factorizes the
+    // elastic interior once per run and then only a dense n_C x n_C Schur complement
+    // per iteration. It pays only while n_C is small: the dense LU costs (2/3) n_C^3
+    // and W, S hold 2 n_C^2 doubles per cached interior, whereas one sparse LU of the
+    // whole tangent grows far slower. Measured (scripts/bench_contact_cost.py and
+    // the decks in inputs/; README "Contact cost"), linear_solve seconds, condensed
+    // vs one sparse LU per iteration: n_C = 99 (punch, 1.7k dofs) 0.10 vs 0.80;
+    // 153 (hertz, 3.1k) 0.45 vs 0.53; 306 (two cylinders, 6.0k) 1.08 vs 2.68;
+    // 652 (squeeze, 26k) 10.8 vs 32.9; 2012 (squeeze refined, 81k) 371 vs more than
+    // 600 s (stopped at half the load); 1.2 GB for the condensed run. The dense
+    // S and W (2 n_C^2 doubles each per cached interior) bound n_C by memory first. Rule: condense under small
+    // kinematics, without follower pressures, when n_C <= max_condensed_dofs.
+    {
+        std::vector<int> condensed = contact_free_dofs(scene);
+        std::sort(condensed.begin(), condensed.end());
+        condensed.erase(std::unique(condensed.begin(), condensed.end()), condensed.end());
+        const int n_condensed = static_cast<int>(condensed.size());
+        const bool condense = scene.kinematics == mechanics::Kinematics::small && scene.has_contact() &&
+                              scene.followers.empty() && n_condensed <= max_condensed_dofs;
+        if (condense)
+            linear.set_condensed_dofs(std::move(condensed));
+        if (scene.has_contact())
+            context.log(Verbosity::verbose,
+                        fmt::format("  linear solver: {} ({} contact dofs)", condense ? "condensed" : "sparse LU",
+                                    n_condensed));
+    }
 
     std::vector<std::string> warnings;
     auto warn = [&](const std::vector<std::string>& lines) {
@@ -225,9 +253,17 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     outcome.warnings = warnings;
     outcome.status = result.completed ? "completed" : "failed";
     outcome.message = result.message;
-    // Name the usual cause of a stiff failure: a penalty so large against E that the
-    // residual's round-off floor (about eps * penalty / E relative) exceeds the tolerance.
-    if (!result.completed && scene.has_contact()) {
+    // Name the cause of a failure with contact. A residual that alternates between two
+    // levels is an active-set (or projection) flip-flop, whatever the penalty. Else the
+    // usual cause of a stiff failure: a penalty so large against E that the residual's
+    // round-off floor (about eps * penalty / E relative) exceeds the tolerance.
+    if (!result.completed && scene.has_contact() &&
+        result.last_failure.trend == solver::ResidualTrend::two_state_cycle) {
+        outcome.message += ". The Newton residual cycles between two states: an active-set (or projection) "
+                           "flip-flop, Gauss points entering and leaving contact (or switching the segment they "
+                           "project onto) on alternate iterations. Use smaller increments (a larger steps.count) "
+                           "or a smaller penalty (about 1e2-1e3 E/h is plenty)";
+    } else if (!result.completed && scene.has_contact()) {
         double E_min = std::numeric_limits<double>::infinity(), penalty_max = 0.0;
         for (const BodyModel& b : scene.bodies)
             E_min = std::min(E_min, b.material.E);

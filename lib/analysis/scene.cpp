@@ -2,6 +2,7 @@
 #include "analysis/size_estimate.hpp"
 
 #include "analysis/constraints.hpp"
+#include "boundary/patch_side.hpp"
 #include "analysis/geometry.hpp"
 #include "analysis/obstacles.hpp"
 #include "io/locate.hpp"
@@ -58,6 +59,14 @@ std::vector<int> dofs_of(const assembly::DofMap& dofs, int body, const std::vect
 }
 
 }  // namespace
+
+std::vector<int> coupling_full_dofs(const PairModel& pair, const contact::Coupling& coupling)
+{
+    std::vector<int> full = pair.pair.coupling_dofs(coupling);
+    for (int& dof : full)
+        dof = pair.local_to_full[static_cast<std::size_t>(dof)];
+    return full;
+}
 
 Scene build_scene(const io::Deck& deck)
 {
@@ -159,7 +168,12 @@ Scene build_scene(const io::Deck& deck)
             }
             continue;
         }
-        mechanics::SideQuadrature side = mechanics::side_quadrature(body.patch, *load.side);
+        mechanics::SideQuadrature side;
+        try {
+            side = mechanics::side_quadrature(body.patch, *load.side);
+        } catch (const boundary::FoldedSide& e) {
+            throw DeckError(body_issue(deck, fmt::format("loads.{}.side", load_index), e.what()));
+        }
         if (load.kind == io::LoadKind::traction || load.kind == io::LoadKind::force) {
             VecN traction = to_vec(load.vector);
             if (load.kind == io::LoadKind::force) {
@@ -230,8 +244,7 @@ Scene build_scene(const io::Deck& deck)
                                            "cannot use this pair: " + reason));
             }
         }();
-        PairModel model{c.name, std::move(pair), body, parent, label, {}, static_cast<int>(blocks.size()), -1,
-                        settings.formulation};
+        PairModel model{c.name, std::move(pair), body, parent, label, {}, {}, -1, settings.formulation};
         for (int k = 0; k < 2; ++k)
             if (body[k] < 0)
                 model.obstacle = k;
@@ -244,7 +257,10 @@ Scene build_scene(const io::Deck& deck)
             }
         IGA_CHECK(static_cast<int>(model.local_to_full.size()) == model.pair.n_local_dofs(),
                   "contact pair local numbering does not match its sides");
-        blocks.push_back(model.local_to_full);
+        for (const contact::Coupling& coupling : model.pair.candidate_couplings()) {
+            model.blocks.emplace(coupling, static_cast<int>(blocks.size()));
+            blocks.push_back(coupling_full_dofs(model, coupling));
+        }
         scene.pairs.push_back(std::move(model));
     }
 

@@ -6,8 +6,12 @@
 //
 // Block order in the pattern: every element of every body (body order, element
 // order of Patch::elements()), then one block per side element carrying a
-// follower pressure in finite kinematics, then one block per contact pair
-// (all dofs of both sides, in the pair's local order).
+// follower pressure in finite kinematics, then for each contact pair one block
+// per candidate coupling (a slave side element and a master side element within
+// the search margin in the reference configuration, or a side element against a
+// rigid obstacle; contact::ContactPair::candidate_couplings), in coupling order.
+// Couplings met later (sliding) are appended by SceneSystem through
+// SparsePattern::extend (PairModel::blocks records them all).
 //
 // Only the effects the deck calls for are built: no contact pairs means no
 // contact data at all; small kinematics caches the constant element stiffness.
@@ -21,6 +25,7 @@
 #include "mechanics/material.hpp"
 #include "nurbs/patch.hpp"
 
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -60,7 +65,7 @@ struct PairModel {
     std::array<std::vector<int>, 2> parent_index;    ///< side control point -> body control point
     std::array<std::string, 2> label;                ///< "cylinder.v0" or the rigid body's name
     std::vector<int> local_to_full;                  ///< pair-local dof -> full dof
-    int block = 0;
+    std::map<contact::Coupling, int> blocks;         ///< registered coupling -> pattern block
     int obstacle = -1;                               ///< surface index (0/1) of a rigid obstacle, -1 if none
     contact::Formulation formulation = contact::Formulation::two_half_pass;
 };
@@ -81,6 +86,9 @@ struct Scene {
 
     bool has_contact() const { return !pairs.empty(); }
 };
+
+/// Full dofs of a coupling of pair p, in contact::LocalBlock::dofs order.
+std::vector<int> coupling_full_dofs(const PairModel& pair, const contact::Coupling& coupling);
 
 /// Builds the scene. Geometry problems (a refinement that cannot be applied, a
 /// non-positive Jacobian) are reported as DeckError naming the body.

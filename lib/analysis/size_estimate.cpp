@@ -39,11 +39,9 @@ std::vector<Direction> base_directions(const io::Body& body)
             out.push_back(dir);
         }
     } else if (body.shape) {
-        // nurbs/shapes.hpp: one span per direction, linear in v.
-        const double u_degree = body.shape->type == io::ShapeType::half_disc      ? 3
-                                : body.shape->type == io::ShapeType::quarter_disc ? 2
-                                                                                  : 1;
-        out = {Direction{u_degree, 0, 0}, Direction{1, 0, 0}};
+        // nurbs/shapes.hpp: one span per direction.
+        for (int degree : io::shape_degrees(*body.shape))
+            out.push_back(Direction{static_cast<double>(degree), 0, 0});
     }
     const io::Refine& r = body.refine;
     for (std::size_t i = 0; i < out.size(); ++i) {

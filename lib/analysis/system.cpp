@@ -23,6 +23,33 @@ Matrix local_displacement(const Vector& u_full, const std::vector<int>& dofs, in
     return u;
 }
 
+std::string point_text(const VecN& p)
+{
+    std::string out = "(";
+    for (Index i = 0; i < p.size(); ++i)
+        out += fmt::format("{}{:.4g}", i > 0 ? ", " : "", p(i));
+    return out + ")";
+}
+
+/// Names the body, the parameter point and the reference and current position
+/// of the Gauss point where an element's evaluation failed.
+std::string inadmissible_message(const std::string& body, const mechanics::ElementGeometry& element,
+                                 const mechanics::ElementResponse& response, const Matrix& u_local)
+{
+    const std::string what =
+        response.status == mechanics::ResponseStatus::inverted
+            ? fmt::format("inadmissible deformation (det F = {:.3g})", response.det_F)
+        : response.status == mechanics::ResponseStatus::ok
+            ? std::string("non-finite internal force")
+            : fmt::format("material evaluation failed (plane-stress iteration, det F = {:.3g})", response.det_F);
+    if (response.failed_point < 0 || response.failed_point >= static_cast<int>(element.points.size()))
+        return fmt::format("{} in body '{}'", what, body);
+    const mechanics::QuadraturePoint& q = element.points[static_cast<std::size_t>(response.failed_point)];
+    const VecN x = q.X + mechanics::point_displacement(q, u_local);
+    return fmt::format("{} in body '{}' at parameter {}, X = {}, x = {}", what, body, point_text(q.xi), point_text(q.X),
+                       point_text(x));
+}
+
 }  // namespace
 
 SceneSystem::SceneSystem(Scene& scene, RunContext& context, int requested_threads)
@@ -59,6 +86,15 @@ solver::NonlinearSystem SceneSystem::nonlinear_system()
     system.symmetric = !scene_.has_contact() && !follower;
     // A trust radius only where a singular first touch can send a step far away.
     system.max_step = scene_.has_contact() ? 0.05 * scene_.model_size : 0.0;
+    const assembly::DofMap& dofs = *scene_.dofs;
+    for (int k = 0; k < dofs.n_full() && !system.prescribed_motion; ++k)
+        system.prescribed_motion = dofs.is_constrained(k) && dofs.prescribed(k) != 0.0;
+    // A moving rigid obstacle drives the bodies like a prescribed displacement does.
+    for (const PairModel& pair : scene_.pairs)
+        if (pair.obstacle >= 0) {
+            const auto& obstacle = std::get<contact::RigidObstacle>(pair.pair.surface(pair.obstacle));
+            system.prescribed_motion = system.prescribed_motion || (obstacle.motion.size() > 0 && obstacle.motion.norm() > 0.0);
+        }
     return system;
 }
 
@@ -109,17 +145,21 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
     };
 
     // Small kinematics: the element stiffness matrices are computed and assembled
-    // once; afterwards f_int = K_e u_e element by element.
-    if (small && !small_stiffness_) {
-        SparseMatrix K0 = pattern.make_matrix();
+    // once (again, from the stored K_e, when a contact coupling extended the
+    // pattern); afterwards f_int = K_e u_e element by element.
+    if (small && element_stiffness_.empty()) {
         element_stiffness_.resize(static_cast<std::size_t>(scene_.n_element_blocks));
         for (int block = 0; block < scene_.n_element_blocks; ++block) {  // once per run: not worth threads
             const mechanics::ElementGeometry& geometry = element_of(block);
             mechanics::ElementResponse response = mechanics::element_response(
                 geometry, body_of(block).material, scene_.kinematics, Matrix::Zero(geometry.n_local(), d));
-            pattern.add(block, response.K, K0);
             element_stiffness_[static_cast<std::size_t>(block)] = std::move(response.K);
         }
+    }
+    if (small && (!small_stiffness_ || !pattern.matches(*small_stiffness_))) {
+        SparseMatrix K0 = pattern.make_matrix();
+        for (int block = 0; block < scene_.n_element_blocks; ++block)
+            pattern.add(block, element_stiffness_[static_cast<std::size_t>(block)], K0);
         small_stiffness_ = std::move(K0);
     }
 
@@ -139,21 +179,23 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
         std::atomic<bool> failed{false};
         std::mutex message_mutex;
         std::string failure;
+        int failed_block = scene_.n_element_blocks;  // the lowest failed block names the failure (deterministic)
         pattern.for_each_block(
             [&](int block) {
                 if (block >= scene_.n_element_blocks)
                     return;
                 const std::vector<int>& dofs = dofs_of(block);
                 Vector& f = element_force_[static_cast<std::size_t>(block)];
-                const mechanics::ElementResponse response = mechanics::element_response(
-                    element_of(block), body_of(block).material, scene_.kinematics, local_displacement(u_full, dofs, d));
+                const Matrix u_local = local_displacement(u_full, dofs, d);
+                const mechanics::ElementResponse response =
+                    mechanics::element_response(element_of(block), body_of(block).material, scene_.kinematics, u_local);
                 if (response.status != mechanics::ResponseStatus::ok || !response.f_int.allFinite()) {
                     failed.store(true);
                     std::lock_guard<std::mutex> lock(message_mutex);
-                    if (failure.empty())
-                        failure = fmt::format("body '{}': inadmissible deformation in element {} (det F <= 0 or "
-                                              "material evaluation failed)",
-                                              body_of(block).name, owner_[static_cast<std::size_t>(block)].element);
+                    if (block < failed_block) {
+                        failed_block = block;
+                        failure = inadmissible_message(body_of(block).name, element_of(block), response, u_local);
+                    }
                     f = Vector::Zero(static_cast<Index>(dofs.size()));
                     return;
                 }
@@ -199,6 +241,21 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
     const int d = scene_.dim;
     const Vector u_full = dofs.expand(u_free, load_factor);
 
+    // Contact first: a coupling that the pattern lacks (a Gauss point slid onto a
+    // master element not registered yet) extends it before the tangent is made, so
+    // every block of this evaluation has its place and K has one pattern throughout.
+    std::vector<contact::PairEvaluation> contact;
+    if (scene_.has_contact()) {  // no pairs: not even a timer runs
+        ScopedTimer timer(context, "contact");
+        contact.reserve(scene_.pairs.size());
+        for (std::size_t p = 0; p < scene_.pairs.size(); ++p)
+            contact.push_back(scene_.pairs[p].pair.evaluate(side_displacement(u_full, static_cast<int>(p), 0),
+                                                            side_displacement(u_full, static_cast<int>(p), 1),
+                                                            need_tangent, context, load_factor));
+        if (need_tangent)
+            register_couplings(contact, context);
+    }
+
     Vector r_full = Vector::Zero(dofs.n_full());
     if (need_tangent) {
         if (!pattern.matches(out.tangent))
@@ -237,17 +294,14 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
         }
     }
 
-    // Contact pairs.
+    // Contact pairs: residuals, and each coupling's block into its pattern block.
     double contact_norm = 0.0;
     int active = 0;
-    if (scene_.has_contact()) {  // no pairs: not even a timer runs
+    if (scene_.has_contact()) {
         ScopedTimer timer(context, "contact");
         for (std::size_t p = 0; p < scene_.pairs.size(); ++p) {
-            PairModel& pair = scene_.pairs[p];
-            const contact::PairEvaluation c =
-                pair.pair.evaluate(side_displacement(u_full, static_cast<int>(p), 0),
-                                   side_displacement(u_full, static_cast<int>(p), 1), need_tangent, context,
-                                   load_factor);
+            const PairModel& pair = scene_.pairs[p];
+            const contact::PairEvaluation& c = contact[p];
             if (!c.ok) {
                 out.ok = false;
                 out.message = fmt::format("contact pair '{}': {}", pair.name, c.message);
@@ -257,13 +311,9 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
             for (std::size_t k = 0; k < pair.local_to_full.size(); ++k)
                 r_full(pair.local_to_full[k]) += c.residual(static_cast<Index>(k));
             contact_norm += c.residual.norm();
-            if (need_tangent && !c.tangent.empty()) {
-                const Index n = static_cast<Index>(pair.local_to_full.size());
-                Matrix K_local = Matrix::Zero(n, n);
-                for (const Triplet& t : c.tangent)
-                    K_local(t.row(), t.col()) += t.value();
-                pattern.add(pair.block, K_local, out.tangent);
-            }
+            if (need_tangent)
+                for (const contact::LocalBlock& block : c.tangent)
+                    pattern.add(pair.blocks.at(block.element), block.K, out.tangent);
         }
     }
     last_active_ = active;
@@ -276,6 +326,30 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
         out.ok = false;
         out.message = "the residual is not finite";
     }
+}
+
+void SceneSystem::register_couplings(const std::vector<contact::PairEvaluation>& contact, RunContext* context)
+{
+    std::vector<std::vector<int>> new_blocks;
+    std::vector<std::pair<std::size_t, contact::Coupling>> owners;
+    for (std::size_t p = 0; p < scene_.pairs.size(); ++p) {
+        const PairModel& pair = scene_.pairs[p];
+        for (const contact::LocalBlock& block : contact[p].tangent)
+            if (!pair.blocks.contains(block.element)) {
+                owners.emplace_back(p, block.element);
+                new_blocks.push_back(coupling_full_dofs(pair, block.element));
+            }
+    }
+    if (new_blocks.empty())
+        return;
+    const Index nnz_before = scene_.pattern->n_nonzeros();
+    const int first = scene_.pattern->extend(std::move(new_blocks));
+    for (std::size_t k = 0; k < owners.size(); ++k)
+        scene_.pairs[owners[k].first].blocks.emplace(owners[k].second, first + static_cast<int>(k));
+    if (context)
+        context->log(Verbosity::verbose,
+                     fmt::format("  contact: {} new coupling(s) registered, {} new tangent entries", owners.size(),
+                                 scene_.pattern->n_nonzeros() - nnz_before));
 }
 
 std::vector<contact::PairEvaluation> SceneSystem::contact_state(const Vector& u_free, double load_factor)

@@ -5,7 +5,9 @@
 // on the free dofs (solver/newton.hpp's NonlinearSystem). Finite kinematics:
 // elements are evaluated on n_threads() threads (colored blocks; the count from
 // assembly/threads.hpp: requested, or automatic from the element work); contact
-// pairs serially.
+// pairs serially, first: their tangent blocks (one per slave element x master
+// element coupling) go into the pattern blocks of those couplings, and a coupling
+// not registered yet extends the pattern before the tangent matrix is made.
 // Small kinematics: the element stiffness is constant, assembled once and
 // reused (f_int = K u): no geometric terms are ever computed.
 //
@@ -58,6 +60,8 @@ public:
 private:
     void evaluate_into(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out,
                        RunContext* context, Vector* r_full_out);
+    /// Extends the pattern by the couplings of these evaluations that it lacks.
+    void register_couplings(const std::vector<contact::PairEvaluation>& contact, RunContext* context);
     void assemble_elements(const Vector& u_full, bool need_tangent, Vector& r_full, SparseMatrix& K,
                            solver::Evaluation& out);
 

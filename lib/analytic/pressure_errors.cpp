@@ -36,6 +36,12 @@ constexpr std::array<double, 5> gauss_nodes = {-0.9061798459386640, -0.538469310
 constexpr std::array<double, 5> gauss_weights = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
                                                  0.4786286704993665, 0.2369268850561891};
 
+// The elliptic profile p0 sqrt(1 - x^2/a^2) measured against.
+struct Profile {
+    double a;
+    double p0;
+};
+
 // The merged, sorted samples: strictly increasing x.
 struct Curve {
     std::vector<double> x;
@@ -114,7 +120,7 @@ double measured_half_width(const Curve& c)
 }
 
 // int_{-l2_extent a}^{l2_extent a} (curve - p_H)^2 dx, segment by segment.
-double squared_error_integral(const HertzLineContact& hertz, const Curve& c)
+double squared_error_integral(const Profile& hertz, const Curve& c)
 {
     const double a = hertz.a;
     const double bound = l2_extent * a;
@@ -173,9 +179,16 @@ double squared_error_integral(const HertzLineContact& hertz, const Curve& c)
 PressureErrors pressure_errors(const HertzLineContact& hertz, const std::vector<double>& x,
                                const std::vector<double>& p, bool mirror)
 {
+    return elliptic_pressure_errors(hertz.a, hertz.p0, x, p, mirror);
+}
+
+PressureErrors elliptic_pressure_errors(double a, double p0, const std::vector<double>& x,
+                                        const std::vector<double>& p, bool mirror)
+{
     IGA_CHECK(x.size() == p.size(), "pressure_errors: x and p must have the same length");
     IGA_CHECK(!x.empty(), "pressure_errors: no samples");
-    IGA_CHECK(hertz.a > 0 && hertz.p0 > 0, "pressure_errors: the Hertz solution needs a > 0 and p0 > 0");
+    IGA_CHECK(a > 0 && p0 > 0, "pressure_errors: the Hertz solution needs a > 0 and p0 > 0");
+    const Profile hertz{a, p0};
 
     const auto finite = [](double v) { return std::isfinite(v); };
     if (!std::all_of(x.begin(), x.end(), finite) || !std::all_of(p.begin(), p.end(), finite)) {

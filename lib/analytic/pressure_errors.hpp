@@ -65,4 +65,10 @@ struct PressureErrors {
 PressureErrors pressure_errors(const HertzLineContact& hertz, const std::vector<double>& x,
                                const std::vector<double>& p, bool mirror);
 
+/// The same measures against any elliptic profile p0 sqrt(1 - x^2/a^2), a > 0,
+/// p0 > 0: the line contact above, or the radial curve of a point contact
+/// (radial_pressure_errors.hpp).
+PressureErrors elliptic_pressure_errors(double a, double p0, const std::vector<double>& x,
+                                        const std::vector<double>& p, bool mirror);
+
 }  // namespace iga::analytic

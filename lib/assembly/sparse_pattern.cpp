@@ -82,11 +82,20 @@ SparsePattern::SparsePattern(const DofMap& dofs, std::vector<std::vector<int>> b
         std::vector<int>().swap(r);
     }
 
-    position_offset_.assign(blocks_.size() + 1, 0);
-    for (std::size_t b = 0; b < blocks_.size(); ++b)
+    add_block_positions(0);
+
+    colors_ = color_blocks(block_free_, n_free_);
+}
+
+void SparsePattern::add_block_positions(std::size_t first_block)
+{
+    position_offset_.resize(blocks_.size() + 1);
+    if (first_block == 0)
+        position_offset_[0] = 0;
+    for (std::size_t b = first_block; b < blocks_.size(); ++b)
         position_offset_[b + 1] = position_offset_[b] + blocks_[b].size() * blocks_[b].size();
-    positions_.assign(position_offset_.back(), -1);
-    for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    positions_.resize(position_offset_.back(), -1);
+    for (std::size_t b = first_block; b < blocks_.size(); ++b) {
         const std::vector<int>& f = block_free_[b];
         const std::size_t n = f.size();
         int* pos = positions_.data() + position_offset_[b];
@@ -100,8 +109,71 @@ SparsePattern::SparsePattern(const DofMap& dofs, std::vector<std::vector<int>> b
                     pos[j * n + i] = static_cast<int>(std::lower_bound(first, last, f[i]) - inner_.data());
         }
     }
+}
 
-    colors_ = color_blocks(block_free_, n_free_);
+int SparsePattern::extend(std::vector<std::vector<int>> blocks, bool* entries_added)
+{
+    const std::size_t first_block = blocks_.size();
+    const int n_full = static_cast<int>(free_of_full_.size());
+    for (std::vector<int>& block : blocks) {
+        std::vector<int> f;
+        f.reserve(block.size());
+        for (int full : block) {
+            IGA_CHECK(full >= 0 && full < n_full, "SparsePattern::extend: a block has dof " + std::to_string(full) +
+                                                      " outside [0, " + std::to_string(n_full) + ")");
+            f.push_back(free_of_full_[full]);
+        }
+        block_free_.push_back(std::move(f));
+        blocks_.push_back(std::move(block));
+    }
+
+    // Couplings of the new blocks that the structure lacks, as (column, row), sorted.
+    std::vector<std::pair<int, int>> missing;
+    for (std::size_t b = first_block; b < blocks_.size(); ++b)
+        for (int col : block_free_[b])
+            if (col >= 0) {
+                const int* first = inner_.data() + outer_[col];
+                const int* last = inner_.data() + outer_[col + 1];
+                for (int row : block_free_[b])
+                    if (row >= 0 && !std::binary_search(first, last, row))
+                        missing.emplace_back(col, row);
+            }
+    std::sort(missing.begin(), missing.end());
+    missing.erase(std::unique(missing.begin(), missing.end()), missing.end());
+    if (entries_added)
+        *entries_added = !missing.empty();
+
+    if (!missing.empty()) {
+        // Merge column by column; remap[k] is the new index of old entry k.
+        std::vector<int> outer(static_cast<std::size_t>(n_free_) + 1, 0);
+        std::vector<int> inner;
+        inner.reserve(inner_.size() + missing.size());
+        std::vector<int> remap(inner_.size());
+        std::size_t m = 0;
+        for (int j = 0; j < n_free_; ++j) {
+            int k = outer_[j];
+            const int k_end = outer_[j + 1];
+            while (k < k_end || (m < missing.size() && missing[m].first == j)) {
+                const bool take_old =
+                    k < k_end && !(m < missing.size() && missing[m].first == j && missing[m].second < inner_[k]);
+                if (take_old) {
+                    remap[static_cast<std::size_t>(k)] = static_cast<int>(inner.size());
+                    inner.push_back(inner_[k++]);
+                } else {
+                    inner.push_back(missing[m++].second);
+                }
+            }
+            outer[static_cast<std::size_t>(j) + 1] = static_cast<int>(inner.size());
+        }
+        for (int& p : positions_)
+            if (p >= 0)
+                p = remap[static_cast<std::size_t>(p)];
+        outer_ = std::move(outer);
+        inner_ = std::move(inner);
+    }
+    add_block_positions(first_block);
+    colors_ = color_blocks(block_free_, n_free_);  // greedy in block order: old blocks keep their colors
+    return static_cast<int>(first_block);
 }
 
 SparseMatrix SparsePattern::make_matrix() const

@@ -1,11 +1,19 @@
 #pragma once
-// SparsePattern: the sparsity pattern of the free x free tangent, built once,
-// and the scatter of local (block) matrices and vectors into it.
+// SparsePattern: the sparsity pattern of the free x free tangent, built once
+// and extended when new couplings appear, and the scatter of local (block)
+// matrices and vectors into it.
 //
 // A "connectivity block" is a list of full dof indices that couple with each
-// other: an element's (knot span's) dofs, or all dofs of the two sides of a
-// contact pair (registered once, densely, so that the coupling may change from
-// one iteration to the next without a new pattern). The pattern is the union of
+// other: an element's (knot span's) dofs, or the dofs of one contact coupling (a
+// slave side element and a master side element it may project onto; see
+// analysis/scene.hpp). extend() adds blocks later (a Gauss point that slid onto a
+// master element not registered yet): their new entries are merged into the
+// compressed structure column by column and the stored positions of the existing
+// blocks are remapped, O(nnz + new entries), with no rebuild from the blocks; the
+// result is identical to a pattern built with all blocks from the start (same
+// arrays, same colors). A matrix made before an extension that added entries no
+// longer matches(): make a new one (and the linear solver then redoes its
+// symbolic analysis, solver/linear.hpp). The pattern is the union of
 // the blocks' dense couplings restricted to free dofs, plus the whole diagonal
 // (so that a Levenberg-Marquardt shift K + mu D keeps the pattern; see
 // solver/newton.hpp). For each block the position in K.valuePtr() of every local
@@ -61,6 +69,11 @@ public:
     Index n_nonzeros() const { return static_cast<Index>(inner_.size()); }
     const std::vector<int>& block_dofs(int block) const { return blocks_[block]; }
 
+    /// Adds blocks after construction (see above); returns the index of the first
+    /// new block. True in *entries_added when the structure grew (then matrices
+    /// from make_matrix() before the call no longer match()).
+    int extend(std::vector<std::vector<int>> blocks, bool* entries_added = nullptr);
+
     /// n_free x n_free, compressed, every stored value zero.
     SparseMatrix make_matrix() const;
     /// True when K has exactly this pattern (the precondition of add()).
@@ -96,6 +109,8 @@ public:
     void for_each_block(const std::function<void(int block)>& kernel, const Execution& execution) const;
 
 private:
+    void add_block_positions(std::size_t first_block);
+
     int n_free_;
     std::vector<int> free_of_full_;            // copy of the DofMap table (n_full)
     std::vector<std::vector<int>> blocks_;     // full dofs per block

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 namespace iga::contact {
@@ -106,10 +107,24 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
         }
     search_distance_ = settings_.search_distance > 0.0 ? settings_.search_distance : auto_search_fraction * size;
 
+    for (int i = 0; i < 2; ++i) {
+        if (!deformable[i])
+            continue;
+        const nurbs::Patch& patch = std::get<DeformableSide>(surfaces_[i]).side.patch;
+        const std::vector<nurbs::Element> elements = patch.elements();
+        for (std::size_t e = 0; e < elements.size(); ++e) {
+            VecN mid(1);
+            mid(0) = 0.5 * (elements[e].lower[0] + elements[e].upper[0]);
+            element_points_[i].push_back(nurbs::rational_basis(patch, elements[e].span, mid, 0).indices);
+        }
+    }
+
     for (Carrier& c : carriers_) {
         const nurbs::Patch& patch = std::get<DeformableSide>(surfaces_[c.slave]).side.patch;
         const int n_q = settings_.quadrature > 0 ? settings_.quadrature : patch.degree(0) + 2;
-        for (const nurbs::Element& element : patch.elements()) {
+        const std::vector<nurbs::Element> elements = patch.elements();
+        for (std::size_t e = 0; e < elements.size(); ++e) {
+            const nurbs::Element& element = elements[e];
             const quadrature::TensorRule rule = quadrature::element_rule(patch, element, n_q);
             for (Index q = 0; q < rule.weights.size(); ++q) {
                 VecN eta(1);
@@ -117,6 +132,7 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
                 const nurbs::BasisValues basis = nurbs::rational_basis(patch, element.span, eta, 1);
                 const nurbs::PointDerivatives X = nurbs::combine(basis, patch.control_points());
                 GaussPoint gp;
+                gp.element = static_cast<int>(e);
                 gp.eta = eta(0);
                 gp.weight = rule.weights(q) * X.dx.col(0).norm();
                 gp.reference = X.x;
@@ -137,6 +153,50 @@ int ContactPair::n_control_points(int i) const
     if (const auto* side = std::get_if<DeformableSide>(&surfaces_[i]))
         return side->side.patch.n_control_points();
     return 0;
+}
+
+std::vector<int> ContactPair::coupling_dofs(const Coupling& element) const
+{
+    std::vector<int> dofs;
+    for (int i = 0; i < 2; ++i) {
+        if (element[i] < 0)
+            continue;
+        IGA_CHECK(element[i] < n_elements(i), "contact: coupling element out of range");
+        const int offset = i == 0 ? 0 : n_control_points(0);
+        for (const int a : element_points_[i][static_cast<std::size_t>(element[i])])
+            for (int k = 0; k < dim_; ++k)
+                dofs.push_back((offset + a) * dim_ + k);
+    }
+    return dofs;
+}
+
+std::vector<Coupling> ContactPair::candidate_couplings() const
+{
+    std::vector<Coupling> out;
+    std::vector<int> candidates;
+    for (const Carrier& c : carriers_) {
+        auto coupling = [&](int slave_element, int master_element) {
+            Coupling e{-1, -1};
+            e[static_cast<std::size_t>(c.slave)] = slave_element;
+            e[static_cast<std::size_t>(c.master)] = master_element;
+            return e;
+        };
+        const auto* master = std::get_if<DeformableSide>(&surfaces_[c.master]);
+        if (!master) {
+            for (int e = 0; e < n_elements(c.slave); ++e)
+                out.push_back(coupling(e, -1));
+            continue;
+        }
+        const ElementSearch search(master->side.patch, SearchOptions{.distance = search_distance_});
+        for (const GaussPoint& gp : c.points) {
+            search.candidates(gp.reference, candidates);
+            for (const int k : candidates)  // element index of the master side (= span number on a curve)
+                out.push_back(coupling(gp.element, k));
+        }
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
 }
 
 PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatrix& disp_second, bool need_tangent,
@@ -174,13 +234,14 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
     };
     const KernelSettings kernel_base{.penalty = settings_.penalty, .master_rows = false, .need_tangent = need_tangent};
     std::vector<int> candidates;
+    std::map<Coupling, std::size_t> block_of;  // coupling -> index in ev.tangent
 
     for (std::size_t ci = 0; ci < carriers_.size(); ++ci) {
         const Carrier& c = carriers_[ci];
         const int n_g = static_cast<int>(c.points.size());
         CarrierResult cr;
         cr.surface = c.slave;
-        cr.parameter.resize(n_g);
+        cr.parameter.resize(n_g, 1);
         cr.reference_coordinates.resize(n_g, d);
         cr.coordinates.resize(n_g, d);
         cr.gap = Vector::Constant(n_g, -search_distance_);
@@ -192,32 +253,59 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
             VecN x = VecN::Zero(d);
             for (std::size_t a = 0; a < gp.indices.size(); ++a)
                 x += gp.N(a) * current[c.slave].row(gp.indices[a]).transpose();
-            cr.parameter[g] = gp.eta;
+            cr.parameter(g, 0) = gp.eta;
             cr.reference_coordinates.row(g) = gp.reference.transpose();
             cr.coordinates.row(g) = x.transpose();
             cr.weight(g) = gp.weight;
         }
 
-        // Scatters a kernel's local residual/tangent: slave cps then master cps.
-        auto scatter = [&](const KernelResult& kr, const GaussPoint& gp, const std::vector<int>& master_indices) {
-            std::vector<int> map;
-            map.reserve(kr.residual.size());
-            for (const int a : gp.indices)
+        // Scatters a kernel's local residual (slave cps then master cps) into the
+        // pair's residual and its tangent into the block of the coupling.
+        auto scatter = [&](const KernelResult& kr, const GaussPoint& gp, const std::vector<int>& master_indices,
+                           int master_element) {
+            const std::size_t n_slave = gp.indices.size();
+            for (std::size_t a = 0; a < n_slave + master_indices.size(); ++a) {
+                const int surface = a < n_slave ? c.slave : c.master;
+                const int cp = a < n_slave ? gp.indices[a] : master_indices[a - n_slave];
                 for (int i = 0; i < d; ++i)
-                    map.push_back((offset[c.slave] + a) * d + i);
-            for (const int b : master_indices)
-                for (int i = 0; i < d; ++i)
-                    map.push_back((offset[c.master] + b) * d + i);
-            for (std::size_t r = 0; r < map.size(); ++r)
-                ev.residual(map[r]) += kr.residual(static_cast<Index>(r));
+                    ev.residual((offset[surface] + cp) * d + i) += kr.residual(static_cast<Index>(a) * d + i);
+            }
             if (!need_tangent)
                 return;
-            for (std::size_t r = 0; r < map.size(); ++r)
-                for (std::size_t s = 0; s < map.size(); ++s) {
-                    const double v = kr.tangent(static_cast<Index>(r), static_cast<Index>(s));
-                    if (v != 0.0)
-                        ev.tangent.emplace_back(map[r], map[s], v);
-                }
+            Coupling key{-1, -1};
+            key[static_cast<std::size_t>(c.slave)] = gp.element;
+            key[static_cast<std::size_t>(c.master)] = master_element;
+            auto [it, inserted] = block_of.try_emplace(key, ev.tangent.size());
+            if (inserted) {
+                LocalBlock block;
+                block.element = key;
+                block.dofs = coupling_dofs(key);
+                block.K = Matrix::Zero(static_cast<Index>(block.dofs.size()), static_cast<Index>(block.dofs.size()));
+                ev.tangent.push_back(std::move(block));
+            }
+            LocalBlock& block = ev.tangent[it->second];
+            // Kernel row/column -> block position: the block lists the first
+            // surface element's cps, then the second's (coupling_dofs).
+            std::vector<Index> map;
+            map.reserve(static_cast<std::size_t>(kr.residual.size()));
+            auto position = [&](int surface, int element, int cp) {
+                const std::vector<int>& points = element_points_[surface][static_cast<std::size_t>(element)];
+                const auto found = std::find(points.begin(), points.end(), cp);
+                IGA_ASSERT(found != points.end(), "contact: a basis function outside its element");
+                const Index before = surface == 1 && key[0] >= 0
+                                         ? static_cast<Index>(element_points_[0][static_cast<std::size_t>(key[0])].size())
+                                         : 0;
+                return (before + static_cast<Index>(found - points.begin())) * d;
+            };
+            for (const int a : gp.indices)
+                for (int i = 0; i < d; ++i)
+                    map.push_back(position(c.slave, gp.element, a) + i);
+            for (const int b : master_indices)
+                for (int i = 0; i < d; ++i)
+                    map.push_back(position(c.master, master_element, b) + i);
+            for (std::size_t col = 0; col < map.size(); ++col)
+                for (std::size_t row = 0; row < map.size(); ++row)
+                    block.K(map[row], map[col]) += kr.tangent(static_cast<Index>(row), static_cast<Index>(col));
         };
 
         if (const auto* obstacle = std::get_if<RigidObstacle>(&surfaces_[c.master])) {
@@ -240,7 +328,7 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
                 if (kr.pressure > 0.0) {
                     ++ev.n_active;
                     ev.max_penetration = std::max(ev.max_penetration, foot.gap);
-                    scatter(kr, c.points[g], {});
+                    scatter(kr, c.points[g], {}, -1);
                 }
             }
             ev.carriers.push_back(std::move(cr));
@@ -306,11 +394,13 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
             cr.pressure(g) = kr.pressure;
             ++ev.n_active;
             ev.max_penetration = std::max(ev.max_penetration, proj.gap);
-            scatter(kr, gp, proj.basis.indices);
+            scatter(kr, gp, proj.basis.indices, proj.element);
         }
         ev.carriers.push_back(std::move(cr));
     }
     flush();
+    std::sort(ev.tangent.begin(), ev.tangent.end(),
+              [](const LocalBlock& a, const LocalBlock& b) { return a.element < b.element; });
     return ev;
 }
 

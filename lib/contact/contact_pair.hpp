@@ -22,6 +22,19 @@
 // the SIDE control-point index (SidePatch::parent_index maps it to the parent).
 // Displacements are given per side, n_cp_side x d, row-major.
 //
+// Tangent (sparse coupling): evaluate() returns the tangent as small dense
+// blocks, one per coupling = (element of the first surface, element of the second
+// surface) that some active Gauss point connects (its own element on the slave
+// side, the element of its foot point on the master side; the Gauss points of
+// one coupling are summed; against a rigid obstacle the obstacle's element is -1).
+// A block's dofs are pair-local: the first surface element's control points, then
+// the second's (component fastest), so both half passes of a two-half-pass pair
+// land in the same block. "Element" is the side patch's element number
+// (nurbs::Patch::elements() order). No n_local x n_local matrix is ever formed.
+// candidate_couplings() lists the couplings the global search admits in the
+// reference configuration: the caller registers them in its sparsity pattern up
+// front and extends the pattern when evaluate() meets another one (sliding).
+//
 // Warm starts: evaluate() remembers each Gauss point's last foot point as a
 // trial state; commit() keeps the trial state (call it after a converged
 // increment), rollback() returns to the last committed one (after a cutback).
@@ -74,7 +87,7 @@ enum class PointState {
 /// Gauss point data of one carrying side, n_g points in span order (eta ascending).
 struct CarrierResult {
     int surface = 0;                    ///< 0: the pair's first surface, 1: the second
-    std::vector<double> parameter;      ///< n_g, eta on the side
+    RowMatrix parameter;                ///< n_g x q, the Gauss point's parameters on the side
     RowMatrix reference_coordinates;    ///< n_g x d
     RowMatrix coordinates;              ///< n_g x d, current configuration
     Vector gap;                         ///< n_g, g_N (positive = penetration); far: -search distance, a bound
@@ -83,11 +96,21 @@ struct CarrierResult {
     std::vector<PointState> state;      ///< n_g
 };
 
+/// A coupling: element number on the first and second surface (-1 on a rigid obstacle).
+using Coupling = std::array<int, 2>;
+
+/// The tangent of one coupling (see the header paragraph).
+struct LocalBlock {
+    Coupling element{-1, -1};
+    std::vector<int> dofs;  ///< pair-local dofs: first surface element's cps x d, then the second's
+    Matrix K;               ///< dofs.size() square: d r_c[dofs] / d u[dofs], Gauss points of the coupling summed
+};
+
 struct PairEvaluation {
     bool ok = true;               ///< false: a numerical failure (see message); residual incomplete
     std::string message;
     Vector residual;              ///< n_local_dofs()
-    std::vector<Triplet> tangent; ///< local numbering; empty unless requested
+    std::vector<LocalBlock> tangent; ///< one block per coupling met, sorted by coupling; empty unless requested
     int n_active = 0;             ///< Gauss points with positive pressure
     long long candidates = 0;     ///< (Gauss point, master span) pairs from the global search
     long long projections = 0;
@@ -111,6 +134,16 @@ public:
     int n_carriers() const { return static_cast<int>(carriers_.size()); }
     int n_gauss_points(int carrier) const { return static_cast<int>(carriers_[carrier].points.size()); }
 
+    /// Elements of side patch i (0 for a rigid obstacle).
+    int n_elements(int i) const { return static_cast<int>(element_points_[i].size()); }
+    /// Pair-local dofs of a coupling, in LocalBlock::dofs order.
+    std::vector<int> coupling_dofs(const Coupling& element) const;
+    /// Couplings the global search admits in the reference configuration (zero
+    /// displacements, obstacles at load factor 0): for every Gauss point, its
+    /// element with each master element whose search box holds it; against a rigid
+    /// obstacle every element of the deformable side. Sorted, each once.
+    std::vector<Coupling> candidate_couplings() const;
+
     /// Residual (and tangent) at the displacements of the two sides (n_cp_i x d,
     /// an empty matrix for a rigid surface); a moving obstacle sits at its
     /// position for `load_factor`. Adds the timers "contact_search" and
@@ -124,6 +157,7 @@ public:
 
 private:
     struct GaussPoint {
+        int element;               ///< element number on the carrying side
         double eta;
         double weight;             ///< W = w_g |dX/deta|
         VecN reference;            ///< X(eta)
@@ -142,6 +176,7 @@ private:
     int dim_ = 2;
     double search_distance_ = 0.0;
     std::vector<Carrier> carriers_;
+    std::array<std::vector<std::vector<int>>, 2> element_points_;  ///< side control points of each element
     mutable std::vector<std::vector<std::optional<double>>> trial_xi_;
     std::vector<std::vector<std::optional<double>>> committed_xi_;
 };

@@ -3,16 +3,23 @@
 #include "contact/gap.hpp"
 #include "core/error.hpp"
 
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+
 namespace iga::contact {
 
-KernelResult gpts_kernel(const Vector& N, double W, const Projection& master, const KernelSettings& settings)
+KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, const KernelSettings& settings)
 {
-    constexpr int d = 2;
-    IGA_CHECK(master.normal.size() == d && master.tangents.rows() == d && master.tangents.cols() == 1,
-              "contact: GPTS kernel is 2D only");
-    IGA_CHECK(master.basis.dR.cols() >= 1, "contact: GPTS kernel needs the master basis derivatives");
-    const Vector& R = master.basis.R;
-    const Vector dR = master.basis.dR.col(0);
+    const Index d = master.normal.size();
+    const Index q = d - 1;  // parametric dimension of the master side
+    IGA_CHECK((d == 2 || d == 3) && master.tangents.rows() == d && master.tangents.cols() == q,
+              "contact: GPTS kernel needs a d x (d-1) tangent basis, d = 2 or 3");
+    IGA_CHECK(master.metric.rows() == q && master.metric.cols() == q && master.curvature.rows() == q &&
+                  master.curvature.cols() == q,
+              "contact: GPTS kernel needs (d-1) x (d-1) metric and curvature");
+    IGA_CHECK(master.dR.rows() == master.R.size() && master.dR.cols() == q,
+              "contact: GPTS kernel needs the master basis derivatives");
+    const Vector& R = master.R;
     const Index n_s = N.size();
     const Index n_m = R.size();
     const Index n_dofs = (n_s + n_m) * d;
@@ -26,51 +33,75 @@ KernelResult gpts_kernel(const Vector& N, double W, const Projection& master, co
     if (heaviside(g_N) == 0.0)
         return out;
 
-    const VecN& n = master.normal;
-    const VecN tau = master.tangents.col(0);
-    const double m = master.metric(0, 0);
-    const double b = master.curvature(0, 0);
-    const double c = m + g_N * b;
-    if (!(c > 0.0) || !(m > 0.0)) {
+    // A = m + g_N b: the Hessian of the distance at the foot point; positive
+    // definite at a distance minimum (else the projection is not one).
+    const Matrix A = master.metric + g_N * master.curvature;
+    const Eigen::LLT<Matrix> A_llt(A);
+    const Eigen::LLT<Matrix> m_llt(master.metric);
+    if (A_llt.info() != Eigen::Success || m_llt.info() != Eigen::Success ||
+        !(A.determinant() > 0.0 && master.metric.determinant() > 0.0)) {
         out.ok = false;
         return out;
     }
     const double p = out.pressure;
     const double eps = settings.penalty;
+    const VecN& n = master.normal;
 
-    // Nn, T, D and the row vectors (N_a tau / m ; R_b' n ; R_b tau / m) over all dofs.
-    Vector Nn(n_dofs), T(n_dofs), D = Vector::Zero(n_dofs);
-    Vector tau_rows = Vector::Zero(n_dofs), dRn_rows = Vector::Zero(n_dofs);
-    for (Index a = 0; a < n_s; ++a)
-        for (int i = 0; i < d; ++i) {
-            Nn(a * d + i) = N(a) * n(i);
-            T(a * d + i) = N(a) * tau(i);
-            tau_rows(a * d + i) = N(a) * tau(i) / m;
+    // Vectors over the dofs [slave cps ; master cps] (a column each):
+    //   Nn:      N_a n ; -R_b n            (dg_N/du = -Nn)
+    //   T_al:    N_a a_al ; -R_b a_al      (T_al . du = (du_s - du_m) . a_al)
+    //   Nd_al:   0 ; R_b,al n              (Nd_al . du = n . du_m,al)
+    Vector Nn(n_dofs);
+    Matrix T = Matrix::Zero(n_dofs, q), Nd = Matrix::Zero(n_dofs, q);
+    for (Index a = 0; a < n_s; ++a) {
+        Nn.segment(a * d, d) = N(a) * n;
+        for (Index al = 0; al < q; ++al)
+            T.col(al).segment(a * d, d) = N(a) * master.tangents.col(al);
+    }
+    for (Index b = 0; b < n_m; ++b) {
+        const Index k = (n_s + b) * d;
+        Nn.segment(k, d) = -R(b) * n;
+        for (Index al = 0; al < q; ++al) {
+            T.col(al).segment(k, d) = -R(b) * master.tangents.col(al);
+            Nd.col(al).segment(k, d) = master.dR(b, al) * n;
         }
-    for (Index bb = 0; bb < n_m; ++bb)
-        for (int i = 0; i < d; ++i) {
-            const Index k = (n_s + bb) * d + i;
-            Nn(k) = -R(bb) * n(i);
-            T(k) = -R(bb) * tau(i) - g_N * dR(bb) * n(i);
-            D(k) = dR(bb) * n(i);
-            dRn_rows(k) = dR(bb) * n(i);
-            tau_rows(k) = -R(bb) * tau(i) / m;  // sign of the master row term -(R_b tau / m) (x) D
-        }
-    D += (b / c) * T;
+    }
 
     const Index n_rows = settings.master_rows ? n_dofs : n_s * d;
-    // r = -p W Nn: slave -p W N_a n, master +p W R_b n.
+    // r = p W dg_N/du: slave -p W N_a n, master +p W R_b n.
     out.residual.head(n_rows) = -p * W * Nn.head(n_rows);
     if (!settings.need_tangent)
         return out;
 
-    // eps H W Nn (x) Nn covers K_a's first term and K_b's -eps H W (R_b n) (x) Nn.
+    // Variation of the foot point: A dxi = T^T du - g_N Nd^T du, so dxi = D^T du with
+    // D = (T - g_N Nd) A^-1. Variation of the normal: dn = -a_be m^be,al (Nd_al + b_al,ga D_ga) . du.
+    // Second variation of g_N (docs/theory.md, "GPTS tangent"):
+    //   D2g = Nd D^T + T m^-1 (Nd + D b)^T   (symmetric: equal to its transpose up to round-off)
+    const Matrix D = A_llt.solve((T - g_N * Nd).transpose()).transpose();          // n_dofs x q
+    const Matrix T_m = m_llt.solve(T.transpose()).transpose();                      // T m^-1
+    const Matrix turn = Nd + D * master.curvature;                                  // Nd + D b (b symmetric)
     out.tangent.topRows(n_rows) = eps * W * Nn.head(n_rows) * Nn.transpose();
-    // p W (N_a tau / m) (x) D on slave rows, -p W (R_b tau / m) (x) D on master rows.
-    out.tangent.topRows(n_rows) += p * W * tau_rows.head(n_rows) * D.transpose();
-    if (settings.master_rows)
-        out.tangent.bottomRows(n_m * d) += (p * W / c) * dRn_rows.tail(n_m * d) * T.transpose();
+    out.tangent.topRows(n_rows) += p * W * (Nd.topRows(n_rows) * D.transpose() + T_m.topRows(n_rows) * turn.transpose());
     return out;
+}
+
+MasterFoot master_foot(const Projection& projection)
+{
+    MasterFoot foot;
+    foot.normal = projection.normal;
+    foot.tangents = projection.tangents;
+    foot.metric = projection.metric;
+    foot.curvature = projection.curvature;
+    foot.gap = projection.gap;
+    foot.R = projection.basis.R;
+    foot.dR = projection.basis.dR;
+    return foot;
+}
+
+KernelResult gpts_kernel(const Vector& N, double W, const Projection& master, const KernelSettings& settings)
+{
+    IGA_CHECK(master.basis.dR.cols() >= 1, "contact: GPTS kernel needs the master basis derivatives");
+    return gpts_kernel(N, W, master_foot(master), settings);
 }
 
 KernelResult gpts_rigid_kernel(const Vector& N, double W, const VecN& normal, double gap,

@@ -1,29 +1,32 @@
 #pragma once
 // Gauss-point-to-segment (GPTS) penalty kernel: the residual and consistent
-// tangent of one slave Gauss point against a master curve (2D) or a rigid plane.
+// tangent of one slave Gauss point against a master side (a curve in 2D, a
+// surface in 3D) or a rigid obstacle, in tensor form for any dimension d.
 //
-// Reference: Kopacka et al. eqs. (1), (3), (5), (7); linearization physics.md
-// section 3.3 (FD-checked), translated once to the gap sign of gap.hpp:
-// g_N = -g (positive = penetration), p = eps <g_N>, H = H(g_N).
+// Reference: Kopacka et al. eqs. (1), (3), (5), (7); the linearization is derived
+// in docs/theory.md ("GPTS tangent"), with the gap sign of gap.hpp: g_N > 0 is
+// penetration, p = eps <g_N>, H = H(g_N).
 //
-//   Pi_c = 1/2 eps W <g_N>^2,   r = dPi_c/du,   K = dr/du,
-//   W = Gauss weight * |dX/deta| (REFERENCE slave Jacobian, held fixed).
+//   Pi_c = 1/2 eps W <g_N>^2,   r = dPi_c/du = p W dg_N/du,   K = dr/du,
+//   W = Gauss weight * reference area element of the slave (held fixed).
 //   slave rows  a: r_a = -p W N_a n      (the force +p W N_a n pushes the slave out)
 //   master rows b: r_b = +p W R_b(xibar) n
-// With Nn = [N_a n ; -R_b n], T = [N_a tau ; -R_b tau - g_N R_b' n],
-// c = m + g_N b (= f' of the projection at its solution, > 0 at a distance minimum),
-// D = [0 ; R_b' n] + (b / c) T:
-//   K_a = eps H W (N_a n) (x) Nn + p W (N_a tau / m) (x) D
-//   K_b = -eps H W (R_b n) (x) Nn + p W [ (R_b' n) (x) T / c - (R_b tau / m) (x) D ]
-// Single pass assembles slave and master rows (K is then symmetric, the Hessian
-// of Pi_c); a half pass of the two-half-pass algorithm only the slave rows, with
-// slave and master columns. Rigid plane: K_a = eps H W (N_a n) (x) (N_c n); a rigid
-// sphere adds the turning of its normal (gpts_rigid_kernel).
+// Foot point xibar (q = d - 1 parameters), covariant tangents a_al, metric m_ab,
+// curvature b_ab = n . x_m,ab and A = m + g_N b (positive definite at a distance
+// minimum). Over the dofs [slave ; master]: Nn = [N_a n ; -R_b n],
+// T_al = [N_a a_al ; -R_b a_al], Nd_al = [0 ; R_b,al n], D = (T - g_N Nd) A^-1
+// (the variation of xibar), and
+//   K = eps H W Nn Nn^T + p W [ Nd D^T + T m^-1 (Nd + D b)^T ],
+// the second term being the variation of the projection and of the normal. It is
+// symmetric; single pass assembles slave and master rows (K is then the Hessian of
+// Pi_c), a half pass of the two-half-pass algorithm only the slave rows, with slave
+// and master columns. Rigid plane: K = eps H W Nn Nn^T; a rigid sphere adds the
+// turning of its normal (gpts_rigid_kernel).
 //
 // Local numbering (shapes): dofs [slave cps (n_s x d) ; master cps (n_m x d)],
 // dof = cp * d + component, cp counted within the kernel's lists (N's order, then
-// the projection's basis order). Residual has (n_s + n_m) d entries; the tangent
-// is (n_s + n_m) d square. Rows not assembled are zero. d = 2.
+// the master basis order). Residual has (n_s + n_m) d entries; the tangent is
+// (n_s + n_m) d square. Rows not assembled are zero.
 
 #include "contact/projection.hpp"
 #include "core/types.hpp"
@@ -45,8 +48,27 @@ struct KernelResult {
     Matrix tangent;         ///< (n_s + n_m) d square; empty when need_tangent is false
 };
 
+/// What the kernel needs of the master's foot point, in any dimension d = 2, 3
+/// (q = d - 1 parameters): the outward unit normal, the covariant tangent basis
+/// a_al = dx_m/dxi^al, the metric m_ab = a_a . a_b, the curvature b_ab = n . x_m,ab,
+/// the gap g_N, and the master basis R_b (n_m) with derivatives dR (n_m x q).
+struct MasterFoot {
+    VecN normal;       ///< d
+    Matrix tangents;   ///< d x q
+    Matrix metric;     ///< q x q
+    Matrix curvature;  ///< q x q
+    double gap = 0.0;  ///< g_N, positive = penetration
+    Vector R;          ///< n_m
+    Matrix dR;         ///< n_m x q
+};
+
 /// Slave Gauss point with basis values N (n_s) and weight W against the master
-/// foot point `master` (status ok; its basis gives R_b, R_b' with n_m entries).
+/// foot point (a distance minimum: m + g_N b positive definite, else ok = false).
+KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, const KernelSettings& settings);
+
+/// A projection's foot point (curve in 2D, surface in 3D) as a MasterFoot.
+MasterFoot master_foot(const Projection& projection);
+/// 2D convenience: the kernel at a curve projection (status ok).
 KernelResult gpts_kernel(const Vector& N, double W, const Projection& master, const KernelSettings& settings);
 
 /// Slave Gauss point against a rigid obstacle with outward unit normal `normal`

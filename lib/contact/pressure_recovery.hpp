@@ -9,30 +9,37 @@
 // denominator is 0. Properties: p_A >= 0; sum_A p_A sum_g R_A W_g = sum_g p_g W_g
 // exactly (partition of unity); a uniform p_g = p gives p_A = p.
 //
-// Shapes: the side has n_cp control points and d = 2 coordinates; the sampled
-// curve has n_s = n_spans * samples_per_span + 1 points: each span is divided
-// into samples_per_span equal parameter intervals and every interval end is
-// taken once (shared span ends too).
+// Shapes: the side (a curve in 2D, a surface in 3D, q = d - 1 parameters) has
+// n_cp control points and d coordinates. Samples: in each direction every span is
+// divided into samples_per_span equal parameter intervals and every interval end
+// is taken once (shared span ends too): n_spans * samples_per_span + 1 values; a
+// curve has that many samples, a surface the tensor grid of both directions
+// (u fastest).
 
 #include "contact/contact_pair.hpp"
 #include "core/types.hpp"
 #include "nurbs/patch.hpp"
 
+#include <array>
 #include <vector>
 
 namespace iga::contact {
 
 struct RecoveredPressure {
     Vector control_point_pressure;   ///< n_cp, p_A
-    Vector parameter;                ///< n_s, sample parameters (ascending)
+    RowMatrix parameter;             ///< n_s x q, sample parameters (u fastest)
+    std::array<Index, 2> grid{0, 0}; ///< surfaces: (n_u, n_v) samples per direction; curves: (n_s, 1)
     RowMatrix coordinates;           ///< n_s x d, current configuration
     RowMatrix reference_coordinates; ///< n_s x d
     Vector pressure;                 ///< n_s, p^h at the samples
     double normal_force = 0.0;       ///< sum_g p_g W_g, the resultant of the contact pressure on the side
 };
 
-/// p_A from Gauss-point parameters eta (n_g), pressures p (n_g) and weights W (n_g)
-/// on `side` (n_par = 1).
+/// p_A from Gauss-point parameters (n_g x q), pressures p (n_g) and weights W (n_g)
+/// on `side` (n_par = q = 1 or 2).
+Vector control_point_pressure(const nurbs::Patch& side, const RowMatrix& parameter, const Vector& pressure,
+                              const Vector& weight);
+/// The same on a curve side, with the parameters as a list.
 Vector control_point_pressure(const nurbs::Patch& side, const std::vector<double>& eta, const Vector& pressure,
                               const Vector& weight);
 

@@ -182,51 +182,73 @@ std::optional<NurbsData> read_nurbs(const Cursor& c, int dim, std::optional<Para
     return nurbs;
 }
 
-/// The parametrization of a built-in shape, as nurbs/shapes.hpp builds it (io/
-/// may not depend on nurbs/): u cubic (half_disc), quadratic (quarter_disc) or
-/// linear (rectangle), v linear, on [0, 1]^2 with no interior knots.
-Parametrization shape_parametrization(ShapeType type)
+/// The parametrization of a built-in shape, as nurbs/shapes.hpp builds it:
+/// the degrees of io::shape_degrees, one span on [0, 1] per direction.
+Parametrization shape_parametrization(const Shape& shape)
 {
-    const int p = type == ShapeType::half_disc ? 3 : type == ShapeType::quarter_disc ? 2 : 1;
-    const auto open = [](int degree) {
-        std::vector<double> u(2 * static_cast<std::size_t>(degree) + 2, 0.0);
-        std::fill(u.begin() + degree + 1, u.end(), 1.0);
-        return u;
-    };
-    return {{p, 1}, {open(p), open(1)}};
+    Parametrization param;
+    param.degrees = shape_degrees(shape);
+    for (int p : param.degrees) {
+        std::vector<double> u(2 * static_cast<std::size_t>(p) + 2, 0.0);
+        std::fill(u.begin() + p + 1, u.end(), 1.0);
+        param.knots.push_back(std::move(u));
+    }
+    return param;
 }
 
 std::optional<Shape> read_shape(const Cursor& c, int dim, std::optional<Parametrization>& param)
 {
-    if (dim != 2) {
-        c.fail_here("built-in shapes are 2D only; describe a 3D body with 'nurbs'");
-        return std::nullopt;
-    }
-    if (!c.allow_only({"type", "center", "radius", "corner", "size"}))
+    if (!c.allow_only({"type", "center", "radius", "corner", "size", "extrude"}))
         return std::nullopt;
     const auto type = c.get<ShapeType>("type");
     if (!type)
         return std::nullopt;
     Shape s;
     s.type = *type;
-    param = shape_parametrization(s.type);
-    const bool disc = s.type != ShapeType::rectangle;
-    const std::string takes = disc ? "center and radius" : "corner and size";
-    for (const char* key : disc ? std::vector{"corner", "size"} : std::vector{"center", "radius"})
+    const std::string name(deck_name(s.type));
+    const bool solid = is_solid_shape(s.type);
+    if (solid && dim != 3) {
+        c.child("type").fail("a 3D shape, but analysis.dimension is 2 (2D shapes: half_disc, quarter_disc, "
+                             "rectangle)");
+        return std::nullopt;
+    }
+    bool ok = true;
+    if (c.has("extrude")) {
+        const Cursor e = c.child("extrude");
+        if (solid) {
+            e.fail_here("does not apply to a " + name + " (a 3D shape; only 2D shapes are extruded)");
+            ok = false;
+        } else if (dim != 3) {
+            e.fail_here("applies to 3D decks only (it sweeps a 2D shape along z)");
+            ok = false;
+        } else {
+            s.extrude = c.positive("extrude");
+            ok = s.extrude.has_value();
+        }
+    } else if (!solid && dim == 3) {
+        c.fail_here("a 2D shape in a 3D deck needs 'extrude: L', its length along z (or use a 3D shape: "
+                    "sphere_octant, box)");
+        ok = false;
+    }
+    if (ok)
+        param = shape_parametrization(s);
+    const std::size_t n = solid ? 3 : 2;
+    const bool round = s.type != ShapeType::rectangle && s.type != ShapeType::box;
+    const std::string takes = round ? "center and radius" : "corner and size";
+    for (const char* key : round ? std::vector{"corner", "size"} : std::vector{"center", "radius"})
         if (c.has(key))
-            c.child(key).fail_here("does not apply to a " + std::string(deck_name(s.type)) + " (it takes " + takes +
-                                   ")");
-    if (disc) {
+            c.child(key).fail_here("does not apply to a " + name + " (it takes " + takes + ")");
+    if (round) {
         if (const auto center = required(c, "center"))
-            s.center = center->to_numbers(2).value_or(std::vector<double>{});
+            s.center = center->to_numbers(n).value_or(std::vector<double>{});
         s.radius = c.positive("radius").value_or(0.0);
     } else {
         if (const auto corner = required(c, "corner"))
-            s.corner = corner->to_numbers(2).value_or(std::vector<double>{});
+            s.corner = corner->to_numbers(n).value_or(std::vector<double>{});
         if (const auto size = required(c, "size"))
-            if (const auto v = size->to_numbers(2)) {
+            if (const auto v = size->to_numbers(n)) {
                 s.size = *v;
-                for (std::size_t i = 0; i < 2; ++i)
+                for (std::size_t i = 0; i < n; ++i)
                     if (!(s.size[i] > 0))
                         size->item(i).fail("must be > 0");
             }

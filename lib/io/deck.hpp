@@ -23,9 +23,9 @@ enum class PlaneMode { strain, stress };
 enum class Kinematics { small, finite };
 enum class MaterialModel { linear_elastic, saint_venant_kirchhoff, neo_hookean };
 enum class Formulation { two_half_pass, single_pass };
-enum class ShapeType { half_disc, quarter_disc, rectangle };
+enum class ShapeType { half_disc, quarter_disc, rectangle, sphere_octant, box };
 enum class LoadKind { traction, force, pressure, gravity };
-enum class ReferenceType { hertz_cylinder_plane, hertz_two_cylinders };
+enum class ReferenceType { hertz_cylinder_plane, hertz_two_cylinders, hertz_sphere_plane, hertz_two_spheres };
 
 struct Analysis {
     int dimension = 2;                        ///< 2 or 3 (required in the deck)
@@ -53,16 +53,40 @@ struct NurbsData {
     bool operator==(const NurbsData&) const = default;
 };
 
-/// Built-in exact shape (2D): see nurbs/shapes.hpp for the side names.
+/// Built-in exact shape: see nurbs/shapes.hpp for the parametrizations and side
+/// names. 2D shapes (half_disc, quarter_disc, rectangle) take 2 coordinates and,
+/// in a 3D deck, an extrusion length; 3D shapes (sphere_octant, box) take 3.
 struct Shape {
     ShapeType type = ShapeType::rectangle;
-    std::vector<double> center;  ///< half_disc, quarter_disc
-    double radius = 0.0;         ///< half_disc, quarter_disc
-    std::vector<double> corner;  ///< rectangle
-    std::vector<double> size;    ///< rectangle
+    std::vector<double> center;    ///< half_disc, quarter_disc, sphere_octant
+    double radius = 0.0;           ///< half_disc, quarter_disc, sphere_octant
+    std::vector<double> corner;    ///< rectangle, box
+    std::vector<double> size;      ///< rectangle, box
+    std::optional<double> extrude; ///< 2D shape in a 3D deck: swept along z over [0, extrude] (required there)
 
     bool operator==(const Shape&) const = default;
 };
+
+/// True for the shapes that are 3D solids as built (sphere_octant, box).
+constexpr bool is_solid_shape(ShapeType type)
+{
+    return type == ShapeType::sphere_octant || type == ShapeType::box;
+}
+
+/// The degrees of a built-in shape as nurbs/shapes.hpp builds it, one per
+/// parametric direction (io/ may not depend on nurbs/); every direction is a
+/// single span on [0, 1] (open knot vectors, no interior knots).
+inline std::vector<int> shape_degrees(const Shape& shape)
+{
+    switch (shape.type) {
+    case ShapeType::half_disc: return shape.extrude ? std::vector<int>{3, 1, 1} : std::vector<int>{3, 1};
+    case ShapeType::quarter_disc: return shape.extrude ? std::vector<int>{2, 1, 1} : std::vector<int>{2, 1};
+    case ShapeType::rectangle: return shape.extrude ? std::vector<int>{1, 1, 1} : std::vector<int>{1, 1};
+    case ShapeType::sphere_octant: return {2, 1, 2};
+    case ShapeType::box: return {1, 1, 1};
+    }
+    return {};
+}
 
 /// Refinement, applied in this order: elevate, then uniform spans, then insert.
 struct Refine {
@@ -164,12 +188,26 @@ struct Newton {
     bool operator==(const Newton&) const = default;
 };
 
+/// True for the references of 3D decks (point contact of spheres).
+constexpr bool is_point_contact(ReferenceType type)
+{
+    return type == ReferenceType::hertz_sphere_plane || type == ReferenceType::hertz_two_spheres;
+}
+
+/// True for the references against a rigid plane (they take `radius`; the others take `radii`).
+constexpr bool is_against_plane(ReferenceType type)
+{
+    return type == ReferenceType::hertz_cylinder_plane || type == ReferenceType::hertz_sphere_plane;
+}
+
 struct Reference {
     std::string pair;
-    ReferenceType type = ReferenceType::hertz_cylinder_plane;
-    double radius = 0.0;                 ///< hertz_cylinder_plane
-    std::vector<double> radii;           ///< hertz_two_cylinders: two radii
-    double force = 0.0;                  ///< total force per unit thickness on the whole cylinder
+    ReferenceType type = ReferenceType::hertz_cylinder_plane;  ///< *_cylinder* in 2D decks, *_sphere* in 3D
+    double radius = 0.0;                 ///< hertz_cylinder_plane, hertz_sphere_plane
+    std::vector<double> radii;           ///< hertz_two_cylinders, hertz_two_spheres: two radii
+    /// 2D: total force per unit thickness on the whole cylinder; 3D: total force on
+    /// the whole sphere (also when the deck models a symmetric part of it).
+    double force = 0.0;
 
     bool operator==(const Reference&) const = default;
 };

@@ -50,16 +50,20 @@ struct DeckNames<Formulation> {
 
 template <>
 struct DeckNames<ShapeType> {
-    static constexpr std::array<EnumName<ShapeType>, 3> all{{{"half_disc", ShapeType::half_disc},
+    static constexpr std::array<EnumName<ShapeType>, 5> all{{{"half_disc", ShapeType::half_disc},
                                                              {"quarter_disc", ShapeType::quarter_disc},
-                                                             {"rectangle", ShapeType::rectangle}}};
+                                                             {"rectangle", ShapeType::rectangle},
+                                                             {"sphere_octant", ShapeType::sphere_octant},
+                                                             {"box", ShapeType::box}}};
 };
 
 template <>
 struct DeckNames<ReferenceType> {
-    static constexpr std::array<EnumName<ReferenceType>, 2> all{
+    static constexpr std::array<EnumName<ReferenceType>, 4> all{
         {{"hertz_cylinder_plane", ReferenceType::hertz_cylinder_plane},
-         {"hertz_two_cylinders", ReferenceType::hertz_two_cylinders}}};
+         {"hertz_two_cylinders", ReferenceType::hertz_two_cylinders},
+         {"hertz_sphere_plane", ReferenceType::hertz_sphere_plane},
+         {"hertz_two_spheres", ReferenceType::hertz_two_spheres}}};
 };
 
 /// The deck spelling of an enumerator ("linear_elastic", ...).

@@ -365,7 +365,14 @@ std::optional<Reference> read_reference(const Cursor& c, const KnownNames& known
     if (!type)
         return r;
     r.type = *type;
-    const bool plane = r.type == ReferenceType::hertz_cylinder_plane;
+    if (is_point_contact(r.type) != (known.dim == 3)) {
+        c.child("type").fail(known.dim == 3 ? "a 2D line-contact reference; a 3D deck takes hertz_sphere_plane or "
+                                              "hertz_two_spheres"
+                                            : "a 3D point-contact reference; a 2D deck takes hertz_cylinder_plane or "
+                                              "hertz_two_cylinders");
+        return r;
+    }
+    const bool plane = is_against_plane(r.type);
     const std::string takes = plane ? "radius" : "radii";
     const std::string other = plane ? "radii" : "radius";
     if (c.has(other))

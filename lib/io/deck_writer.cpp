@@ -107,7 +107,7 @@ void write_body(YAML::Emitter& out, const Body& b)
         const Shape& s = *b.shape;
         out << YAML::Key << "shape" << YAML::Value << YAML::Flow << YAML::BeginMap;
         out << YAML::Key << "type" << YAML::Value << word(s.type);
-        if (s.type == ShapeType::rectangle) {
+        if (s.type == ShapeType::rectangle || s.type == ShapeType::box) {
             out << YAML::Key << "corner" << YAML::Value;
             numbers(out, s.corner);
             out << YAML::Key << "size" << YAML::Value;
@@ -117,6 +117,8 @@ void write_body(YAML::Emitter& out, const Body& b)
             numbers(out, s.center);
             out << YAML::Key << "radius" << YAML::Value << format_number(s.radius);
         }
+        if (s.extrude)
+            out << YAML::Key << "extrude" << YAML::Value << format_number(*s.extrude);
         out << YAML::EndMap;
     }
     const Refine& r = b.refine;
@@ -218,7 +220,7 @@ void write_output(YAML::Emitter& out, const Output& o)
         out << YAML::Key << "reference" << YAML::Value << YAML::Flow << YAML::BeginMap;
         out << YAML::Key << "pair" << YAML::Value << r.pair;
         out << YAML::Key << "type" << YAML::Value << word(r.type);
-        if (r.type == ReferenceType::hertz_cylinder_plane) {
+        if (is_against_plane(r.type)) {
             out << YAML::Key << "radius" << YAML::Value << format_number(r.radius);
         } else {
             out << YAML::Key << "radii" << YAML::Value;

@@ -48,7 +48,7 @@ Schema make_deck_schema()
         {"bodies", list(map({{"name", v},
                              {"material", v},
                              {"nurbs", map({{"degrees", v}, {"knots", v}, {"control_points", v}})},
-                             {"shape", map({{"type", v}, {"center", v}, {"radius", v}, {"corner", v}, {"size", v}})},
+                             {"shape", map({{"type", v}, {"center", v}, {"radius", v}, {"corner", v}, {"size", v}, {"extrude", v}})},
                              {"refine", map({{"elevate", v}, {"spans", v}, {"insert", v}})},
                              {"rigid", map({{"plane", map({{"point", v}, {"normal", v}})},
                                             {"circle", map({{"center", v}, {"radius", v}})},

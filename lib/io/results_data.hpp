@@ -11,6 +11,7 @@
 
 #include "core/types.hpp"
 
+#include <array>
 #include <map>
 #include <string>
 #include <utility>
@@ -44,6 +45,9 @@ struct PostProcessedData {
     RowMatrix coordinates;            ///< n_s x d, sample points, current configuration
     RowMatrix reference_coordinates;  ///< n_s x d, the same points, reference configuration
     Vector pressure;                  ///< n_s, sum_A R_A p_A at the sample points
+    /// Surface sides (3D): the samples form an n_v x n_u grid (u fastest), written as
+    /// the attribute grid_shape = [n_v, n_u] of postprocessed/; {0, 0} on curves.
+    std::array<long long, 2> grid{0, 0};
 };
 
 /// One side of a contact pair that carries Gauss points: contact/<pair>/<body.side>/.

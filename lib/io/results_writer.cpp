@@ -113,6 +113,10 @@ void write_side(hid_t pair, const ContactSideResult& side)
     h5::write_dataset(post.id(), "coordinates", pp.coordinates);
     h5::write_dataset(post.id(), "reference_coordinates", pp.reference_coordinates);
     h5::write_dataset(post.id(), "pressure", pp.pressure);
+    if (pp.grid[0] > 0 && pp.grid[1] > 0) {
+        const std::array<double, 2> shape{static_cast<double>(pp.grid[0]), static_cast<double>(pp.grid[1])};
+        h5::write_attribute(post.id(), "grid_shape", std::span<const double>(shape));
+    }
 }
 
 void write_fields(hid_t step, const std::vector<BodyFields>& fields)

@@ -101,8 +101,13 @@ std::string xdmf_text(const std::string& h5_name, const std::vector<XdmfMesh>& m
                                    name, item(h5, g + "/gauss_points/" + name, std::to_string(side.n_gauss), false));
             out += "    </Grid>\n";
             out += fmt::format("    <Grid Name=\"{} post-processed\" GridType=\"Uniform\">\n", escape(side.label));
-            out += fmt::format("     <Topology TopologyType=\"Polyline\" NumberOfElements=\"1\" NodesPerElement=\"{}\"/>\n",
-                               side.n_samples);
+            if (side.n_u > 0 && side.n_v > 0 && side.n_u * side.n_v == side.n_samples)  // a face: structured surface
+                out += fmt::format("     <Topology TopologyType=\"2DSMesh\" Dimensions=\"{} {}\"/>\n", side.n_v,
+                                   side.n_u);
+            else
+                out += fmt::format(
+                    "     <Topology TopologyType=\"Polyline\" NumberOfElements=\"1\" NodesPerElement=\"{}\"/>\n",
+                    side.n_samples);
             out += fmt::format("     <Geometry GeometryType=\"{}\">\n      {}\n     </Geometry>\n", geometry,
                                item(h5, g + "/postprocessed/coordinates",
                                     fmt::format("{} {}", side.n_samples, side.dim), false));

@@ -38,6 +38,8 @@ struct XdmfContactSide {
     long long n_gauss = 0;
     long long n_samples = 0;
     int dim = 2;        ///< columns of the coordinate datasets
+    long long n_u = 0;  ///< surface sides: samples form an n_v x n_u grid (0: a curve)
+    long long n_v = 0;
 };
 
 struct XdmfStep {

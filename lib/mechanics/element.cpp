@@ -10,10 +10,10 @@ namespace iga::mechanics {
 
 namespace {
 
-ElementResponse failed(int n_dofs, ResponseStatus status)
+ElementResponse failed(int n_dofs, ResponseStatus status, int point, double det_F)
 {
     constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-    return {Vector::Constant(n_dofs, nan), Matrix::Constant(n_dofs, n_dofs, nan), nan, status};
+    return {Vector::Constant(n_dofs, nan), Matrix::Constant(n_dofs, n_dofs, nan), nan, status, point, det_F};
 }
 
 /// B_F (n_voigt x n_local*d): Voigt variation of the strain per local dof, for a
@@ -36,6 +36,11 @@ Matrix strain_displacement(const Matrix& dR_dX, const MatN& F)
 
 }  // namespace
 
+VecN point_displacement(const QuadraturePoint& point, const Matrix& u_local)
+{
+    return u_local.transpose() * point.R;  // u_i = sum_a R_a u_ai
+}
+
 MatN displacement_gradient(const QuadraturePoint& point, const Matrix& u_local)
 {
     return u_local.transpose() * point.dR_dX;  // (grad u)_iJ = sum_a u_ai dR_a/dX_J
@@ -54,15 +59,17 @@ ElementResponse element_response(const ElementGeometry& geometry, const Material
     const bool finite = kinematics == Kinematics::finite;
     const MatN identity = MatN::Identity(d, d);
 
-    for (const QuadraturePoint& q : geometry.points) {
+    for (std::size_t g = 0; g < geometry.points.size(); ++g) {
+        const QuadraturePoint& q = geometry.points[g];
         const MatN H = displacement_gradient(q, u_local);
         const MatN F = finite ? MatN(identity + H) : identity;
-        if (finite && !(F.determinant() > 0.0))
-            return failed(n_dofs, ResponseStatus::inverted);
+        const double det_F = F.determinant();
+        if (finite && !(det_F > 0.0))
+            return failed(n_dofs, ResponseStatus::inverted, static_cast<int>(g), det_F);
         const MatN strain = finite ? MatN(0.5 * (F.transpose() * F - identity)) : MatN(0.5 * (H + H.transpose()));
         const StressResponse s = stress_response(material, kinematics, strain);
         if (s.status != ResponseStatus::ok)
-            return failed(n_dofs, s.status);
+            return failed(n_dofs, s.status, static_cast<int>(g), det_F);
 
         const Matrix B = strain_displacement(q.dR_dX, F);
         out.f_int.noalias() += q.weight * (B.transpose() * stress_to_voigt(s.stress));

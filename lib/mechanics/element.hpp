@@ -20,7 +20,9 @@
 //
 // Failure (finite kinematics: det F <= 0 at a Gauss point, or a material point
 // that could not be evaluated) is reported in `status` (numerical failure: the
-// load stepper cuts back); f_int, K and energy are then NaN.
+// Newton line search backs off, the load stepper cuts back); f_int, K and energy
+// are then NaN, and `failed_point` / `det_F` say where and how (the driver names
+// the body, the parameter point and the reference and current positions).
 
 #include "core/types.hpp"
 #include "mechanics/element_geometry.hpp"
@@ -33,10 +35,15 @@ struct ElementResponse {
     Matrix K;        ///< (n_local*d) x (n_local*d)
     double energy = 0.0;
     ResponseStatus status = ResponseStatus::ok;
+    int failed_point = -1;  ///< index into geometry.points of the first failed Gauss point, -1 if none
+    double det_F = 0.0;     ///< det F at failed_point (finite kinematics)
 };
 
 /// Displacement gradient grad_X u = sum_a u_a (dR_a/dX)^T (d x d) at a Gauss point.
 MatN displacement_gradient(const QuadraturePoint& point, const Matrix& u_local);
+
+/// Displacement sum_a R_a u_a (d) at a Gauss point.
+VecN point_displacement(const QuadraturePoint& point, const Matrix& u_local);
 
 ElementResponse element_response(const ElementGeometry& geometry, const Material& material, Kinematics kinematics,
                                  const Matrix& u_local);

@@ -1,16 +1,12 @@
 #include "mechanics/loads.hpp"
 
 #include "core/error.hpp"
-#include "nurbs/side_patch.hpp"
-#include "quadrature/gauss.hpp"
-
-#include <algorithm>
 
 namespace iga::mechanics {
 
 namespace {
 
-/// Cross product of two 3-vectors stored as VecN.
+/// Cross product of two 3-vectors stored as VecN (the pressure tangent in 3D).
 VecN cross(const VecN& a, const VecN& b)
 {
     VecN c(3);
@@ -18,81 +14,35 @@ VecN cross(const VecN& a, const VecN& b)
     return c;
 }
 
-double sign(double value) { return value > 0.0 ? 1.0 : (value < 0.0 ? -1.0 : 0.0); }
-
 }  // namespace
-
-VecN raw_normal(const Matrix& tangents)
-{
-    const int d = static_cast<int>(tangents.rows());
-    IGA_ASSERT(tangents.cols() == d - 1, "raw_normal needs d x (d - 1) tangents");
-    if (d == 2) {
-        VecN n(2);
-        n << tangents(1, 0), -tangents(0, 0);
-        return n;
-    }
-    return cross(tangents.col(0), tangents.col(1));
-}
 
 SideQuadrature side_quadrature(const nurbs::Patch& parent, Side side, int n_per_direction)
 {
     const int d = parent.dim();
-    const int fixed = side_direction(side);
-    IGA_CHECK(parent.n_par() == d && (d == 2 || d == 3) && fixed < d,
+    IGA_CHECK(parent.n_par() == d && (d == 2 || d == 3) && side_direction(side) < d,
               "side_quadrature needs a solid patch (n_par == d) and one of its sides");
-    const nurbs::SidePatch sp = nurbs::extract_side(parent, side);
-    const double fixed_value = side_at_end(side) ? parent.knots(fixed).back() : parent.knots(fixed).front();
-    const double outward = side_at_end(side) ? 1.0 : -1.0;
+    const boundary::PatchSide geometry(parent, side);
+    std::vector<boundary::GaussPoint> points = boundary::gauss_points(geometry, n_per_direction);
 
-    int n = n_per_direction;
-    if (n <= 0) {
-        int p = 0;
-        for (int dir = 0; dir < sp.patch.n_par(); ++dir)
-            p = std::max(p, sp.patch.degree(dir));
-        n = p + 1;
-    }
-
-    // A collapsed side (all control points on one point, up to rounding relative to the
-    // patch size) has a tangent that is round-off, not geometry: it carries nothing.
-    const RowMatrix& P = parent.control_points();
-    const double extent = (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
-    constexpr double collapse_tolerance = 1e-12;
-    const bool collapsed = nurbs::is_collapsed(sp, collapse_tolerance * extent);
-
-    SideQuadrature out{side, d, {}};
-    for (const nurbs::Element& e : sp.patch.elements()) {
-        const quadrature::TensorRule rule = quadrature::element_rule(sp.patch, e, n);
-        SideElement element;
-        for (Index q = 0; q < rule.weights.size(); ++q) {
-            const VecN s = rule.points.row(q).transpose();
-            const nurbs::BasisValues basis = nurbs::rational_basis(sp.patch, e.span, s, 1);
-            if (element.indices.empty())
-                for (int local : basis.indices)
-                    element.indices.push_back(sp.parent_index[local]);
-            const nurbs::PointDerivatives x = nurbs::combine(basis, sp.patch.control_points());
-            const VecN n_raw = raw_normal(x.dx);
-
-            // The parent's derivative across the side fixes the outward sign.
-            VecN xi_parent(d);
-            for (int dir = 0, k = 0; dir < d; ++dir)
-                xi_parent(dir) = dir == fixed ? fixed_value : s(k++);
-            const nurbs::PointDerivatives across = nurbs::evaluate(parent, xi_parent, 1);
-            const double measure = collapsed ? 0.0 : n_raw.norm();
-            const double orientation = measure > 0.0 ? outward * sign(n_raw.dot(across.dx.col(fixed))) : 0.0;
-
-            element.points.push_back({s, x.x, basis.R, basis.dR, x.dx, rule.weights(q), measure, orientation});
+    SideQuadrature out{side, d, std::vector<SideElement>(static_cast<std::size_t>(geometry.n_elements()))};
+    for (boundary::GaussPoint& gp : points) {
+        SideElement& element = out.elements[static_cast<std::size_t>(gp.element)];
+        if (element.indices.empty()) {
+            for (const int local : gp.indices)
+                element.indices.push_back(geometry.parent_index()[static_cast<std::size_t>(local)]);
+            element.outward_sign = geometry.outward_sign();
         }
-        out.elements.push_back(std::move(element));
+        element.points.push_back(std::move(gp));
     }
     return out;
 }
 
 double reference_measure(const SideQuadrature& side)
 {
-    double total = 0.0;
+    double total = 0.0;  // one running sum in point order, as boundary::reference_measure
     for (const SideElement& e : side.elements)
-        for (const SidePoint& p : e.points)
-            total += p.weight * p.measure;
+        for (const boundary::GaussPoint& p : e.points)
+            total += p.weight;
     return total;
 }
 
@@ -101,9 +51,9 @@ LocalForce dead_traction(const SideElement& element, int dim, const VecN& tracti
     IGA_CHECK(traction.size() == dim, "traction must have d components");
     const int n_local = element.n_local();
     LocalForce out{element.indices, Vector::Zero(n_local * dim)};
-    for (const SidePoint& p : element.points)
+    for (const boundary::GaussPoint& p : element.points)
         for (int a = 0; a < n_local; ++a)
-            out.f_ext.segment(a * dim, dim) += (p.R(a) * p.measure * p.weight) * traction;
+            out.f_ext.segment(a * dim, dim) += (p.N(a) * p.reference.jacobian * p.parametric_weight) * traction;
     return out;
 }
 
@@ -117,15 +67,17 @@ LocalForceTangent follower_pressure(const SideElement& element, int dim, double 
     IGA_CHECK(!finite || (u_local.rows() == n_local && u_local.cols() == d), "u_local must be n_local x d");
 
     LocalForceTangent out{element.indices, Vector::Zero(n_dofs), finite ? Matrix::Zero(n_dofs, n_dofs) : Matrix()};
-    for (const SidePoint& p : element.points) {
-        if (p.orientation == 0.0)
-            continue;
-        // f_ext_ai = -p sum_g R_a orientation n_raw_i(x) w_g  (n_raw ds = n da).
-        const double c = -pressure * p.orientation * p.weight;
-        const Matrix tangents = finite ? Matrix(p.dX + u_local.transpose() * p.dR) : p.dX;
-        const VecN n = raw_normal(tangents);
+    if (element.outward_sign == 0)
+        return out;
+    const double sign = element.outward_sign;
+    for (const boundary::GaussPoint& p : element.points) {
+        // f_ext_ai = -p sum_g R_a sign n_raw_i(x) w_g  (sign n_raw ds = n da).
+        const double c = -pressure * sign * p.parametric_weight;
+        const MatN tangents =
+            finite ? MatN(p.reference.tangents + Matrix(u_local.transpose() * p.dN)) : p.reference.tangents;
+        const VecN n = boundary::raw_normal(tangents);
         for (int a = 0; a < n_local; ++a)
-            out.f_ext.segment(a * d, d) += (c * p.R(a)) * n;
+            out.f_ext.segment(a * d, d) += (c * p.N(a)) * n;
         if (!finite)
             continue;
         // dn/du_bk: 2D n = (x_s2, -x_s1); 3D n = x_s x x_t.
@@ -134,15 +86,15 @@ LocalForceTangent follower_pressure(const SideElement& element, int dim, double 
                 VecN dn = VecN::Zero(d);
                 if (d == 2) {
                     if (k == 1)
-                        dn(0) = p.dR(b, 0);
+                        dn(0) = p.dN(b, 0);
                     else
-                        dn(1) = -p.dR(b, 0);
+                        dn(1) = -p.dN(b, 0);
                 } else {
                     const VecN e_k = VecN::Unit(3, k);
-                    dn = p.dR(b, 0) * cross(e_k, tangents.col(1)) + p.dR(b, 1) * cross(tangents.col(0), e_k);
+                    dn = p.dN(b, 0) * cross(e_k, tangents.col(1)) + p.dN(b, 1) * cross(tangents.col(0), e_k);
                 }
                 for (int a = 0; a < n_local; ++a)
-                    out.df_ext_du.block(a * d, b * d + k, d, 1) += (c * p.R(a)) * dn;
+                    out.df_ext_du.block(a * d, b * d + k, d, 1) += (c * p.N(a)) * dn;
             }
     }
     return out;

@@ -20,13 +20,16 @@ constexpr double singular_rcond = 1e-14;
 constexpr double singular_pivot = 1e-12;
 }  // namespace
 
+// Columns of K_II^-1 K_IC formed at a time for W: n_I x chunk doubles of scratch.
+constexpr Index w_chunk_columns = 32;
+
 struct Condensation::Interior {
-    std::vector<double> values;  // K_II values this factorization belongs to
+    std::vector<double> values;  // K_II, K_IC, K_CI values (in this order) this factorization belongs to
     // Cholesky (K_II is SPD for elastic interiors), LU when it is not.
     Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt;
     Eigen::UmfPackLU<SparseMatrix> lu;
     bool use_lu = false;
-    Matrix X;                    // K_II^-1 K_IC, n_I x n_C
+    Matrix W;                    // K_CI K_II^-1 K_IC, n_C x n_C
 
     Interior() { llt.cholmod().print = 0; }
 
@@ -143,11 +146,18 @@ LinearStatus Condensation::factorize(const SparseMatrix& K)
         }
     }
 
-    // Interior factorization: reuse a cached one whose K_II values are identical.
+    // Interior factorization: reuse a cached one whose K_II, K_IC, K_CI values are identical.
+    auto same_values = [&](const std::vector<double>& cached) {
+        const auto n_ii = static_cast<std::size_t>(K_II_.nonZeros());
+        const auto n_ic = static_cast<std::size_t>(K_IC_.nonZeros());
+        const auto n_ci = static_cast<std::size_t>(K_CI_.nonZeros());
+        return cached.size() == n_ii + n_ic + n_ci && std::equal(ii, ii + n_ii, cached.begin()) &&
+               std::equal(ic, ic + n_ic, cached.begin() + static_cast<long>(n_ii)) &&
+               std::equal(ci, ci + n_ci, cached.begin() + static_cast<long>(n_ii + n_ic));
+    };
     current_ = nullptr;
     for (std::size_t k = 0; k < cache_.size(); ++k)
-        if (std::equal(cache_[k]->values.begin(), cache_[k]->values.end(), ii) &&
-            cache_[k]->values.size() == static_cast<std::size_t>(K_II_.nonZeros())) {
+        if (same_values(cache_[k]->values)) {
             std::rotate(cache_.begin(), cache_.begin() + static_cast<long>(k), cache_.begin() + static_cast<long>(k) + 1);
             current_ = cache_.front().get();
             break;
@@ -155,15 +165,21 @@ LinearStatus Condensation::factorize(const SparseMatrix& K)
     if (!current_) {
         auto interior = std::make_unique<Interior>();
         interior->values.assign(ii, ii + K_II_.nonZeros());
+        interior->values.insert(interior->values.end(), ic, ic + K_IC_.nonZeros());
+        interior->values.insert(interior->values.end(), ci, ci + K_CI_.nonZeros());
         ++n_interior_;
+        const Index n_c = K_IC_.cols();
+        interior->W = Matrix::Zero(n_c, n_c);
         if (K_II_.rows() > 0) {
             if (!interior->factorize(K_II_))
                 return LinearStatus::singular;
-            interior->X = interior->solve(Matrix(K_IC_));  // one multi-column solve
-            if (!interior->X.allFinite())
-                return LinearStatus::singular;
-        } else {
-            interior->X.resize(0, K_IC_.cols());
+            for (Index j = 0; j < n_c; j += w_chunk_columns) {
+                const Index m = std::min(w_chunk_columns, n_c - j);
+                const Matrix Z = interior->solve(Matrix(K_IC_.middleCols(j, m)));  // K_II^-1 K_IC, m columns
+                if (!Z.allFinite())
+                    return LinearStatus::singular;
+                interior->W.middleCols(j, m) = K_CI_ * Z;
+            }
         }
         cache_.insert(cache_.begin(), std::move(interior));
         if (cache_.size() > 2)
@@ -171,7 +187,7 @@ LinearStatus Condensation::factorize(const SparseMatrix& K)
         current_ = cache_.front().get();
     }
 
-    const Matrix S = K_CC_ - K_CI_ * current_->X;
+    const Matrix S = K_CC_ - current_->W;
     if (!S.allFinite())
         return LinearStatus::singular;
     schur_.compute(S);
@@ -201,7 +217,7 @@ LinearStatus Condensation::solve(const Vector& b, Vector& x) const
     }
     const Vector y = n_i > 0 ? Vector(current_->solve(b_i)) : Vector(0);
     const Vector x_c = n_c > 0 ? Vector(schur_.solve(b_c - K_CI_ * y)) : Vector(0);
-    const Vector x_i = y - current_->X * x_c;
+    const Vector x_i = n_i > 0 ? Vector(current_->solve(Vector(b_i - K_IC_ * x_c))) : Vector(0);
     x.resize(b.size());
     for (Index k = 0; k < b.size(); ++k) {
         const int p = position_[static_cast<std::size_t>(k)];

@@ -2,14 +2,19 @@
 // Static condensation for tangents whose change between Newton iterations is
 // confined to a few dofs: K = [K_II K_IC; K_CI K_CC], where only the "condensed"
 // block rows/columns C (the contact sides' dofs under small kinematics) change
-// and the interior block K_II stays constant. K_II is factorized once and
-// X = K_II^-1 K_IC kept, so each iteration only forms and factorizes the dense
-// Schur complement S = K_CC - K_CI X (n_C x n_C):
-//   y = K_II^-1 b_I,  S x_C = b_C - K_CI y,  x_I = y - X x_C.
-// Correctness never rests on the assumption: K_II's values are compared with
-// the cached ones on every factorization, and a change (finite kinematics, a
-// Levenberg-Marquardt shift) triggers a new interior factorization. Two
-// interior factorizations are cached (the plain and the shifted K_II of a
+// and K_II, K_IC, K_CI stay constant. K_II is factorized once and the n_C x n_C
+// matrix W = K_CI K_II^-1 K_IC kept (formed from K_II^-1 K_IC in chunks of
+// columns, so the dense n_I x n_C product is never held whole), so each iteration
+// only forms and factorizes the dense Schur complement S = K_CC - W:
+//   y = K_II^-1 b_I,  S x_C = b_C - K_CI y,  x_I = K_II^-1 (b_I - K_IC x_C).
+// Memory: the K_II factor plus 2 n_C^2 doubles (W, S); time per iteration: the
+// dense LU of S, (2/3) n_C^3 flops, and two K_II solves per solve. It pays against
+// one sparse LU of the whole tangent per iteration only for small n_C (measured:
+// analysis/run.cpp, README "Contact cost").
+// Correctness never rests on the assumption: the values of K_II, K_IC and K_CI are
+// compared with the cached ones on every factorization, and a change (finite
+// kinematics, a Levenberg-Marquardt shift) triggers a new interior factorization.
+// Two interior factorizations are cached (the plain and the shifted K_II of a
 // regularized first iteration).
 //
 // Shapes: K is n x n (free dofs), compressed column-major; condensed dofs are
@@ -30,6 +35,10 @@ public:
     explicit Condensation(std::vector<int> condensed_dofs);
     ~Condensation();
 
+    /// The next factorize() rebuilds its block maps and interior factorization:
+    /// K's sparsity pattern changed (LinearSolver calls it; a change of the number
+    /// of nonzeros or rows is detected without it).
+    void new_pattern() { pattern_nnz_ = -1; }
     /// Factorizes K (see above). ok, or singular when K_II or S is singular.
     LinearStatus factorize(const SparseMatrix& K);
     /// x = K^-1 b with the last successful factorization.

@@ -61,6 +61,7 @@ LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
 void LinearSolver::set_condensed_dofs(std::vector<int> dofs)
 {
     condensation_ = dofs.empty() ? nullptr : std::make_unique<Condensation>(std::move(dofs));
+    analysed_ = false;  // the backend and the condensation keep separate analyses
     factorized_ = false;
 }
 
@@ -111,6 +112,10 @@ LinearStatus LinearSolver::factorize(const SparseMatrix& K)
         return kind_ == Kind::lu ? LinearStatus::singular : LinearStatus::failed;
 
     if (condensation_) {
+        if (!analysed_) {  // a new pattern (e.g. a contact coupling extended it): new block maps
+            condensation_->new_pattern();  // (not counted in n_symbolic(): the backend's analyses only)
+            analysed_ = true;
+        }
         ++n_numeric_;
         const LinearStatus status = condensation_->factorize(K_);
         factorized_ = status == LinearStatus::ok;

@@ -36,7 +36,9 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
 {
     IGA_CHECK(stepping.count >= 1, "run_load_steps: count must be >= 1");
     IGA_CHECK(stepping.max_cutbacks >= 0, "run_load_steps: max_cutbacks must be >= 0");
-    IGA_CHECK(stepping.growth >= 1.0, "run_load_steps: growth must be >= 1");
+    IGA_CHECK(stepping.target_iterations >= 1 && stepping.max_growth >= 1.0 && stepping.max_shrink > 0.0 &&
+                  stepping.max_shrink <= 1.0,
+              "run_load_steps: target_iterations >= 1, max_growth >= 1 and max_shrink in (0, 1] are required");
 
     SteppingResult result;
     const double initial_increment = 1.0 / stepping.count;
@@ -47,6 +49,9 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
     double increment = initial_increment;
     double lambda = 0.0;
     Vector u_converged = u;
+    // The converged state before the last one, for the extrapolating predictor.
+    Vector u_previous;
+    double lambda_previous = 0.0;
 
     while (lambda < 1.0) {
         const int index = static_cast<int>(result.increments.size()) + 1;
@@ -55,6 +60,7 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
             result.message = index == 1 ? std::string("interrupted (SIGINT/SIGTERM) before the first increment")
                                         : "interrupted (SIGINT/SIGTERM) after increment " + std::to_string(index - 1) +
                                               " (load factor " + format_g(lambda, 6) + ")";
+            result.last_failure = NewtonReport{};  // a stop, not a failure of Newton
             return result;
         }
 
@@ -69,10 +75,21 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
                                  ": the increment fell below the round-off of the load factor";
                 return result;
             }
+            PredictionReport prediction;
+            u = predict(system, stepping.predictor, u_converged, lambda, target,
+                        {u_previous.size() > 0 ? &u_previous : nullptr, lambda_previous}, solver, context,
+                        prediction);
+            if (!prediction.note.empty()) {
+                ++result.predictor_fallbacks;
+                if (context)
+                    context->log(Verbosity::verbose, increment_text(index, lambda, target) + ": predictor: " +
+                                                         prediction.note);
+            }
             report = solve_newton(system, target, u, newton, solver, context);
             result.total_iterations += report.iterations;
             if (report.status == NewtonStatus::converged)
                 break;
+            result.last_failure = report;
 
             u = u_converged;
             if (callbacks.rollback)
@@ -107,6 +124,8 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
                                                      format_g(increment, 6));
         }
 
+        u_previous = std::move(u_converged);
+        lambda_previous = lambda;
         lambda = target;
         u_converged = u;
         if (callbacks.commit)
@@ -127,10 +146,17 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
         if (callbacks.converged)
             callbacks.converged(result.increments.back(), u);
 
-        if (stepping.adaptive && report.iterations <= stepping.easy_iterations)
-            increment = std::min(increment * stepping.growth, initial_increment);
+        if (stepping.adaptive) {
+            const double factor =
+                report.iterations > 0
+                    ? std::clamp(static_cast<double>(stepping.target_iterations) / report.iterations,
+                                 stepping.max_shrink, stepping.max_growth)
+                    : stepping.max_growth;
+            increment = std::clamp(increment * factor, min_increment, initial_increment);
+        }
     }
     result.completed = true;
+    result.last_failure = NewtonReport{};
     return result;
 }
 

@@ -2,24 +2,38 @@
 // Load stepping: drives the load factor lambda from 0 to 1 in increments, each
 // solved by Newton (solver/newton.hpp), with adaptive cutbacks (physics.md §7.2).
 //
-// Rules: the initial increment is 1/count. A failed increment restores u to the
-// last converged state, calls rollback, halves the increment (adaptive only) and
-// retries, at most max_cutbacks times per increment; then the run ends with
-// completed = false and a message naming the increment, its load factors and
-// the reason. The increment never falls below 1/count / 2^max_cutbacks either: a
-// cutback that would go below it also ends the run (else an adaptive run toward
-// a limit load creeps on forever with geometrically shrinking increments). An
-// increment that converged in <= easy_iterations grows the next one by
-// `growth`, never beyond 1/count. A final increment that would fall
-// within 1e-12 of lambda = 1 is merged into the previous one, so the run ends at
-// exactly 1. Linear systems never cut back (a smaller increment cannot cure a
-// failed linear solve). Non-adaptive stepping takes exactly `count` increments.
-// Load factors are monotone: lambda_k = lambda_{k-1} + (increment k).
+// Rules: the initial increment is 1/count, which is also the largest: the
+// user's count is an upper bound on the step size, never exceeded. A failed
+// increment restores u to the last converged state, calls rollback, halves the
+// increment (adaptive only) and retries, at most max_cutbacks times per
+// increment; then the run ends with completed = false and a message naming the
+// increment, its load factors and the reason. The increment never falls below
+// 1/count / 2^max_cutbacks either: a cutback that would go below it also ends
+// the run (else an adaptive run toward a limit load creeps on forever with
+// geometrically shrinking increments).
+//
+// Step control by iteration count (adaptive only): after an increment that
+// converged in n Newton iterations, the next increment is the last one times
+// target_iterations / n, the factor bounded to [max_shrink, max_growth]
+// (n = 0: max_growth), and the result bounded to [1/count / 2^max_cutbacks,
+// 1/count]. An increment that needs more iterations than the target shrinks the
+// next one before it fails; an easy one lets it grow back quickly after cutbacks.
+//
+// Predictor (systems with prescribed_motion, solver/predictor.hpp): each attempt
+// starts Newton from the predicted state instead of the last converged one.
+// Force-driven systems (no prescribed_motion) start from the converged state.
+//
+// A final increment that would fall within 1e-12 of lambda = 1 is merged into
+// the previous one, so the run ends at exactly 1. Linear systems never cut back
+// (a smaller increment cannot cure a failed linear solve). Non-adaptive stepping
+// takes exactly `count` increments. Load factors are monotone:
+// lambda_k = lambda_{k-1} + (increment k).
 
 #include "core/run_context.hpp"
 #include "core/types.hpp"
 #include "solver/linear.hpp"
 #include "solver/newton.hpp"
+#include "solver/predictor.hpp"
 
 #include <functional>
 #include <string>
@@ -28,11 +42,16 @@
 namespace iga::solver {
 
 struct SteppingSettings {
-    int count = 1;          ///< initial number of increments: increment 1/count
-    bool adaptive = true;   ///< halve a failed increment and retry; grow after easy ones
+    int count = 1;          ///< initial number of increments: increment 1/count, also the largest
+    bool adaptive = true;   ///< halve a failed increment and retry; size the next one by the iterations
     int max_cutbacks = 8;   ///< per increment
-    double growth = 1.5;    ///< factor on the increment after an easy one
-    int easy_iterations = 4;  ///< converged in <= this many iterations: grow the next increment
+    /// Newton iterations an increment should take; 6: a finite-strain or contact
+    /// increment converging quadratically from a predicted state needs 4-6, so an
+    /// increment at the target is as large as Newton handles without strain.
+    int target_iterations = 6;
+    double max_growth = 2.0;  ///< bound on the factor target / n that grows the next increment
+    double max_shrink = 0.5;  ///< bound on the factor that shrinks it (the same as a cutback)
+    Predictor predictor = Predictor::linearized;
 };
 
 struct IncrementRecord {
@@ -62,6 +81,9 @@ struct SteppingResult {
     std::string message;
     int total_cutbacks = 0;
     int total_iterations = 0;  ///< Newton iterations of all attempts, failed ones included
+    int predictor_fallbacks = 0;  ///< attempts whose predicted state was scaled back or not admissible
+    /// The report of the attempt that ended the run (default when completed or stopped).
+    NewtonReport last_failure;
     std::vector<IncrementRecord> increments;
 };
 

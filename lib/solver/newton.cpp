@@ -228,8 +228,10 @@ static bool directional_search(const NonlinearSystem& system, const Vector& u, c
         const double c = b - sb * (b - a) / (sb - sa);
         ++report.line_search_cuts;
         evaluate(system, u + c * du, load_factor, false, probe, context);
-        if (!probe.ok || !probe.residual.allFinite())
+        if (!probe.ok || !probe.residual.allFinite()) {
+            ++report.inadmissible_trials;
             return false;
+        }
         const double sc = du.dot(probe.residual);
         if (std::abs(sc) <= slope_reduction * std::abs(s0)) {
             alpha = c;
@@ -268,6 +270,16 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
     auto finish = [&](NewtonStatus status, std::string message) {
         if (status != NewtonStatus::converged)
             u = u_start;
+        if (status == NewtonStatus::max_iterations || status == NewtonStatus::diverged) {
+            report.trend = residual_trend(report.residual_history);
+            if (report.trend == ResidualTrend::two_state_cycle) {
+                const CycleLevels levels = cycle_levels(report.residual_history);
+                message += "; the relative residual alternates between " + format_g(levels.high) + " and " +
+                           format_g(levels.low) + " (a two-state cycle)";
+            } else if (report.trend == ResidualTrend::stagnation) {
+                message += "; the relative residual stagnates";
+            }
+        }
         report.status = status;
         report.message = std::move(message);
         return report;
@@ -292,7 +304,6 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
 
     if (system.linear) {
         Vector du;
-        const double tangent_max = current.tangent.nonZeros() > 0 ? current.tangent.coeffs().cwiseAbs().maxCoeff() : 0.0;
         const StepResult step = newton_step(current.tangent, current.residual, solver, context, du);
         if (step.status != LinearStatus::ok)
             return finish(NewtonStatus::singular, std::string("linear solve failed (") + status_name(step.status) +
@@ -358,6 +369,12 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         Vector u_new = u + du;
         evaluate(system, u_new, load_factor, true, trial, context);
         double new_norm = finite_norm_or_inf(trial);
+        if (!trial.ok) {
+            ++report.inadmissible_trials;
+            if (context && settings.line_search)
+                context->log(Verbosity::verbose, "  newton " + std::to_string(iteration) +
+                                                     ": full step inadmissible, backing off (" + trial.message + ")");
+        }
         Evaluation* chosen = &trial;
         bool chosen_has_tangent = true;
 
@@ -388,8 +405,10 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
                 alpha *= 0.5;
                 ++report.line_search_cuts;
                 evaluate(system, u + alpha * du, load_factor, false, probe, context);
-                if (!probe.ok)
+                if (!probe.ok) {
                     failure_message = probe.message;
+                    ++report.inadmissible_trials;
+                }
                 const double probe_norm = finite_norm_or_inf(probe);
                 if (probe_norm <= (1.0 - armijo * alpha) * r_norm) {
                     accepted = true;

@@ -40,11 +40,25 @@
 // that Newton walks across regions where r is flat, e.g. an open contact gap,
 // instead of creeping by 2^-max_backtracks per iteration).
 //
+// Inadmissible trial states (an inverted element, det F <= 0; a material or a
+// contact projection that cannot be evaluated; a non-finite residual): the
+// evaluation reports ok = false and the trial is rejected like one that raises
+// ||r||, so the backtracking above halves the step (up to max_backtracks times)
+// inside the iteration; only when every trial along the direction is
+// inadmissible does Newton stop with evaluation_failed (the load stepper then
+// cuts the increment back). Counted in NewtonReport::inadmissible_trials. With
+// line_search off, an inadmissible full step ends the solve at once.
+//
+// Failure diagnosis: on max_iterations or diverged, the residual history is
+// classified (solver/residual_trend.hpp): a two-state cycle (active-set or
+// projection flip-flop) or a stagnation; the message says which.
+//
 // On any failure status, u is restored to its value on entry.
 
 #include "core/run_context.hpp"
 #include "core/types.hpp"
 #include "solver/linear.hpp"
+#include "solver/residual_trend.hpp"
 
 #include <functional>
 #include <string>
@@ -73,6 +87,9 @@ struct NonlinearSystem {
     bool linear = false;     ///< r is affine in u: one solve per increment
     bool symmetric = true;   ///< K symmetric: Cholesky may be used, else LU is forced
     double max_step = 0;     ///< > 0: cap on ||du||_inf (trust radius); 0: no cap
+    /// The load factor moves constrained dofs (prescribed displacements): the load
+    /// stepper predicts each increment's free dofs (solver/predictor.hpp).
+    bool prescribed_motion = false;
 };
 
 struct NewtonSettings {
@@ -96,6 +113,9 @@ struct NewtonReport {
     std::vector<double> residual_history;
     int regularized_iterations = 0;  ///< steps that needed K + mu D
     int line_search_cuts = 0;        ///< backtracking halvings over all steps
+    int inadmissible_trials = 0;     ///< trial states rejected because their evaluation failed
+    /// Shape of the residual history when the solve failed (max_iterations, diverged); else none.
+    ResidualTrend trend = ResidualTrend::none;
     std::string message;             ///< why it stopped, human readable
 };
 

@@ -245,5 +245,45 @@ TEST(SparsePattern, KernelExceptionIsRethrown)
                      std::runtime_error);
 }
 
+// A pattern built from the elements and then extended by the contact block (and
+// by a block that adds no entry) is the pattern built with all of them at once:
+// same compressed arrays, same colors, and bitwise the same assembled values.
+TEST(SparsePattern, ExtendedPatternEqualsPatternBuiltAtOnce)
+{
+    const Scene scene;
+    std::mt19937 rng(seed + 3);
+    std::vector<std::vector<int>> all = scene.blocks;
+    all.push_back(scene.blocks.front());  // a repeat: registers positions, adds no entry
+    const std::vector<Matrix> locals = random_locals(all, rng);
+
+    const SparsePattern at_once(scene.dofs, all);
+    std::vector<std::vector<int>> elements(all.begin(), all.end() - 2);
+    SparsePattern extended(scene.dofs, elements);
+    const SparseMatrix before = extended.make_matrix();
+    bool added = false;
+    EXPECT_EQ(extended.extend({all[all.size() - 2]}, &added), static_cast<int>(all.size()) - 2);
+    EXPECT_TRUE(added) << "the contact block couples the top row with the second body: new entries";
+    EXPECT_FALSE(extended.matches(before));
+    EXPECT_EQ(extended.extend({all.back()}, &added), static_cast<int>(all.size()) - 1);
+    EXPECT_FALSE(added) << "a repeated element block adds no entry";
+
+    ASSERT_EQ(extended.n_blocks(), at_once.n_blocks());
+    ASSERT_EQ(extended.n_nonzeros(), at_once.n_nonzeros());
+    EXPECT_TRUE(extended.matches(at_once.make_matrix()));
+    ASSERT_EQ(extended.n_colors(), at_once.n_colors());
+    for (int c = 0; c < at_once.n_colors(); ++c)
+        EXPECT_EQ(extended.color(c), at_once.color(c)) << "color " << c;
+
+    SparseMatrix K_once = at_once.make_matrix(), K_extended = extended.make_matrix();
+    for (int b = 0; b < at_once.n_blocks(); ++b) {
+        at_once.add(b, locals[static_cast<std::size_t>(b)], K_once);
+        extended.add(b, locals[static_cast<std::size_t>(b)], K_extended);
+    }
+    // The same additions into the same slots in the same order: bitwise equal.
+    for (Index k = 0; k < K_once.nonZeros(); ++k)
+        ASSERT_EQ(K_once.valuePtr()[k], K_extended.valuePtr()[k]) << "entry " << k;
+    EXPECT_GT(Matrix(K_once).cwiseAbs().maxCoeff(), 0.0);
+}
+
 }  // namespace
 }  // namespace iga::assembly

@@ -264,3 +264,38 @@ TEST(ContactPair, UnsupportedInputsAreClearErrors)
 
 }  // namespace
 }  // namespace iga::contact
+
+namespace iga::contact {
+namespace {
+
+// The tangent comes as one small block per (first-surface element, second-surface
+// element) coupling: each coupling once, its dofs those of the two elements, and
+// in a state near the reference configuration every coupling met is one that the
+// reference search admitted (so a pattern built from candidate_couplings() needs
+// no extension at first touch).
+TEST(ContactPair, TangentBlocksArePerCouplingAndCandidatesCoverThem)
+{
+    const Scene s = make_scene();
+    for (const Formulation formulation : {Formulation::two_half_pass, Formulation::single_pass}) {
+        const ContactPair pair({.formulation = formulation, .penalty = 1e3}, s.disc, s.block);
+        const auto [u1, u2] = overlap_state(pair, 7);
+        const PairEvaluation ev = pair.evaluate(u1, u2, true);
+        ASSERT_TRUE(ev.ok) << ev.message;
+        ASSERT_FALSE(ev.tangent.empty());
+        const std::vector<Coupling> candidates = pair.candidate_couplings();
+        for (std::size_t k = 0; k < ev.tangent.size(); ++k) {
+            const LocalBlock& block = ev.tangent[k];
+            if (k > 0)
+                EXPECT_LT(ev.tangent[k - 1].element, block.element) << "sorted, each coupling once";
+            EXPECT_EQ(block.dofs, pair.coupling_dofs(block.element));
+            constexpr int max_element_dofs = 4 * 2;  // sides of degree <= 3: 4 control points x d = 2
+            EXPECT_LE(static_cast<int>(block.dofs.size()), 2 * max_element_dofs) << "two elements' dofs at most";
+            EXPECT_LT(static_cast<int>(block.dofs.size()), pair.n_local_dofs()) << "never the whole pair";
+            EXPECT_TRUE(std::binary_search(candidates.begin(), candidates.end(), block.element))
+                << "coupling (" << block.element[0] << ", " << block.element[1] << ") not a reference candidate";
+        }
+    }
+}
+
+}  // namespace
+}  // namespace iga::contact

@@ -100,11 +100,16 @@ inline RowMatrix shifted(int n_cp, const VecN& shift, double noise, std::mt19937
     return u;
 }
 
-inline Matrix dense(const std::vector<Triplet>& triplets, int n)
+/// The pair's tangent as one dense n x n matrix (the blocks summed): for checks on
+/// small test pairs only; the library never forms it.
+inline Matrix dense(const std::vector<contact::LocalBlock>& blocks, int n)
 {
-    SparseMatrix K(n, n);
-    K.setFromTriplets(triplets.begin(), triplets.end());
-    return Matrix(K);
+    Matrix K = Matrix::Zero(n, n);
+    for (const contact::LocalBlock& block : blocks)
+        for (std::size_t j = 0; j < block.dofs.size(); ++j)
+            for (std::size_t i = 0; i < block.dofs.size(); ++i)
+                K(block.dofs[i], block.dofs[j]) += block.K(static_cast<Index>(i), static_cast<Index>(j));
+    return K;
 }
 
 /// Stacks the two sides' displacements into one local dof vector (pair numbering).

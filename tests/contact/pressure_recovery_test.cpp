@@ -66,7 +66,8 @@ TEST(PressureRecovery, UniformPressureIsRecoveredExactly)
     ASSERT_EQ(r.pressure.size(), 13);
     EXPECT_TRUE(test::at_most((r.reference_coordinates.row(0) - RowMatrix(vec2(-1.0, 1.0).transpose())).norm(), sum_tolerance));
     EXPECT_TRUE(test::at_most((r.coordinates.row(12) - RowMatrix(vec2(1.2, 1.0).transpose())).norm(), sum_tolerance));
-    EXPECT_TRUE(std::is_sorted(r.parameter.begin(), r.parameter.end()));
+    ASSERT_EQ(r.parameter.cols(), 1);
+    EXPECT_TRUE(std::is_sorted(r.parameter.col(0).begin(), r.parameter.col(0).end()));
     EXPECT_TRUE(test::near(r.parameter(4), 0.3, 0.0));  // span ends are sampled
     EXPECT_TRUE(test::near_rel(r.normal_force, ev.carriers[0].pressure.dot(ev.carriers[0].weight), 0.0));
     // The top is 2.2 long; its Gauss rule integrates |dX/deta| of this rational
@@ -101,9 +102,9 @@ TEST(PressureRecovery, TotalForceIsPreservedAndPressuresArePositive)
 
     // sum_A p_A sum_g R_A(eta_g) W_g = sum_g p_g W_g, with R_A re-evaluated here.
     Vector D = Vector::Zero(side.n_control_points());
-    for (std::size_t g = 0; g < c.parameter.size(); ++g) {
+    for (Index g = 0; g < c.parameter.rows(); ++g) {
         VecN eta(1);
-        eta(0) = c.parameter[g];
+        eta(0) = c.parameter(g, 0);
         const nurbs::BasisValues b = nurbs::rational_basis(side, eta, 0);
         for (std::size_t a = 0; a < b.indices.size(); ++a)
             D(b.indices[a]) += b.R(static_cast<Index>(a)) * c.weight(static_cast<Index>(g));

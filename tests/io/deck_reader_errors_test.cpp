@@ -323,14 +323,59 @@ TEST(DeckReaderErrors, BuiltInShapes)
                                         "hertz.yaml:11:12: error: bodies.block.shape: missing required key 'center'"}));
     EXPECT_EQ(issue_of(replaced(minimal_deck, "    shape: {type: rectangle, corner: [0, 0], size: [2, 1]}\n", "")),
               "hertz.yaml:9:5: error: bodies.block: needs 'nurbs' or 'shape' (or 'rigid' for an obstacle)");
-    EXPECT_EQ(issue_of(replaced(cube_deck_3d, "bodies:\n",
-                                "bodies:\n  - {name: ball, material: steel, shape: {type: half_disc, center: [0, 0, "
-                                "0], radius: 1}}\n")),
-              "hertz.yaml:6:42: error: bodies.ball.shape: built-in shapes are 2D only; describe a 3D body with "
-              "'nurbs'");
     EXPECT_EQ(issue_of(replaced(cube_deck_3d, "refine: {spans: [2, 2, 2]}",
                                 "shape: {type: rectangle, corner: [0, 0], size: [1, 1]}")),
               "hertz.yaml:6:5: error: bodies.cube: takes 'nurbs' or 'shape', not both");
+}
+
+// Built-in shapes in 3D decks and shapes of the wrong dimension: one row per
+// bad `shape:` of a body `ball` added to the 3D cube deck (line 6), the whole
+// message compared.
+TEST(DeckReaderErrors, BuiltInShapesIn3d)
+{
+    struct Row {
+        const char* name;
+        const char* shape;
+        std::vector<std::string> issues;
+    };
+    const std::string at = "hertz.yaml:6:";
+    const std::vector<Row> rows = {
+        {"2D shape without extrusion", "{type: half_disc, center: [0, 0], radius: 1}",
+         {at + "42: error: bodies.ball.shape: a 2D shape in a 3D deck needs 'extrude: L', its length along z (or "
+               "use a 3D shape: sphere_octant, box)"}},
+        {"extrusion not positive", "{type: quarter_disc, center: [0, 0], radius: 1, extrude: 0}",
+         {at + "99: error: bodies.ball.shape.extrude = 0: must be > 0"}},
+        {"extruded shape takes 2D coordinates", "{type: rectangle, corner: [0, 0, 0], size: [1, 1], extrude: 1}",
+         {at + "68: error: bodies.ball.shape.corner = [0, 0, 0]: expected a list of 2 numbers"}},
+        {"3D shape is not extruded", "{type: box, corner: [0, 0, 0], size: [1, 1, 1], extrude: 2}",
+         {at + "99: error: bodies.ball.shape.extrude: does not apply to a box (a 3D shape; only 2D shapes are "
+               "extruded)"}},
+        {"sphere_octant takes 3 coordinates", "{type: sphere_octant, center: [0, 0], radius: 1}",
+         {at + "72: error: bodies.ball.shape.center = [0, 0]: expected a list of 3 numbers"}},
+        {"sphere_octant takes center and radius", "{type: sphere_octant, corner: [0, 0, 0], radius: 1}",
+         {at + "72: error: bodies.ball.shape.corner: does not apply to a sphere_octant (it takes center and "
+               "radius)",
+          at + "42: error: bodies.ball.shape: missing required key 'center'"}},
+        {"box size positive", "{type: box, corner: [0, 0, 0], size: [1, -1, 1]}",
+         {at + "83: error: bodies.ball.shape.size.1 = -1: must be > 0"}},
+        {"sphere_octant radius positive", "{type: sphere_octant, center: [0, 0, 0], radius: 0}",
+         {at + "91: error: bodies.ball.shape.radius = 0: must be > 0"}},
+    };
+    for (const Row& row : rows) {
+        SCOPED_TRACE(row.name);
+        EXPECT_EQ(issues_of(replaced(cube_deck_3d, "bodies:\n",
+                                     std::string("bodies:\n  - {name: ball, material: steel, shape: ") + row.shape +
+                                         "}\n")),
+                  row.issues);
+    }
+    // The other way round: 3D shapes and extrusion in a 2D deck.
+    EXPECT_EQ(issue_of(replaced(minimal_deck, "{type: rectangle, corner: [0, 0], size: [2, 1]}",
+                                "{type: sphere_octant, center: [0, 0, 1], radius: 1}")),
+              "hertz.yaml:11:19: error: bodies.block.shape.type = sphere_octant: a 3D shape, but analysis.dimension "
+              "is 2 (2D shapes: half_disc, quarter_disc, rectangle)");
+    EXPECT_EQ(issue_of(replaced(minimal_deck, "size: [2, 1]}", "size: [2, 1], extrude: 1}")),
+              "hertz.yaml:11:69: error: bodies.block.shape.extrude: applies to 3D decks only (it sweeps a 2D shape "
+              "along z)");
 }
 
 TEST(DeckReaderErrors, RigidBodies)
@@ -421,7 +466,7 @@ TEST(DeckReaderErrors, OutputReference)
               "mean 'block_floor'?)");
     EXPECT_EQ(reference("{pair: block_floor, type: hertz, radius: 1, force: 10}"),
               "hertz.yaml:23:40: error: output.reference.type = hertz: expected one of hertz_cylinder_plane, "
-              "hertz_two_cylinders");
+              "hertz_two_cylinders, hertz_sphere_plane, hertz_two_spheres");
     EXPECT_EQ(reference("{pair: block_floor, type: hertz_cylinder_plane, radius: 0, force: 10}"),
               "hertz.yaml:23:70: error: output.reference.radius = 0: must be > 0");
     EXPECT_EQ(reference("{pair: block_floor, type: hertz_cylinder_plane, radius: 1, force: -10}"),
@@ -433,6 +478,28 @@ TEST(DeckReaderErrors, OutputReference)
               (std::vector<std::string>{"hertz.yaml:23:69: error: output.reference.radius: does not apply to "
                                         "hertz_two_cylinders (it takes 'radii')",
                                         "hertz.yaml:23:14: error: output.reference: missing required key 'radii'"}));
+}
+
+// References of the wrong dimension: line contact in 3D decks, point contact in 2D decks.
+TEST(DeckReaderErrors, OutputReferenceDimension)
+{
+    EXPECT_EQ(issue_of(minimal_deck +
+                       "output:\n  reference: {pair: block_floor, type: hertz_sphere_plane, radius: 1, force: 1}\n"),
+              "hertz.yaml:23:40: error: output.reference.type = hertz_sphere_plane: a 3D point-contact reference; a "
+              "2D deck takes hertz_cylinder_plane or hertz_two_cylinders");
+    EXPECT_EQ(issue_of(cube_deck_3d +
+                       "output:\n  reference: {pair: cube_table, type: hertz_two_cylinders, radii: [1, 2], force: "
+                       "1}\n"),
+              "hertz.yaml:32:39: error: output.reference.type = hertz_two_cylinders: a 2D line-contact reference; a "
+              "3D deck takes hertz_sphere_plane or hertz_two_spheres");
+    EXPECT_EQ(issues_of(cube_deck_3d +
+                        "output:\n  reference: {pair: cube_table, type: hertz_two_spheres, radius: 1, force: 1}\n"),
+              (std::vector<std::string>{"hertz.yaml:32:66: error: output.reference.radius: does not apply to "
+                                        "hertz_two_spheres (it takes 'radii')",
+                                        "hertz.yaml:32:14: error: output.reference: missing required key 'radii'"}));
+    EXPECT_EQ(issue_of(cube_deck_3d +
+                       "output:\n  reference: {pair: cube_table, type: hertz_sphere_plane, radius: 1, force: 0}\n"),
+              "hertz.yaml:32:77: error: output.reference.force = 0: must be > 0");
 }
 
 TEST(DeckReaderErrors, IndependentIssuesAreReportedTogether)

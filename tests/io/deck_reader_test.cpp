@@ -11,6 +11,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <optional>
 
 namespace iga::io {
 namespace {
@@ -20,6 +22,7 @@ using test::hertz_deck;
 using test::minimal_deck;
 using test::read;
 using test::replaced;
+using test::shapes_deck_3d;
 using test::two_cylinders_deck;
 
 // ---------------------------------------------------------------------------
@@ -113,6 +116,42 @@ TEST(DeckReader, Reads3dDeckWithEveryLoadAndConstraintKind)
     EXPECT_EQ(d.contact[0].formulation, Formulation::single_pass);
 }
 
+TEST(DeckReader, Reads3dShapesAndAPointContactReference)
+{
+    const Deck d = read(shapes_deck_3d);
+    ASSERT_EQ(d.bodies.size(), 3u);
+    const Shape& ball = *d.bodies[0].shape;
+    EXPECT_EQ(ball.type, ShapeType::sphere_octant);
+    EXPECT_EQ(ball.center, (std::vector<double>{0, 0, 1}));
+    EXPECT_EQ(ball.radius, 1.0);
+    EXPECT_FALSE(ball.extrude.has_value());
+    EXPECT_EQ(shape_degrees(ball), (std::vector<int>{2, 1, 2}));
+    EXPECT_EQ(d.bodies[0].refine.insert, (std::vector<std::vector<double>>{{0.05}, {0.5}, {0.95}}));
+    const Shape& block = *d.bodies[1].shape;
+    EXPECT_EQ(block.type, ShapeType::box);
+    EXPECT_EQ(block.corner, (std::vector<double>{0, 0, -1}));
+    EXPECT_EQ(block.size, (std::vector<double>{2, 2, 1}));
+    const Shape& slab = *d.bodies[2].shape;
+    EXPECT_EQ(slab.type, ShapeType::quarter_disc);
+    EXPECT_EQ(slab.center, (std::vector<double>{3, 1}));
+    EXPECT_EQ(slab.extrude, std::optional<double>(0.2));
+    EXPECT_EQ(shape_degrees(slab), (std::vector<int>{2, 1, 1}));
+    ASSERT_TRUE(d.output.reference.has_value());
+    EXPECT_EQ(d.output.reference->type, ReferenceType::hertz_two_spheres);
+    EXPECT_EQ(d.output.reference->radii[0], 1.0);
+    EXPECT_EQ(d.output.reference->radii[1], 2.0);
+    EXPECT_EQ(d.output.reference->force, 1.5);
+    // --set reaches the new keys; refine is checked against the shape's degrees (w of the octant: 2).
+    const Deck thicker = read(shapes_deck_3d, {"bodies.slab.shape.extrude=0.5",
+                                               "output.reference={pair: touch, type: hertz_sphere_plane, radius: 1, "
+                                               "force: 2}"});
+    EXPECT_EQ(thicker.bodies[2].shape->extrude, std::optional<double>(0.5));
+    EXPECT_EQ(thicker.output.reference->type, ReferenceType::hertz_sphere_plane);
+    EXPECT_EQ(thicker.output.reference->radius, 1.0);
+    EXPECT_NO_THROW(read(shapes_deck_3d, {"bodies.ball.refine.insert=[[], [], [0.9, 0.9]]"}));
+    EXPECT_THROW(read(shapes_deck_3d, {"bodies.ball.refine.insert=[[], [], [0.9, 0.9, 0.9]]"}), DeckError);
+}
+
 TEST(DeckReader, NormalizesTheRigidPlaneNormal)
 {
     const Deck d = read(replaced(minimal_deck, "normal: [0, 1]", "normal: [3, 4]"));
@@ -192,6 +231,7 @@ TEST(ResolvedDeck, RoundTripGivesAnEqualDeck)
     expect_round_trip(cube_deck_3d);
     expect_round_trip(two_cylinders_deck);
     expect_round_trip(minimal_deck);
+    expect_round_trip(shapes_deck_3d);
 }
 
 TEST(ResolvedDeck, MakesDefaultsExplicit)

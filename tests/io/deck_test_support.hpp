@@ -140,6 +140,25 @@ output: {reference: {pair: mate, type: hertz_two_cylinders, radii: [1, 2], force
 )";
 
 
+/// A 3D deck of the built-in 3D shapes: a sphere octant on a box, an extruded
+/// quarter disc, and a point-contact reference.
+inline const std::string shapes_deck_3d = R"(format: 1
+analysis: {dimension: 3}
+materials:
+  - {name: m, E: 1000, nu: 0.3}
+bodies:
+  - name: ball
+    material: m
+    shape: {type: sphere_octant, center: [0, 0, 1], radius: 1}
+    refine: {elevate: [0, 1, 0], insert: [[0.05], [0.5], [0.95]]}
+  - {name: block, material: m, shape: {type: box, corner: [0, 0, -1], size: [2, 2, 1]}}
+  - {name: slab, material: m, shape: {type: quarter_disc, center: [3, 1], radius: 1, extrude: 0.2}}
+contact:
+  - {name: touch, between: [ball.v0, block.w1], penalty: 1.0e5}
+output:
+  reference: {pair: touch, type: hertz_two_spheres, radii: [1, 2], force: 1.5}
+)";
+
 /// `text` with the single occurrence of `from` replaced by `to`.
 inline std::string replaced(const std::string& text, const std::string& from, const std::string& to)
 {

@@ -1,8 +1,10 @@
 // Loads: total force on a curved side, consistent nodal forces of a traction,
 // outward normal sign on every side, follower pressure tangent = FD, rotation of
-// the follower pressure with the body, gravity.
+// the follower pressure with the body, gravity, pressure on a sphere octant with its
+// pole, a folded side rejected.
 
 #include "mechanics/loads.hpp"
+#include "boundary/solids.hpp"
 #include "nurbs/shapes.hpp"
 #include "support/finite_difference.hpp"
 #include "support/tolerance.hpp"
@@ -243,6 +245,48 @@ TEST(Loads, PressureOnBuiltInHalfDiscArcPushesUp)
             EXPECT_EQ(follower_pressure(e, 2, p, Kinematics::finite, u).f_ext.norm(), 0.0);
         }
     }
+}
+
+TEST(Loads, PressureAndForceOnSphereOctantWithItsPole)
+{
+    // int n dA over the octant x, y, z >= 0 of a sphere = (pi R^2 / 4) (1, 1, 1) (its
+    // projections on the coordinate planes). The face has its edge v = 1 collapsed to the
+    // pole, where the area element vanishes; 16 points integrate the smooth rational
+    // integrand to round-off. A force spread over it sums to F exactly.
+    constexpr double fine_rule_error = 1e-12;
+    constexpr double round_off = 1e-14;
+    const double R = 1.3, p = 0.8;
+    const nurbs::Patch ball = test::octant_ball(R);
+    const SideQuadrature sphere = side_quadrature(ball, Side::w1, 16);
+    for (const Kinematics kin : {Kinematics::small, Kinematics::finite}) {
+        std::vector<Vector> forces;
+        for (const SideElement& e : sphere.elements)
+            forces.push_back(follower_pressure(e, 3, p, kin, Matrix::Zero(e.n_local(), 3)).f_ext);
+        const Vector total = resultant(forces, 3);
+        for (int i = 0; i < 3; ++i)
+            EXPECT_TRUE(test::near_rel(total(i), -p * std::numbers::pi * R * R / 4, fine_rule_error));
+    }
+    const VecN F = (VecN(3) << 1.0, -2.0, 0.5).finished();
+    const VecN t = F / reference_measure(sphere);
+    std::vector<Vector> forces;
+    for (const SideElement& e : sphere.elements)
+        forces.push_back(dead_traction(e, 3, t).f_ext);
+    EXPECT_TRUE(test::at_most((resultant(forces, 3) - F).norm(), round_off * F.norm()));
+    // The centre face (collapsed) and the pole segment (zero area) carry nothing.
+    for (const Side s : {Side::w0, Side::v1}) {
+        const SideQuadrature side = side_quadrature(ball, s);
+        EXPECT_TRUE(test::at_most(reference_measure(side), round_off * R * R));
+        for (const SideElement& e : side.elements)
+            EXPECT_EQ(follower_pressure(e, 3, p, Kinematics::finite, Matrix::Zero(e.n_local(), 3)).f_ext.norm(), 0.0);
+    }
+}
+
+TEST(Loads, FoldedSideIsRejected)
+{
+    // dX/dv at v = 0 has y-component 1 - 8u + 10u^2: it changes sign along side v0.
+    const nurbs::Patch patch({nurbs::KnotVector(2, {0, 0, 0, 1, 1, 1}), nurbs::KnotVector(1, {0, 0, 1, 1})},
+                             (RowMatrix(6, 2) << 0, 0, 1, 0, 2, 0, 0, 1, 1, -3, 2, 3).finished(), Vector::Ones(6));
+    EXPECT_THROW(side_quadrature(patch, Side::v0), boundary::FoldedSide);
 }
 
 }  // namespace

@@ -160,3 +160,41 @@ TEST(LinearSolver, TheSameMatrixAgainKeepsItsFactorization)
 }
 
 }  // namespace iga::solver
+
+namespace iga::solver {
+
+// A contact coupling registered during a run grows the tangent's pattern: both
+// the plain and the condensed solver must notice (new symbolic analysis / block
+// maps) and solve the new matrix, not reuse the old structure.
+TEST(LinearSolver, AGrownPatternIsAnalysedAgain)
+{
+    constexpr int n = 50;
+    const std::vector<int> condensed{10, 11, 12, 13, 30, 31};
+    const SparseMatrix K1 = with_contact(chain_matrix(n, 4), {10, 11, 12, 13}, 5);
+    // The same values plus couplings between 10..13 and 30..31 (a new coupling block).
+    Matrix dense = Matrix(with_contact(chain_matrix(n, 4), {10, 11, 12, 13}, 5));
+    for (int i : {10, 11, 12, 13})
+        for (int j : {30, 31}) {
+            dense(i, j) += 0.25;
+            dense(j, i) -= 0.125;
+        }
+    const SparseMatrix K2 = dense.sparseView();
+    ASSERT_GT(K2.nonZeros(), K1.nonZeros());
+    const Vector b = Vector::LinSpaced(n, -1.0, 2.0);
+    const Vector reference = dense.lu().solve(b);
+    constexpr double agreement = 1e-12;  // direct solves of a well-conditioned system
+
+    LinearSolver plain(LinearSolver::Kind::lu), condensed_solver(LinearSolver::Kind::lu);
+    condensed_solver.set_condensed_dofs(condensed);
+    for (LinearSolver* solver : {&plain, &condensed_solver}) {
+        ASSERT_EQ(solver->factorize(K1), LinearStatus::ok);
+        ASSERT_EQ(solver->factorize(K2), LinearStatus::ok);
+        Vector x;
+        ASSERT_EQ(solver->solve(b, x), LinearStatus::ok);
+        EXPECT_TRUE(test::at_most((x - reference).norm() / reference.norm(), agreement))
+            << (solver->condensed() ? "condensed" : "plain");
+    }
+    EXPECT_EQ(plain.n_symbolic(), 2) << "one analysis per pattern";
+}
+
+}  // namespace iga::solver

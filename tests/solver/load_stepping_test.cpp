@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -137,7 +138,8 @@ TEST(LoadStepping, FailureLeavesTheLastConvergedState)
 {
     // count 4, fails beyond 0.6: 0.25, 0.5 converge; 0.75 and 0.625 fail; 0.5625
     // converges after 2 cutbacks at the smallest increment 1/4/2^2; the next
-    // attempt (0.65625) fails and cannot be cut below that minimum.
+    // increment doubles (one iteration), 0.6875 fails, is cut back to 0.625, fails
+    // again and cannot be cut below that minimum.
     NewtonSettings newton;
     SteppingSettings stepping;
     stepping.count = 4;
@@ -155,7 +157,7 @@ TEST(LoadStepping, FailureLeavesTheLastConvergedState)
     ASSERT_FALSE(recorder.states.empty());
     EXPECT_EQ(u, recorder.states.back()) << "u must be the last converged state";
     EXPECT_TRUE(test::near(u(0), 0.5625, solution_tolerance));
-    EXPECT_NE(result.message.find("increment 4 (load factor 0.5625 -> 0.65625)"), std::string::npos)
+    EXPECT_NE(result.message.find("increment 4 (load factor 0.5625 -> 0.625)"), std::string::npos)
         << result.message;
 }
 
@@ -204,7 +206,8 @@ TEST(LoadStepping, EasyIncrementsNeverGrowBeyondTheInitialOne)
 TEST(LoadStepping, IncrementGrowsBackAfterCutbacks)
 {
     // Fails beyond 0.3 until the first increment has converged, then never: the
-    // increment is cut to 0.25 and then grows by 1.5 per easy increment (<= 1).
+    // increment is cut to 0.25; r = u - lambda converges in one iteration, so the
+    // next increment grows by max_growth = 2 (target 6 / 1 iteration, bounded) to 0.5.
     bool first_done = false;
     NonlinearSystem system = failing_beyond(2.0);
     NonlinearSystem guarded;
@@ -226,12 +229,211 @@ TEST(LoadStepping, IncrementGrowsBackAfterCutbacks)
     Vector u = Vector::Zero(1);
     const SteppingResult result = run_load_steps(guarded, u, stepping, newton, solver, callbacks, nullptr);
     ASSERT_TRUE(result.completed) << result.message;
-    // 0.25 (2 cutbacks), then increments 0.375 and 0.5625 -> 0.625, 1.0 (capped at the end).
+    // 0.25 (2 cutbacks), then increments 0.5 and 1.0 -> 0.25 (capped at the end).
     ASSERT_EQ(lambdas.size(), 3u);
     EXPECT_EQ(lambdas[0], 0.25);
-    EXPECT_EQ(lambdas[1], 0.625);
+    EXPECT_EQ(lambdas[1], 0.75);
     EXPECT_EQ(lambdas[2], 1.0);
     EXPECT_EQ(result.total_cutbacks, 2);
+}
+
+// r(u) = (u - lambda s)^3: Newton converges only linearly (the error shrinks by
+// 2/3 per iteration, the root is triple), so a large increment takes many more
+// iterations than the target and the next one must shrink; small increments take
+// few and the next one grows back.
+// The root stops moving at lambda = 1/2: from there every increment starts
+// converged (0 iterations), and the increments grow back.
+NonlinearSystem moving_triple_root(double s)
+{
+    NonlinearSystem system;
+    system.evaluate = [s](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+        const double x = u(0) - std::min(lambda, 0.5) * s;
+        out.residual = Vector::Constant(1, x * x * x);
+        out.force_scale = 1.0;
+        if (need_tangent)
+            out.tangent = scalar_matrix(3.0 * x * x);
+    };
+    return system;
+}
+
+TEST(LoadStepping, NextIncrementFollowsTheIterationCount)
+{
+    // The rule of load_stepping.hpp: next = last * clamp(target / n, max_shrink,
+    // max_growth), bounded to [1/count / 2^max_cutbacks, 1/count]. The load factors
+    // are sums of increments: equal to the rule up to a few ulps of lambda <= 1.
+    constexpr double lambda_round_off = 1e-14;
+    NewtonSettings newton;
+    newton.max_iterations = 40;  // a triple root from x = 0.25 needs ~16 linear-rate iterations
+    SteppingSettings stepping;
+    stepping.count = 4;
+    LinearSolver solver(LinearSolver::Kind::lu);
+    SteppingCallbacks callbacks;
+    Vector u = Vector::Zero(1);
+    const SteppingResult result =
+        run_load_steps(moving_triple_root(1.0), u, stepping, newton, solver, callbacks, nullptr);
+    ASSERT_TRUE(result.completed) << result.message;
+    ASSERT_EQ(result.total_cutbacks, 0) << "the rule is checked on uncut increments";
+
+    const double largest = 1.0 / stepping.count;
+    const double smallest = std::ldexp(largest, -stepping.max_cutbacks);
+    bool shrank = false, grew = false;
+    double previous_lambda = 0.0;
+    for (std::size_t k = 0; k + 1 < result.increments.size(); ++k) {
+        const IncrementRecord& r = result.increments[k];
+        const double increment = r.load_factor - previous_lambda;
+        const double next = result.increments[k + 1].load_factor - r.load_factor;
+        const double factor = r.report.iterations == 0
+                                  ? stepping.max_growth
+                                  : std::clamp(double(stepping.target_iterations) / r.report.iterations,
+                                               stepping.max_shrink, stepping.max_growth);
+        const double expected = std::clamp(increment * factor, smallest, largest);
+        const bool last = k + 2 == result.increments.size();  // the final one may be cut to end at 1
+        if (last)
+            EXPECT_TRUE(test::at_most(next, expected + lambda_round_off)) << "increment " << k + 2;
+        else
+            EXPECT_TRUE(test::near(next, expected, lambda_round_off))
+                << "increment " << k + 2 << " after " << r.report.iterations << " iterations";
+        shrank = shrank || next < increment * (1.0 - lambda_round_off);
+        grew = grew || (!last && next > increment * (1.0 + lambda_round_off));
+        previous_lambda = r.load_factor;
+    }
+    EXPECT_TRUE(shrank) << "no increment shrank: the test no longer exercises the shrinking rule";
+    EXPECT_TRUE(grew) << "no increment grew: the test no longer exercises the growth rule";
+    // Newton stops at |x|^3 <= 1e-10: |x| <= 4.7e-4 (and 1e-3 with margin).
+    constexpr double triple_root_tolerance = 1e-3;
+    EXPECT_TRUE(test::near(u(0), 0.5, triple_root_tolerance));
+}
+
+// A chain of two nonlinear springs between a wall at X = 0 and a control point
+// at X = 2 whose displacement lambda * u_bar is prescribed; the free node sits at
+// X = 1. Stretches J1 = 1 + u, J2 = 1 + lambda u_bar - u; spring force ln J, so
+// r(u; lambda) = ln J1 - ln J2, and the state is inadmissible (as an inverted
+// element) when J1 <= 0 or J2 <= 0. The solution is u = lambda u_bar / 2 (J1 = J2).
+// Without a predictor, u_bar = -1.5 in one increment starts Newton from
+// u = 0 with J2 = -0.5: inadmissible, the increment must be cut back.
+NonlinearSystem spring_chain(double u_bar, int* inadmissible = nullptr)
+{
+    NonlinearSystem system;
+    system.prescribed_motion = true;
+    system.evaluate = [u_bar, inadmissible](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+        const double J1 = 1.0 + u(0), J2 = 1.0 + lambda * u_bar - u(0);
+        if (!(J1 > 0.0) || !(J2 > 0.0)) {
+            if (inadmissible)
+                ++*inadmissible;
+            out.ok = false;
+            out.message = "inverted spring";
+            return;
+        }
+        out.residual = Vector::Constant(1, std::log(J1) - std::log(J2));
+        out.force_scale = std::abs(std::log(J1)) + std::abs(std::log(J2));
+        if (need_tangent)
+            out.tangent = scalar_matrix(1.0 / J1 + 1.0 / J2);
+    };
+    return system;
+}
+
+TEST(LoadStepping, PredictorSpreadsAPrescribedDisplacementIntoTheInterior)
+{
+    constexpr double u_bar = -1.5;
+    NewtonSettings newton;
+    LinearSolver solver(LinearSolver::Kind::lu);
+    SteppingCallbacks callbacks;
+
+    SteppingSettings plain;
+    plain.predictor = Predictor::none;
+    Vector u = Vector::Zero(1);
+    const SteppingResult without = run_load_steps(spring_chain(u_bar), u, plain, newton, solver, callbacks, nullptr);
+    ASSERT_TRUE(without.completed) << without.message;
+    EXPECT_GT(without.total_cutbacks, 0) << "the unpredicted start state must be inadmissible";
+
+    for (Predictor kind : {Predictor::linearized, Predictor::extrapolated}) {
+        SCOPED_TRACE(kind == Predictor::linearized ? "linearized" : "extrapolated");
+        SteppingSettings stepping;
+        stepping.predictor = kind;
+        u.setZero();
+        const SteppingResult with = run_load_steps(spring_chain(u_bar), u, stepping, newton, solver, callbacks, nullptr);
+        ASSERT_TRUE(with.completed) << with.message;
+        EXPECT_EQ(with.total_cutbacks, 0);
+        ASSERT_EQ(with.increments.size(), 1u);
+        // By symmetry the linearized step about u = 0 is the exact solution u_bar / 2,
+        // up to the forward difference in lambda (relative error ~ predictor_fd_fraction):
+        // one Newton iteration at most (the extrapolated predictor has no previous
+        // increment on the first one and uses the linearized step too).
+        EXPECT_LE(with.increments[0].report.iterations, 1);
+        EXPECT_TRUE(test::near(u(0), 0.5 * u_bar, solution_tolerance));
+    }
+}
+
+TEST(LoadStepping, InadmissiblePredictionIsScaledBack)
+{
+    // Five increments of u_bar = -1.9 on the spring chain, extrapolating: from the
+    // second increment on the extrapolation is exact for this linear path, so check the
+    // first. A predictor whose state is inadmissible must fall back, never fail:
+    // make every state with u < -0.5 inadmissible (a stiffer stop at J1 = 0.5).
+    constexpr double u_bar = -1.9;
+    NonlinearSystem chain = spring_chain(u_bar);
+    int refused = 0;
+    NonlinearSystem guarded = chain;
+    guarded.evaluate = [&](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+        if (u(0) < -0.5) {
+            ++refused;
+            out.ok = false;
+            out.message = "beyond the stop";
+            return;
+        }
+        chain.evaluate(u, lambda, need_tangent, out);
+    };
+    NewtonSettings newton;
+    SteppingSettings stepping;  // one increment: the predicted u = -0.95 is beyond the stop
+    LinearSolver solver(LinearSolver::Kind::lu);
+    SteppingCallbacks callbacks;
+    Vector u = Vector::Zero(1);
+    std::vector<std::string> lines;
+    RunContext context([&](Verbosity, const std::string& line) { lines.push_back(line); }, Verbosity::verbose);
+    const SteppingResult result = run_load_steps(guarded, u, stepping, newton, solver, callbacks, &context);
+    // The exact solution -0.95 is inadmissible, so the run cannot complete; what
+    // matters is that the predictor scaled back (no exception, a Newton failure
+    // with cutbacks, and the predictor's note in the log).
+    EXPECT_FALSE(result.completed);
+    EXPECT_GT(refused, 0);
+    EXPECT_GT(result.predictor_fallbacks, 0);
+    bool logged = false;
+    for (const std::string& line : lines)
+        logged = logged || line.find("predictor: predicted step scaled back to 0.5") != std::string::npos;
+    EXPECT_TRUE(logged) << "the verbose log names the scaled-back prediction";
+}
+
+TEST(LoadStepping, LineSearchBacksOffAnInadmissibleTrialWithoutACutback)
+{
+    // r(u) = atan(u - 4 lambda) in one increment: the full Newton step from u = 0
+    // (x = -4) lands at u = 22.5, and every state with |u| > 8 is reported
+    // inadmissible (as an inverted element would be). The line search must back off
+    // inside the iteration; the increment converges without a cutback.
+    constexpr double s = 4.0, admissible_radius = 8.0;
+    int inadmissible = 0;
+    NonlinearSystem arctan = moving_arctan(s);
+    NonlinearSystem system;
+    system.evaluate = [&](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+        if (std::abs(u(0)) > admissible_radius) {
+            ++inadmissible;
+            out.ok = false;
+            out.message = "inadmissible deformation";
+            return;
+        }
+        arctan.evaluate(u, lambda, need_tangent, out);
+    };
+    NewtonSettings newton;
+    SteppingSettings stepping;
+    LinearSolver solver(LinearSolver::Kind::lu);
+    SteppingCallbacks callbacks;
+    Vector u = Vector::Zero(1);
+    const SteppingResult result = run_load_steps(system, u, stepping, newton, solver, callbacks, nullptr);
+    ASSERT_TRUE(result.completed) << result.message;
+    EXPECT_EQ(result.total_cutbacks, 0);
+    EXPECT_EQ(result.increments.size(), 1u);
+    EXPECT_GT(inadmissible, 0) << "no trial was inadmissible: the test no longer exercises the back-off";
+    EXPECT_EQ(result.increments[0].report.inadmissible_trials, inadmissible);
+    EXPECT_TRUE(test::near(u(0), s, solution_tolerance));
 }
 
 TEST(LoadStepping, StopRequestEndsTheRunAfterTheCurrentIncrement)
