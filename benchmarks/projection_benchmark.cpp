@@ -14,9 +14,13 @@
 // derivatives) once per iteration and stop at the same tolerance; the counter
 // `iterations` is the mean number of evaluations per projection, `failures` the
 // fraction not converged in 50 iterations. Time is per projection.
-// Run: bin/projection_benchmark [--benchmark_filter=Degree4]
+// Search: ElementSearch on the degree 2 sphere octant with n x n elements, its
+// construction (`search_build`) and one query at a point within 0.01 of the
+// surface (`search_query`, counter `candidates`): O(n^2 log n) and O(log n + k).
+// Run: bin/projection_benchmark [--benchmark_filter=HuWallner]
 
 #include "contact/projection.hpp"
+#include "contact/search.hpp"
 #include "nurbs/patch.hpp"
 #include "nurbs/refine.hpp"
 
@@ -255,6 +259,53 @@ void full(benchmark::State& state, int surface, bool warm)
     state.counters["candidates"] = static_cast<double>(candidates) / static_cast<double>(projections);
     state.counters["failures"] = static_cast<double>(failures) / static_cast<double>(projections);
 }
+
+Patch sphere_elements(int n_spans)
+{
+    Patch patch = sphere_octant(2);  // 4 x 4 spans
+    for (int dir = 0; dir < 2; ++dir)
+        patch = iga::nurbs::refine_uniform(patch, dir, n_spans);
+    return patch;
+}
+
+void search_build(benchmark::State& state)
+{
+    const Patch patch = sphere_elements(static_cast<int>(state.range(0)));
+    for (auto _ : state) {
+        const iga::contact::ElementSearch search(patch, iga::contact::SearchOptions{.distance = 0.01});
+        benchmark::DoNotOptimize(search.bounds());
+    }
+    state.counters["elements"] = static_cast<double>(patch.elements().size());
+}
+
+void search_query(benchmark::State& state)
+{
+    const Patch patch = sphere_elements(static_cast<int>(state.range(0)));
+    const iga::contact::ElementSearch search(patch, iga::contact::SearchOptions{.distance = 0.01});
+    std::mt19937 rng(6);
+    std::uniform_real_distribution<double> angle(0.0, 1.57), radius(0.99, 1.01);
+    std::vector<VecN> points;
+    for (int k = 0; k < 256; ++k) {
+        const double t = angle(rng), f = angle(rng), r = radius(rng);
+        VecN x(3);
+        x << r * std::sin(t) * std::cos(f), r * std::sin(t) * std::sin(f), r * std::cos(t);
+        points.push_back(x);
+    }
+    std::vector<int> out;
+    long long hits = 0, queries = 0;
+    std::size_t k = 0;
+    for (auto _ : state) {
+        search.candidates(points[k], out);
+        hits += static_cast<long long>(out.size());
+        ++queries;
+        k = (k + 1) % points.size();
+    }
+    state.counters["elements"] = static_cast<double>(search.n_elements());
+    state.counters["candidates"] = static_cast<double>(hits) / static_cast<double>(queries);
+}
+
+BENCHMARK(search_build)->Arg(8)->Arg(32)->Arg(128);
+BENCHMARK(search_query)->Arg(8)->Arg(32)->Arg(128);
 
 constexpr int sphere = 0, wavy = 1;
 

@@ -47,8 +47,8 @@
 // |g|_{m^-1} = sqrt(g^T m^+ g) against the same bound.
 // Method choice, measured (benchmarks/projection_benchmark.cpp, 256 points within
 // +-0.05 of the surface, mean evaluations per projection to the same tolerance):
-// Newton 4.1 / 4.1 on a rational sphere octant and 4.6-5.0 on a rational wavy
-// free-form surface (degree 2 / 4), against 4.0 / 4.0 and 6.6-6.9 for the
+// Newton 4.1-4.3 on a rational sphere octant and 4.6-5.0 on a rational wavy
+// free-form surface (degrees 2 and 4), against 4.0-4.2 and 6.6-6.9 for the
 // second-order geometric iteration of Hu & Wallner (CAGD 22, 2005; our own code
 // in the benchmark); an iteration costs the same (one evaluation with second
 // derivatives), so Newton is as fast on the sphere and ~1.4x faster on the
