@@ -16,9 +16,9 @@ namespace iga::contact {
 namespace {
 
 constexpr double machine_eps = std::numeric_limits<double>::epsilon();
-// Eigenvalues of a computed symmetric matrix carry an error of a few eps times
-// its norm: below this fraction of the largest one a direction is round-off
-// (a collapsed edge) and is dropped from the linear solves.
+// Eigenvalues of a computed symmetric matrix (scaled to a unit diagonal, see
+// direction_scaling) carry an error of a few eps times its norm: below this
+// fraction of the largest one a direction is round-off and is dropped.
 constexpr double round_off_eigenvalue = 64.0 * machine_eps;
 
 /// A run of spans [first_span, last_span] (span numbers) of one direction joined by C1 knots.

@@ -385,6 +385,36 @@ TEST(SurfaceProjection, PointAboveTheCollapsedPole)
     EXPECT_TRUE(test::at_most((warm.point - R * direction(0.2, 0.3)).norm(), surface_foot_tolerance));
 }
 
+TEST(SurfaceProjection, PolesOnOtherEdgesGiveTheLimitNormal)
+{
+    // The octant re-parametrized so that the pole is the edge v = 0, or u = 1:
+    // the limit normal takes its sign from the side of the edge the foot is on.
+    const nurbs::Patch sphere = test::sphere_octant(1.0);
+    const RowMatrix& P = sphere.control_points();
+    const Vector& w = sphere.weights();
+    RowMatrix reversed(9, 3), transposed(9, 3);
+    Vector w_reversed(9), w_transposed(9);
+    for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) {
+            reversed.row(i + 3 * j) = P.row(i + 3 * (2 - j));  // v reversed: pole at v = 0
+            w_reversed(i + 3 * j) = w(i + 3 * (2 - j));
+            transposed.row(i + 3 * j) = P.row(j + 3 * i);  // u and v swapped: pole at u = 1
+            w_transposed(i + 3 * j) = w(j + 3 * i);
+        }
+    // Both flip a_1 x a_2, so the outward sign is -1.
+    for (const nurbs::Patch& surface : {nurbs::Patch(sphere.all_knots(), reversed, w_reversed),
+                                        nurbs::Patch(sphere.all_knots(), transposed, w_transposed)})
+        for (const double polar : {0.0, 1e-9, 1e-4, 0.3}) {
+            const VecN dir = direction(polar, 0.7);
+            const Projection p = project_to_surface(surface, -1, 1.2 * dir);
+            ASSERT_EQ(p.status, Projection::Status::ok) << "polar " << polar;
+            EXPECT_TRUE(all_fields_finite(p));
+            EXPECT_TRUE(test::at_most((p.point - dir).norm(), surface_foot_tolerance)) << "polar " << polar;
+            EXPECT_TRUE(test::at_most((p.normal - dir).norm(), surface_derivative_tolerance)) << "polar " << polar;
+            EXPECT_TRUE(test::near(p.gap, -0.2, surface_foot_tolerance));
+        }
+}
+
 TEST(SurfaceProjection, WarmStartNeedsFewerIterations)
 {
     const nurbs::Patch sphere = nurbs::insert_knots(test::sphere_octant(1.0), 0, {0.5});
