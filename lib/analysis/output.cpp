@@ -1,4 +1,6 @@
 #include "analysis/output.hpp"
+
+#include "analysis/point_contact_reference.hpp"
 #include "io/deck_names.hpp"
 
 #include "analytic/hertz.hpp"
@@ -215,9 +217,10 @@ std::vector<io::ReferenceData> references(const io::Deck& deck, const Scene& sce
         if (p.name == ref.pair)
             model = &p;
     IGA_CHECK(model != nullptr, "the deck reader let a reference to an unknown pair through");
-    const int d = scene.dim;
-    if (d != 2)
-        return out;  // Hertz line contact is a 2D reference
+    if (io::is_point_contact(ref.type)) {  // 3D: sphere on a plane, two spheres
+        out.push_back(point_contact_reference(deck, scene, *model, step));
+        return out;
+    }
 
     auto elastic = [&](int k, double& E, double& nu) {
         const int b = model->body[static_cast<std::size_t>(k)];

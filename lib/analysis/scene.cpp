@@ -5,6 +5,7 @@
 #include "boundary/patch_side.hpp"
 #include "analysis/geometry.hpp"
 #include "analysis/obstacles.hpp"
+#include "io/deck_names.hpp"
 #include "io/locate.hpp"
 #include "nurbs/side_patch.hpp"
 
@@ -227,10 +228,6 @@ Scene build_scene(const io::Deck& deck)
             parent[k] = side.side.parent_index;
             return side;
         };
-        if (d != 2)
-            throw DeckError(body_issue(deck, "contact." + c.name,
-                                       "contact is implemented for 2D decks only in this version (3D sides are "
-                                       "surfaces; planned)"));
         auto pair = [&]() {
             try {
                 contact::Surface first = make_surface(c.first, 0);
@@ -270,18 +267,23 @@ Scene build_scene(const io::Deck& deck)
             if (p.name != ref->pair)
                 continue;
             const int n_rigid = (p.body[0] < 0) + (p.body[1] < 0);
-            if (d != 2)
-                throw DeckError(body_issue(deck, "output.reference", "the Hertz references are 2D line contacts"));
+            // The reader matched the reference type to the dimension; here it must fit the pair.
             const bool round_obstacle = p.obstacle >= 0 && std::holds_alternative<contact::RigidSphere>(
                 std::get<contact::RigidObstacle>(p.pair.surface(p.obstacle)).shape);
-            if (ref->type == io::ReferenceType::hertz_cylinder_plane && (n_rigid != 1 || round_obstacle))
+            const std::string type(io::deck_name(ref->type));
+            const bool plane = io::is_against_plane(ref->type);
+            const std::string other = ref->type == io::ReferenceType::hertz_cylinder_plane ? "hertz_two_cylinders"
+                                      : ref->type == io::ReferenceType::hertz_two_cylinders ? "hertz_cylinder_plane"
+                                      : ref->type == io::ReferenceType::hertz_sphere_plane  ? "hertz_two_spheres"
+                                                                                            : "hertz_sphere_plane";
+            if (plane && (n_rigid != 1 || round_obstacle))
                 throw DeckError(body_issue(deck, "output.reference.type",
-                                           "hertz_cylinder_plane needs a pair of a deformable side and a rigid plane; "
-                                           "use hertz_two_cylinders for two deformable sides"));
-            if (ref->type == io::ReferenceType::hertz_two_cylinders && n_rigid != 0)
+                                           type + " needs a pair of a deformable side and a rigid plane; use " +
+                                               other + " for two deformable sides"));
+            if (!plane && n_rigid != 0)
                 throw DeckError(body_issue(deck, "output.reference.type",
-                                           "hertz_two_cylinders needs two deformable sides; use hertz_cylinder_plane "
-                                           "against a rigid plane"));
+                                           type + " needs two deformable sides; use " + other +
+                                               " against a rigid plane"));
         }
     }
 

@@ -1,7 +1,7 @@
 #include "contact/contact_pair.hpp"
 
+#include "boundary/patch_side.hpp"
 #include "contact/gpts_kernel.hpp"
-#include "contact/orientation.hpp"
 #include "contact/projection.hpp"
 #include "contact/search.hpp"
 #include "core/error.hpp"
@@ -16,8 +16,6 @@
 namespace iga::contact {
 namespace {
 
-const char* const not_3d = " (3D contact with surface sides is not supported yet)";
-
 /// Fraction of the larger side's reference size used as the automatic search
 /// margin: far above any sensible penalty penetration, small enough to prune.
 constexpr double auto_search_fraction = 0.1;
@@ -25,19 +23,27 @@ constexpr double auto_search_fraction = 0.1;
 /// as coincident (a few hundred ulps): such a side is collapsed.
 constexpr double collapsed_relative_tolerance = 1e-13;
 
-void check_surface(const Surface& s, const char* which)
+/// Spatial dimension of a surface: d of a deformable side's points, or the obstacle's.
+int surface_dim(const Surface& s)
 {
+    if (const auto* side = std::get_if<DeformableSide>(&s))
+        return side->side.patch.dim();
+    return std::get<RigidObstacle>(s).dim();
+}
+
+void check_surface(const Surface& s, const char* which, int dim)
+{
+    if (surface_dim(s) != dim)
+        throw Error(std::string("contact: the two surfaces of a pair live in different dimensions"));
     if (const auto* side = std::get_if<DeformableSide>(&s)) {
         const nurbs::Patch& p = side->side.patch;
-        if (p.n_par() != 1 || p.dim() != 2)
-            throw Error(std::string("contact: ") + which + " surface is not a curve in 2D" + not_3d);
+        if (p.n_par() != dim - 1 || (dim != 2 && dim != 3))
+            throw Error(std::string("contact: ") + which + " surface is not a curve in 2D or a surface in 3D");
         const double scale = std::max(1.0, p.control_points().cwiseAbs().maxCoeff());
         if (nurbs::is_collapsed(side->side, collapsed_relative_tolerance * scale))
             throw Error(std::string("contact: ") + which + " surface, side " +
                         std::string(side_name(side->side.side)) + ", is collapsed to a point");
         IGA_CHECK(side->outward_sign == 1 || side->outward_sign == -1, "contact: outward sign must be +1 or -1");
-    } else if (std::get<RigidObstacle>(s).dim() != 2) {
-        throw Error(std::string("contact: ") + which + " surface is a rigid obstacle in 3D" + not_3d);
     }
 }
 
@@ -57,11 +63,18 @@ private:
     std::chrono::steady_clock::time_point t0_;
 };
 
-std::string describe_point(int surface, int g, double eta, const VecN& x)
+std::string describe_point(int surface, int g, const VecN& xi, const VecN& x)
 {
     std::ostringstream os;
-    os << "Gauss point " << g << " of surface " << (surface == 0 ? "first" : "second") << " (eta = " << eta
-       << ", x = (" << x(0) << ", " << x(1) << "))";
+    auto list = [&](const VecN& v) {
+        for (Index i = 0; i < v.size(); ++i)
+            os << (i ? ", " : "") << v(i);
+    };
+    os << "Gauss point " << g << " of surface " << (surface == 0 ? "first" : "second") << " (parameter ";
+    list(xi);
+    os << ", x = (";
+    list(x);
+    os << "))";
     return os.str();
 }
 
@@ -69,10 +82,15 @@ std::string describe_point(int surface, int g, double eta, const VecN& x)
 
 DeformableSide DeformableSide::make(const nurbs::Patch& parent, Side side)
 {
-    if (parent.n_par() != 2 || parent.dim() != 2)
-        throw Error(std::string("contact: a deformable contact side needs a 2D surface patch") + not_3d);
-    const int sign = contact::outward_sign(parent, side);
-    return DeformableSide{nurbs::extract_side(parent, side), sign};
+    if (parent.n_par() != parent.dim() || (parent.dim() != 2 && parent.dim() != 3))
+        throw Error("contact: a deformable contact side needs a solid patch (2 parameters in 2D, 3 in 3D)");
+    const boundary::PatchSide patch_side(parent, side);
+    if (patch_side.collapsed())
+        throw Error("contact: side " + std::string(side_name(side)) + " is collapsed to a point");
+    if (patch_side.outward_sign() == 0)
+        throw Error("contact: side " + std::string(side_name(side)) +
+                    " has no outward normal (it is degenerate: zero length or area)");
+    return DeformableSide{patch_side.side(), patch_side.outward_sign()};
 }
 
 ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
@@ -82,8 +100,9 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
     IGA_CHECK(settings_.quadrature >= 0, "contact: quadrature must be >= 0 (0 = degree + 2)");
     IGA_CHECK(std::isfinite(settings_.search_distance) && settings_.search_distance >= 0.0,
               "contact: search distance must be >= 0");
-    check_surface(surfaces_[0], "first");
-    check_surface(surfaces_[1], "second");
+    dim_ = surface_dim(surfaces_[0]);
+    check_surface(surfaces_[0], "first", dim_);
+    check_surface(surfaces_[1], "second", dim_);
     const bool deformable[2] = {std::holds_alternative<DeformableSide>(surfaces_[0]),
                                 std::holds_alternative<DeformableSide>(surfaces_[1])};
     if (!deformable[0] && !deformable[1])
@@ -113,28 +132,32 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
         const nurbs::Patch& patch = std::get<DeformableSide>(surfaces_[i]).side.patch;
         const std::vector<nurbs::Element> elements = patch.elements();
         for (std::size_t e = 0; e < elements.size(); ++e) {
-            VecN mid(1);
-            mid(0) = 0.5 * (elements[e].lower[0] + elements[e].upper[0]);
+            VecN mid(patch.n_par());
+            for (int k = 0; k < patch.n_par(); ++k)
+                mid(k) = 0.5 * (elements[e].lower[static_cast<std::size_t>(k)] + elements[e].upper[static_cast<std::size_t>(k)]);
             element_points_[i].push_back(nurbs::rational_basis(patch, elements[e].span, mid, 0).indices);
         }
     }
 
     for (Carrier& c : carriers_) {
         const nurbs::Patch& patch = std::get<DeformableSide>(surfaces_[c.slave]).side.patch;
-        const int n_q = settings_.quadrature > 0 ? settings_.quadrature : patch.degree(0) + 2;
+        int max_degree = 0;
+        for (int k = 0; k < patch.n_par(); ++k)
+            max_degree = std::max(max_degree, patch.degree(k));
+        const int n_q = settings_.quadrature > 0 ? settings_.quadrature : max_degree + 2;
         const std::vector<nurbs::Element> elements = patch.elements();
         for (std::size_t e = 0; e < elements.size(); ++e) {
             const nurbs::Element& element = elements[e];
             const quadrature::TensorRule rule = quadrature::element_rule(patch, element, n_q);
             for (Index q = 0; q < rule.weights.size(); ++q) {
-                VecN eta(1);
-                eta(0) = rule.points(q, 0);
-                const nurbs::BasisValues basis = nurbs::rational_basis(patch, element.span, eta, 1);
+                const VecN xi = rule.points.row(q).transpose();
+                const nurbs::BasisValues basis = nurbs::rational_basis(patch, element.span, xi, 1);
                 const nurbs::PointDerivatives X = nurbs::combine(basis, patch.control_points());
                 GaussPoint gp;
                 gp.element = static_cast<int>(e);
-                gp.eta = eta(0);
-                gp.weight = rule.weights(q) * X.dx.col(0).norm();
+                gp.xi = xi;
+                // W = w_g * reference length (2D) or area (3D) element, |raw normal|.
+                gp.weight = rule.weights(q) * boundary::raw_normal(X.dx).norm();
                 gp.reference = X.x;
                 gp.indices = basis.indices;
                 gp.N = basis.R;
@@ -144,7 +167,7 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
     }
     trial_xi_.resize(carriers_.size());
     for (std::size_t c = 0; c < carriers_.size(); ++c)
-        trial_xi_[c].assign(carriers_[c].points.size(), std::nullopt);
+        trial_xi_[c].assign(carriers_[c].points.size(), Foot{});
     committed_xi_ = trial_xi_;
 }
 
@@ -241,7 +264,7 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
         const int n_g = static_cast<int>(c.points.size());
         CarrierResult cr;
         cr.surface = c.slave;
-        cr.parameter.resize(n_g, 1);
+        cr.parameter.resize(n_g, d - 1);
         cr.reference_coordinates.resize(n_g, d);
         cr.coordinates.resize(n_g, d);
         cr.gap = Vector::Constant(n_g, -search_distance_);
@@ -253,7 +276,7 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
             VecN x = VecN::Zero(d);
             for (std::size_t a = 0; a < gp.indices.size(); ++a)
                 x += gp.N(a) * current[c.slave].row(gp.indices[a]).transpose();
-            cr.parameter(g, 0) = gp.eta;
+            cr.parameter.row(g) = gp.xi.transpose();
             cr.reference_coordinates.row(g) = gp.reference.transpose();
             cr.coordinates.row(g) = x.transpose();
             cr.weight(g) = gp.weight;
@@ -314,7 +337,7 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
                 const ObstacleFoot foot = obstacle->foot(x, load_factor);
                 if (!foot.ok) {
                     ev.ok = false;
-                    ev.message = "contact: " + describe_point(c.slave, g, c.points[g].eta, x) +
+                    ev.message = "contact: " + describe_point(c.slave, g, c.points[g].xi, x) +
                                  " is at the centre of the rigid obstacle (no contact normal); the bodies overlap "
                                  "far too much: check the obstacle's position and motion";
                     flush();
@@ -359,8 +382,11 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
             ev.candidates += static_cast<long long>(candidates.size());
 
             ProjectionOptions options;
-            if (trial_xi_[ci][g])
-                options.start = VecN::Constant(1, *trial_xi_[ci][g]);
+            const Foot& warm = trial_xi_[ci][g];
+            if (warm.element >= 0) {
+                options.start = warm.xi;
+                options.start_element = warm.element;
+            }
             options.candidate_elements = candidates;  // elements of a curve = its spans, in order
             projection_time.start();
             Projection proj = project_to_surface(master_patch, master.outward_sign, x, options);
@@ -369,11 +395,11 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
             ev.projection_iterations += proj.iterations;
             if (proj.status == Projection::Status::failed) {
                 ev.ok = false;
-                ev.message = "contact: closest-point projection failed at " + describe_point(c.slave, g, gp.eta, x);
+                ev.message = "contact: closest-point projection failed at " + describe_point(c.slave, g, gp.xi, x);
                 flush();
                 return ev;
             }
-            trial_xi_[ci][g] = proj.xi(0);
+            trial_xi_[ci][g] = Foot{proj.xi, proj.element};
             cr.gap(g) = proj.gap;
             if (proj.status != Projection::Status::ok) {
                 cr.state[g] = proj.status == Projection::Status::off_end ? PointState::off_end : PointState::at_kink;
@@ -385,7 +411,7 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
             const KernelResult kr = gpts_kernel(gp.N, gp.weight, proj, kernel_settings);
             if (!kr.ok) {
                 ev.ok = false;
-                ev.message = "contact: the penetration at " + describe_point(c.slave, g, gp.eta, x) +
+                ev.message = "contact: the penetration at " + describe_point(c.slave, g, gp.xi, x) +
                              " exceeds the master's radius of curvature (the projection is not a distance "
                              "minimum); try a larger penalty or smaller load steps";
                 flush();

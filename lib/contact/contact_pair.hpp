@@ -1,5 +1,6 @@
 #pragma once
-// One contact pair: its two surfaces (deformable 2D sides or a rigid obstacle), the
+// One contact pair: its two surfaces (deformable sides -- curves in 2D, surfaces in
+// 3D -- or a rigid obstacle), the
 // Gauss points that carry the penalty, and the per-Newton-iteration evaluation
 // of its residual and tangent (Kopacka et al. eqs. 5-7; physics.md 3.4).
 //
@@ -11,14 +12,15 @@
 //    master rows are assembled (action-reaction; tangent symmetric);
 //  - deformable vs rigid obstacle (plane or sphere): the deformable side, whatever the formulation.
 // Gauss points: `quadrature` per knot span of the carrying side (0 means degree
-// + 2), placed in the REFERENCE configuration with weight W = w_g |dX/deta|
+// + 2, per direction on a surface), placed in the REFERENCE configuration with
+// weight W = w_g * reference length / area element
 // (reference Jacobian, held fixed); kinematics use the current configuration.
 //
 // Sign conventions as in gap.hpp (positive gap = penetration); the residual is
 // the contact part r_c = dPi_c/du of the driver's r = f_int - lambda f_ext + r_c.
 //
 // Local numbering (shapes): the first surface's control points, then the
-// second's (a rigid surface has none); dof = cp * d + component, d = 2; cp is
+// second's (a rigid surface has none); dof = cp * d + component, d = 2 or 3; cp is
 // the SIDE control-point index (SidePatch::parent_index maps it to the parent).
 // Displacements are given per side, n_cp_side x d, row-major.
 //
@@ -39,7 +41,7 @@
 // trial state; commit() keeps the trial state (call it after a converged
 // increment), rollback() returns to the last committed one (after a cutback).
 // Because of this cache, evaluate() is const but not thread-safe on one pair.
-// 3D (surface sides, planes in 3D) is not supported: the constructor throws
+// Both surfaces live in the same dimension d (2 or 3), else the constructor throws
 // iga::Error.
 
 #include "contact/rigid_obstacle.hpp"
@@ -70,7 +72,8 @@ struct DeformableSide {
     nurbs::SidePatch side;
     int outward_sign = 1;
 
-    /// Extracts `side` of `parent` (a 2D surface patch) and computes its outward sign.
+    /// Extracts `side` of `parent` (a solid patch: 2 parameters in 2D, 3 in 3D) and its
+    /// outward sign (boundary::PatchSide); throws iga::Error for a collapsed or degenerate side.
     static DeformableSide make(const nurbs::Patch& parent, Side side);
 };
 
@@ -84,7 +87,7 @@ enum class PointState {
     at_kink,  ///< nearest master point at a C0 corner, not orthogonal: inactive
 };
 
-/// Gauss point data of one carrying side, n_g points in span order (eta ascending).
+/// Gauss point data of one carrying side, n_g points in element order.
 struct CarrierResult {
     int surface = 0;                    ///< 0: the pair's first surface, 1: the second
     RowMatrix parameter;                ///< n_g x q, the Gauss point's parameters on the side
@@ -92,7 +95,7 @@ struct CarrierResult {
     RowMatrix coordinates;              ///< n_g x d, current configuration
     Vector gap;                         ///< n_g, g_N (positive = penetration); far: -search distance, a bound
     Vector pressure;                    ///< n_g, eps <g_N> (0 unless state ok)
-    Vector weight;                      ///< n_g, W = w_g |dX/deta| (reference)
+    Vector weight;                      ///< n_g, W = w_g * reference area element
     std::vector<PointState> state;      ///< n_g
 };
 
@@ -158,9 +161,9 @@ public:
 private:
     struct GaussPoint {
         int element;               ///< element number on the carrying side
-        double eta;
-        double weight;             ///< W = w_g |dX/deta|
-        VecN reference;            ///< X(eta)
+        VecN xi;                   ///< d - 1 parameters on the side
+        double weight;             ///< W = w_g * reference length / area element
+        VecN reference;            ///< X(xi)
         std::vector<int> indices;  ///< side control points with non-zero basis
         Vector N;                  ///< their basis values
     };
@@ -177,8 +180,12 @@ private:
     double search_distance_ = 0.0;
     std::vector<Carrier> carriers_;
     std::array<std::vector<std::vector<int>>, 2> element_points_;  ///< side control points of each element
-    mutable std::vector<std::vector<std::optional<double>>> trial_xi_;
-    std::vector<std::vector<std::optional<double>>> committed_xi_;
+    struct Foot {                  ///< a Gauss point's last foot point (warm start)
+        VecN xi;
+        int element = -1;          ///< -1: none yet
+    };
+    mutable std::vector<std::vector<Foot>> trial_xi_;
+    std::vector<std::vector<Foot>> committed_xi_;
 };
 
 }  // namespace iga::contact

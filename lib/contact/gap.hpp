@@ -15,7 +15,7 @@
 //
 // In 2D the outward normal of a side is n = s (t_y, -t_x) / |t|, t = dx/dxi the
 // tangent along the side's parameter and s = +1 or -1 the side's orientation
-// sign (see orientation.hpp); s is fixed for a run because deformations with
+// sign (boundary/patch_side.hpp); s is fixed for a run because deformations with
 // det F > 0 preserve orientation.
 
 #include "core/types.hpp"

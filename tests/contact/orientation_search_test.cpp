@@ -1,8 +1,8 @@
-// Orientation signs of patch sides and the global span search.
+// Orientation signs of contact sides (boundary::outward_sign) and the global element search.
 
 #include "contact/contact_pair.hpp"
 #include "contact/gap.hpp"
-#include "contact/orientation.hpp"
+#include "boundary/patch_side.hpp"
 #include "contact/projection.hpp"
 #include "contact/search.hpp"
 
@@ -16,6 +16,7 @@
 namespace iga::contact {
 namespace {
 
+using boundary::outward_sign;
 using test::vec2;
 
 /// Outward normal of side `side` of `parent` at the middle of the side.
@@ -69,18 +70,27 @@ TEST(Orientation, CurvedBlockTopPointsUp)
     EXPECT_TRUE(test::at_least(outward_normal_at_middle(block, Side::v1)(1), 0.9));
 }
 
-TEST(Orientation, CurvesAndVolumesAreClearErrors)
+TEST(Orientation, CurvesAreClearErrorsAndCubeFacesPointOutward)
 {
     const nurbs::Patch curve = test::quarter_arc(1.0);
-    EXPECT_THROW(outward_sign(curve, Side::u0), Error);
-    // A trilinear unit cube: 3D contact (surface sides) is not supported yet.
+    EXPECT_THROW(DeformableSide::make(curve, Side::u0), Error);  // a curve has no contact side
+    // A trilinear unit cube: every face is a contact surface whose normal points out.
     RowMatrix P(8, 3);
     for (int a = 0; a < 8; ++a)
         P.row(a) << a % 2, (a / 2) % 2, a / 4;
     const nurbs::KnotVector linear(1, {0, 0, 1, 1});
     const nurbs::Patch cube({linear, linear, linear}, P, Vector::Ones(8));
-    EXPECT_THROW(outward_sign(cube, Side::w1), Error);
-    EXPECT_THROW(DeformableSide::make(cube, Side::w1), Error);
+    for (int k = 0; k < 6; ++k) {
+        const Side s = static_cast<Side>(k);
+        const DeformableSide face = DeformableSide::make(cube, s);
+        VecN mid(2);
+        mid << 0.5, 0.5;
+        const nurbs::PointDerivatives p = nurbs::evaluate(face.side.patch, mid, 1);
+        const VecN n = face.outward_sign * boundary::raw_normal(p.dx).normalized();
+        VecN expected = VecN::Zero(3);
+        expected(side_direction(s)) = side_at_end(s) ? 1.0 : -1.0;
+        EXPECT_TRUE(test::near((n - expected).norm(), 0.0, normal_tolerance)) << side_name(s);
+    }
 }
 
 TEST(Search, CandidatesContainTheFootPointSpan)
