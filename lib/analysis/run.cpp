@@ -164,7 +164,9 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
             linear.set_condensed_dofs(std::move(condensed));
         if (scene.has_contact())
             context.log(Verbosity::verbose,
-                        fmt::format("  linear solver: {} ({} contact dofs)", condense ? "condensed" : "sparse LU",
+                        fmt::format("  linear solver: {} ({} contact dofs)",
+                                    condense ? "condensed"
+                                             : (nonlinear.symmetric ? "sparse Cholesky" : "sparse LU"),
                                     n_condensed));
     }
 

@@ -83,7 +83,13 @@ solver::NonlinearSystem SceneSystem::nonlinear_system()
     };
     const bool follower = !scene_.followers.empty();
     system.linear = scene_.kinematics == mechanics::Kinematics::small && !scene_.has_contact();
-    system.symmetric = !scene_.has_contact() && !follower;
+    // Symmetric unless a follower load or a two-half-pass pair of two deformable sides
+    // (each half pass assembles only its slave rows) makes it otherwise: elastic
+    // tangents, rigid-obstacle and single-pass contact are Hessians of an energy.
+    bool half_passes = false;
+    for (const PairModel& pair : scene_.pairs)
+        half_passes = half_passes || (pair.obstacle < 0 && pair.formulation == contact::Formulation::two_half_pass);
+    system.symmetric = !half_passes && !follower;
     // A trust radius only where a singular first touch can send a step far away.
     system.max_step = scene_.has_contact() ? 0.05 * scene_.model_size : 0.0;
     const assembly::DofMap& dofs = *scene_.dofs;
