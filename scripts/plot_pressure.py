@@ -147,6 +147,8 @@ class Abscissa:
         attrs = reference.attrs
         self.center = attribute(attrs, "center", "centre")
         self.tangent = attribute(attrs, "tangent")
+        # 3D point contact: the abscissa is the distance from the centre in the contact plane.
+        self.normal = attribute(attrs, "normal")
         self.a = float(attribute(attrs, "a") or 1.0)
         self.p0 = float(attribute(attrs, "p0") or 1.0)
 
@@ -156,6 +158,11 @@ class Abscissa:
             return coordinates / self.a
         if self.center is None or self.tangent is None:
             return coordinates[:, 0] / self.a
+        if self.normal is not None and coordinates.shape[1] == 3:
+            n = np.asarray(self.normal, dtype=float)
+            n = n / np.linalg.norm(n)
+            v = coordinates - np.asarray(self.center, dtype=float)
+            return np.linalg.norm(v - np.outer(v @ n, n), axis=1) / self.a
         tangent = np.asarray(self.tangent, dtype=float)
         tangent = tangent / np.linalg.norm(tangent)
         return (coordinates - np.asarray(self.center, dtype=float)) @ tangent / self.a
@@ -196,21 +203,25 @@ def plot_with_reference(ax, h5, group, group_name, pair, args, colours):
                     label=f"{name}: Gauss points" + (" (lighter: mirrored)" if mirror else ""))
         if "postprocessed" in side:
             post = side["postprocessed"]
+            # A face's samples form a grid, not a line along r: draw them as dots.
+            line = dict(linewidth=1.5) if axis.normal is None else dict(marker=".", markersize=2, linestyle="none")
             plot_series(ax, axis.x(post["reference_coordinates"][()]), axis.p(post["pressure"][()]), mirror,
-                        color=colour, linewidth=1.5, label=f"{name}: post-processed (NURBS)")
+                        color=colour, label=f"{name}: post-processed (NURBS)", **line)
     title = f"{args.results.name}: pair {pair}, /{group_name}"
     xr = reference["x"][()] / axis.a if "x" in reference else axis.x(reference["coordinates"][()])
     kind = attribute(reference.attrs, "type") or "Hertz"
     plot_series(ax, np.asarray(xr), axis.p(reference["pressure"][()]), False, color="black",
                 linestyle="--", linewidth=1.2, label=f"analytic ({kind})")
     errors = [(label, attribute(reference.attrs, *keys)) for label, keys in
-              (("L2", ("l2", "L2")), ("peak", ("peak",)), ("half-width", ("half_width", "half-width")))]
+              (("L2", ("l2", "L2")), ("peak", ("peak",)), ("half-width", ("half_width", "half-width")),
+               ("contact radius", ("contact_radius",)))]
     quoted = ", ".join(f"{label} {100 * value:+.2f} %" if label != "L2" else f"{label} {100 * value:.2f} %"
                        for label, value in errors if value is not None)
     if quoted:
         title += "\n" + quoted
     ax.set_xlim(-ZOOM, ZOOM)
-    ax.set_xlabel("x / a  (reference configuration)")
+    ax.set_xlabel("x / a  (reference configuration)" if axis.normal is None
+                  else "r / a, distance from the contact centre in the contact plane (reference configuration)")
     ax.set_ylabel("p / p0")
     return title
 

@@ -107,6 +107,7 @@ io::ReferenceData point_contact_reference(const io::Deck& deck, const Scene& sce
     const Eigen::Vector3d axis = std::abs(n3(0)) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
     const VecN tangent = n3.cross(axis).normalized();
     data.tangent = to_std(tangent);
+    data.normal = to_std(normal);
     constexpr int n_curve = 601;
     data.x.resize(n_curve);
     data.pressure.resize(n_curve);

@@ -135,6 +135,7 @@ struct ReferenceData {
     Vector pressure;                       ///< n
     std::vector<double> center;            ///< d, where x = 0 (attribute; written when non-empty)
     std::vector<double> tangent;           ///< d, direction of the contact line (attribute; when non-empty)
+    std::vector<double> normal;            ///< 3D point contact: normal of the contact plane (attribute; when non-empty)
 };
 
 /// What finish() writes once the run is over.

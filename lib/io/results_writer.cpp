@@ -155,7 +155,7 @@ void write_reference(hid_t references, const ReferenceData& reference)
     h5::write_dataset(group.id(), "pressure", reference.pressure);
 
     // inputs and errors share the attribute namespace of the group with the fixed names.
-    std::set<std::string> used{"type", "a", "p0", "center", "tangent"};
+    std::set<std::string> used{"type", "a", "p0", "center", "tangent", "normal"};
     auto write_unique = [&](const std::string& name, double value) {
         IGA_CHECK(used.insert(name).second, "reference " + reference.pair + ": attribute '" + name + "' given twice");
         h5::write_attribute(group.id(), name, value);
@@ -171,6 +171,8 @@ void write_reference(hid_t references, const ReferenceData& reference)
         h5::write_attribute(group.id(), "center", std::span<const double>(reference.center));
     if (!reference.tangent.empty())
         h5::write_attribute(group.id(), "tangent", std::span<const double>(reference.tangent));
+    if (!reference.normal.empty())
+        h5::write_attribute(group.id(), "normal", std::span<const double>(reference.normal));
 }
 
 // /history from the columns gathered by append_history (load_factor only, of length 0, without rows).
