@@ -146,11 +146,12 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
     const Vector u_full = scene.dofs->expand(u_free, load_factor);
     for (std::size_t b = 0; b < scene.bodies.size(); ++b)
         step.displacement.emplace_back(scene.bodies[b].name, system.body_displacement(u_full, static_cast<int>(b)));
-    step.reactions = reactions(scene, system.full_residual(u_free, load_factor));
+    // One evaluation gives the reactions and the contact state of the increment.
+    std::vector<contact::PairEvaluation> states;
+    step.reactions = reactions(scene, system.full_residual(u_free, load_factor, &states));
     if (!scene.has_contact())
         return step;
 
-    const std::vector<contact::PairEvaluation> states = system.contact_state(u_free, load_factor);
     for (std::size_t p = 0; p < scene.pairs.size(); ++p) {
         const PairModel& model = scene.pairs[p];
         const contact::PairEvaluation& state = states[p];

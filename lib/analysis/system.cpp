@@ -228,19 +228,21 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
 
 void SceneSystem::evaluate(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out)
 {
-    evaluate_into(u_free, load_factor, need_tangent, out, &context_, nullptr);
+    evaluate_into(u_free, load_factor, need_tangent, out, &context_, nullptr, nullptr);
 }
 
-Vector SceneSystem::full_residual(const Vector& u_free, double load_factor)
+Vector SceneSystem::full_residual(const Vector& u_free, double load_factor,
+                                  std::vector<contact::PairEvaluation>* contact_out)
 {
     solver::Evaluation scratch;
     Vector r_full;
-    evaluate_into(u_free, load_factor, false, scratch, nullptr, &r_full);
+    evaluate_into(u_free, load_factor, false, scratch, nullptr, &r_full, contact_out);
     return r_full;
 }
 
 void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out,
-                                RunContext* context, Vector* r_full_out)
+                                RunContext* context, Vector* r_full_out,
+                                std::vector<contact::PairEvaluation>* contact_out)
 {
     const assembly::DofMap& dofs = *scene_.dofs;
     const assembly::SparsePattern& pattern = *scene_.pattern;
@@ -284,8 +286,6 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
     r_full -= load_factor * scene_.f_ext;
     double external_norm = load_factor * scene_.f_ext.norm();
     for (const FollowerPressure& follower : scene_.followers) {
-        const BodyModel& body = scene_.bodies[static_cast<std::size_t>(follower.body)];
-        (void)body;
         for (std::size_t e = 0; e < follower.side.elements.size(); ++e) {
             const auto& element_dofs = follower.element_dofs[e];
             const Matrix u_local = local_displacement(u_full, element_dofs, d);
@@ -327,6 +327,8 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
     out.residual = dofs.restrict(r_full);
     if (r_full_out)
         *r_full_out = r_full;
+    if (contact_out)
+        *contact_out = std::move(contact);
     out.force_scale = std::max({external_norm, std::sqrt(reaction_norm2), contact_norm, f_int_norm});
     if (!out.residual.allFinite() && out.ok) {
         out.ok = false;

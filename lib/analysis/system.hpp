@@ -44,7 +44,9 @@ public:
     /// counters. At equilibrium f_int = lambda f_ext - r_c + R on every dof, so the
     /// constrained entries of r = f_int - lambda f_ext + r_c are the reactions R (the
     /// force each constraint exerts on the body).
-    Vector full_residual(const Vector& u_free, double load_factor);
+    /// `contact_out`, when given, receives the pairs' evaluations at that state (for output).
+    Vector full_residual(const Vector& u_free, double load_factor,
+                         std::vector<contact::PairEvaluation>* contact_out = nullptr);
 
     /// Contact evaluation of every pair at a converged state (no tangent, not counted
     /// in the contact timers): for output.
@@ -59,7 +61,8 @@ public:
 
 private:
     void evaluate_into(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out,
-                       RunContext* context, Vector* r_full_out);
+                       RunContext* context, Vector* r_full_out,
+                       std::vector<contact::PairEvaluation>* contact_out);
     /// Extends the pattern by the couplings of these evaluations that it lacks.
     void register_couplings(const std::vector<contact::PairEvaluation>& contact, RunContext* context);
     void assemble_elements(const Vector& u_full, bool need_tangent, Vector& r_full, SparseMatrix& K,

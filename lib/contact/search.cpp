@@ -13,54 +13,6 @@ namespace {
 // Elements per leaf: a few box tests are cheaper than another level of nodes.
 constexpr int leaf_size = 4;
 
-/// Bezier control points of `element` (n_local x d) from extraction operators
-/// computed once per direction (nurbs::bezier_control_points recomputes them per
-/// element; same arithmetic, same result).
-RowMatrix bezier_points(const nurbs::Patch& patch, const nurbs::Element& element,
-                        const std::array<std::vector<Eigen::MatrixXd>, 3>& extraction)
-{
-    const int n = patch.n_par();
-    const int d = patch.dim();
-    std::array<Eigen::MatrixXd, 3> C;
-    std::array<int, 3> n_local{1, 1, 1};
-    for (int k = 0; k < 3; ++k) {
-        if (k < n) {
-            C[k] = extraction[k][patch.knots(k).span_number(element.span[k])];
-            n_local[k] = patch.degree(k) + 1;
-        } else {
-            C[k] = Eigen::MatrixXd::Ones(1, 1);
-        }
-    }
-    const int n_points = n_local[0] * n_local[1] * n_local[2];
-    Matrix Pw(n_points, d + 1);
-    int a = 0;
-    for (int k = 0; k < n_local[2]; ++k)
-        for (int j = 0; j < n_local[1]; ++j)
-            for (int i = 0; i < n_local[0]; ++i, ++a) {
-                std::array<int, 3> ijk{i, j, k};
-                for (int q = 0; q < n; ++q)
-                    ijk[q] += element.span[q] - patch.degree(q);
-                const int index = patch.control_point_index(ijk);
-                const double w = patch.weights()(index);
-                Pw.row(a).head(d) = w * patch.control_points().row(index);
-                Pw(a, d) = w;
-            }
-    Matrix Qw = Matrix::Zero(n_points, d + 1);
-    for (int c = 0; c < n_points; ++c) {
-        const int ci = c % n_local[0], cj = (c / n_local[0]) % n_local[1], ck = c / (n_local[0] * n_local[1]);
-        for (int s = 0; s < n_points; ++s) {
-            const int si = s % n_local[0], sj = (s / n_local[0]) % n_local[1], sk = s / (n_local[0] * n_local[1]);
-            const double factor = C[0](si, ci) * C[1](sj, cj) * C[2](sk, ck);
-            if (factor != 0.0)
-                Qw.row(c) += factor * Pw.row(s);
-        }
-    }
-    RowMatrix out(n_points, d);
-    for (int c = 0; c < n_points; ++c)
-        out.row(c) = Qw.row(c).head(d) / Qw(c, d);
-    return out;
-}
-
 }  // namespace
 
 Box bounding_box(const RowMatrix& points)
@@ -82,7 +34,7 @@ ElementSearch::ElementSearch(const nurbs::Patch& side, const SearchOptions& opti
     std::vector<VecN> centres;
     centres.reserve(elements.size());
     for (const nurbs::Element& element : elements) {
-        const Box tight = bounding_box(bezier_points(side, element, extraction));
+        const Box tight = bounding_box(nurbs::bezier_control_points(side, element, extraction));
         const double margin = std::max(options.span_fraction * tight.diagonal(), options.distance);
         element_boxes_.push_back(tight.inflated(margin));
         centres.push_back(0.5 * (element_boxes_.back().lower + element_boxes_.back().upper));

@@ -398,14 +398,23 @@ std::vector<Eigen::MatrixXd> bezier_extraction(const KnotVector& knots)
 
 RowMatrix bezier_control_points(const Patch& patch, const Element& element)
 {
+    std::array<std::vector<Eigen::MatrixXd>, 3> extraction;
+    for (int k = 0; k < patch.n_par(); ++k)
+        extraction[static_cast<std::size_t>(k)] = bezier_extraction(patch.knots(k));
+    return bezier_control_points(patch, element, extraction);
+}
+
+RowMatrix bezier_control_points(const Patch& patch, const Element& element,
+                                const std::array<std::vector<Eigen::MatrixXd>, 3>& extraction)
+{
     const int n = patch.n_par();
     const int d = patch.dim();
     std::array<Eigen::MatrixXd, 3> C;
     std::array<int, 3> n_local{1, 1, 1};
     for (int k = 0; k < 3; ++k) {
         if (k < n) {
-            const KnotVector& knots = patch.knots(k);
-            C[k] = bezier_extraction(knots)[knots.span_number(element.span[k])];
+            C[k] = extraction[static_cast<std::size_t>(k)][static_cast<std::size_t>(
+                patch.knots(k).span_number(element.span[static_cast<std::size_t>(k)]))];
             n_local[k] = patch.degree(k) + 1;
         } else {
             C[k] = Eigen::MatrixXd::Ones(1, 1);

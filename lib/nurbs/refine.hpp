@@ -6,6 +6,7 @@
 
 #include "nurbs/patch.hpp"
 
+#include <array>
 #include <vector>
 
 namespace iga::nurbs {
@@ -32,5 +33,9 @@ std::vector<Eigen::MatrixXd> bezier_extraction(const KnotVector& knots);
 /// Bezier control points (projected, n_local x d) of element `element` of a patch,
 /// whose convex hull contains that piece (weights > 0): used for bounding boxes.
 RowMatrix bezier_control_points(const Patch& patch, const Element& element);
+/// The same with the extraction operators of every direction computed once
+/// (extraction[k] = bezier_extraction(patch.knots(k)), k < n_par): for loops over elements.
+RowMatrix bezier_control_points(const Patch& patch, const Element& element,
+                                const std::array<std::vector<Eigen::MatrixXd>, 3>& extraction);
 
 }  // namespace iga::nurbs
