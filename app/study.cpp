@@ -336,11 +336,15 @@ int study_command(int argc, char** argv)
     }
     int n_failed = 0;
     for (const Level& l : levels)
-        if (l.outcome != "completed") {
+        if (l.outcome != "completed")
             ++n_failed;
-            std::cerr << fmt::format("study: level {} {}{}\n", l.index, l.outcome,
-                                     l.message.empty() ? "" : ": " + l.message);
-        }
+    if (n_failed > 0) {
+        std::string list;
+        for (const Level& l : levels)
+            if (l.outcome != "completed")
+                list += fmt::format("{}{} ({})", list.empty() ? "" : ", ", l.index, l.outcome);
+        std::cerr << "study: level(s) left out of the table: " << list << '\n';
+    }
     if (completed.empty()) {
         std::cerr << "study: no level completed; nothing written\n";
         return exit_failed;

@@ -48,7 +48,7 @@ struct StudyLevel {
 /// The rows of the study table (quantity by quantity, levels in order) from the
 /// completed levels, coarsest first. Richardson uses the longest run of
 /// consecutive levels that ends at the finest completed one. Reaction components
-/// that are zero to 1e-9 of the largest reaction or contact normal force at every
+/// that are zero to 1e-6 of the largest reaction or contact normal force at every
 /// level (a symmetry side's reaction, a constrained side's free directions) are
 /// left out.
 std::vector<io::StudyRow> study_rows(const std::vector<StudyLevel>& levels, double assumed_order);
