@@ -71,9 +71,13 @@ bool corners_match(const SidePatch& a, const SidePatch& b, const std::array<int,
                    const std::array<int, 2>& nb, const SideOrientation& o, int q, double tol)
 {
     for (int c = 0; c < (q == 1 ? 2 : 4); ++c) {
-        const std::array<int, 2> i{(c & 1) ? na[0] - 1 : 0, (c & 2) ? na[1] - 1 : 0};
-        const int ia = i[0] + na[0] * i[1];
-        const int ib = mapped_index(i, o, nb, q);
+        // Corners by their flags: the grids may differ in size before conforming.
+        const std::array<bool, 2> at_end{(c & 1) != 0, (c & 2) != 0};
+        const int ia = (at_end[0] ? na[0] - 1 : 0) + na[0] * (at_end[1] ? na[1] - 1 : 0);
+        std::array<int, 2> j{0, 0};
+        for (int k = 0; k < q; ++k)
+            j[o.dir[k]] = (at_end[k] != o.flip[k]) ? nb[o.dir[k]] - 1 : 0;
+        const int ib = j[0] + nb[0] * j[1];
         if (!((a.patch.control_points().row(ia) - b.patch.control_points().row(ib)).norm() <= tol))
             return false;
     }
