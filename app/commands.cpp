@@ -183,6 +183,7 @@ int check_command(int argc, char** argv)
         if (pair.obstacle >= 0)
             std::cout << fmt::format("# contact force on the obstacle {} reported for pair {}\n",
                                      pair.label[static_cast<std::size_t>(pair.obstacle)], pair.name);
+    std::cout.flush();  // the listing before the verdict, also when both streams go to one pipe
     std::cerr << deck_path << ": ok\n";
     return exit_ok;
 }
