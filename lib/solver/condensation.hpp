@@ -45,6 +45,7 @@ public:
     LinearStatus solve(const Vector& b, Vector& x) const;
 
     int n_interior_factorizations() const { return n_interior_; }
+    const std::vector<int>& condensed_dofs() const { return condensed_; }  ///< sorted, unique
 
 private:
     struct Interior;

@@ -69,6 +69,12 @@ void LinearSolver::set_condensed_dofs(std::vector<int> dofs)
     factorized_ = false;
 }
 
+const std::vector<int>& LinearSolver::condensed_dofs() const
+{
+    static const std::vector<int> none;
+    return condensation_ ? condensation_->condensed_dofs() : none;
+}
+
 void LinearSolver::set_kind(Kind kind)
 {
     if (kind != kind_) {

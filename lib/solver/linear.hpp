@@ -68,6 +68,8 @@ public:
     /// kinematics). Empty: off (the default).
     void set_condensed_dofs(std::vector<int> dofs);
     bool condensed() const { return condensation_ != nullptr; }
+    /// The condensed dofs (sorted), empty when not condensing.
+    const std::vector<int>& condensed_dofs() const;
 
     /// Switches the backend (each keeps its own symbolic analysis).
     void set_kind(Kind kind);
