@@ -68,6 +68,11 @@ struct PairModel {
     std::map<contact::Coupling, int> blocks;         ///< registered coupling -> pattern block
     int obstacle = -1;                               ///< surface index (0/1) of a rigid obstacle, -1 if none
     contact::Formulation formulation = contact::Formulation::two_half_pass;
+    bool penalty_auto = false;     ///< the deck says `penalty: auto` (analysis/contact_penalty.hpp)
+    double initial_penalty = 0.0;  ///< eps from the deck or the auto rule (the pair's may be raised later)
+    bool augmented = false;        ///< enforcement: augmented_lagrangian (analysis/uzawa.hpp)
+    double gap_tolerance = 0.0;    ///< augmented: the largest accepted penetration, resolved (> 0)
+    int max_updates = 0;           ///< augmented: Uzawa updates per increment
 };
 
 struct Scene {
