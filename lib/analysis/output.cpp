@@ -167,7 +167,7 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
         result.text_attributes["penalty_rule"] = model.penalty_auto ? "auto" : "value";
         result.text_attributes["enforcement"] = model.augmented ? "augmented_lagrangian" : "penalty";
         if (model.augmented)
-            result.attributes["gap_tolerance"] = model.gap_tolerance;
+            result.attributes["gap_tolerance"] = model.gap_tolerance_used;
         if (model.obstacle >= 0) {
             // The body's contact force is -r_c; the obstacle feels the opposite, +r_c.
             const int d = scene.dim;

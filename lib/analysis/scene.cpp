@@ -230,7 +230,7 @@ Scene build_scene(const io::Deck& deck)
             parent[k] = side.side.parent_index;
             return side;
         };
-        double element_size = 0.0;  // smallest element of the deformable sides (auto penalty, gap tolerance)
+        AutoPenalty rule;  // E', h and the auto penalty of the pair's deformable sides
         auto pair = [&]() {
             try {
                 contact::Surface first = make_surface(c.first, 0);
@@ -242,8 +242,7 @@ Scene build_scene(const io::Deck& deck)
                         sides.push_back(side);
                         materials.push_back(&scene.bodies[static_cast<std::size_t>(body[k])].material);
                     }
-                const AutoPenalty rule = auto_penalty(sides, materials);
-                element_size = rule.element_size;
+                rule = auto_penalty(sides, materials);
                 if (c.penalty_auto)
                     settings.penalty = rule.penalty;
                 return contact::ContactPair(settings, std::move(first), std::move(second));
@@ -259,9 +258,10 @@ Scene build_scene(const io::Deck& deck)
         model.penalty_auto = c.penalty_auto;
         model.initial_penalty = settings.penalty;
         model.augmented = c.enforcement == io::Enforcement::augmented_lagrangian;
-        model.gap_tolerance = c.augmented_lagrangian.gap_tolerance > 0.0 ? c.augmented_lagrangian.gap_tolerance
-                                                                          : auto_gap_fraction * element_size;
+        model.gap_tolerance = c.augmented_lagrangian.gap_tolerance;
         model.max_updates = c.augmented_lagrangian.max_updates;
+        model.contact_modulus = rule.modulus;
+        model.element_size = rule.element_size;
         for (int k = 0; k < 2; ++k)
             if (body[k] < 0)
                 model.obstacle = k;

@@ -1,5 +1,7 @@
 #include "analysis/uzawa.hpp"
 
+#include "analysis/contact_penalty.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -31,7 +33,7 @@ solver::OuterDecision UzawaLoop::after_solve(const Vector& u_free, double load_f
     std::string over;  // the first such pair, in words
     int max_updates = 0;
     for (std::size_t p = 0; p < scene_.pairs.size(); ++p) {
-        const PairModel& model = scene_.pairs[p];
+        PairModel& model = scene_.pairs[p];
         if (!model.augmented)
             continue;
         if (!states[p].ok) {  // cannot happen at a converged state; reject rather than update from it
@@ -40,10 +42,18 @@ solver::OuterDecision UzawaLoop::after_solve(const Vector& u_free, double load_f
             return decision;
         }
         const double penetration = states[p].max_penetration;
-        if (penetration > model.gap_tolerance) {
+        double max_pressure = 0.0;
+        for (const contact::CarrierResult& carrier : states[p].carriers)
+            if (carrier.pressure.size() > 0)
+                max_pressure = std::max(max_pressure, carrier.pressure.maxCoeff());
+        const double tolerance =
+            model.gap_tolerance > 0.0 ? model.gap_tolerance
+                                      : auto_gap_tolerance(model.element_size, model.contact_modulus, max_pressure);
+        model.gap_tolerance_used = tolerance;
+        if (penetration > tolerance) {
             if (over.empty())
                 over = fmt::format("contact pair '{}': max penetration {:.3g} above gap_tolerance {:.3g}",
-                                   model.name, penetration, model.gap_tolerance);
+                                   model.name, penetration, tolerance);
             max_updates = std::max(max_updates, model.max_updates);
         }
     }
@@ -63,7 +73,7 @@ solver::OuterDecision UzawaLoop::after_solve(const Vector& u_free, double load_f
         const double penetration = states[p].max_penetration;
         const double last = last_penetration_[p];
         last_penetration_[p] = penetration;
-        if (!(last > 0.0) || !(penetration > model.gap_tolerance) || penetration <= uzawa_stall_ratio * last)
+        if (!(last > 0.0) || !(penetration > model.gap_tolerance_used) || penetration <= uzawa_stall_ratio * last)
             continue;
         const double penalty = model.pair.settings().penalty;
         if (penalty * uzawa_raise_factor > uzawa_max_raise * model.initial_penalty * (1.0 + 1e-12))

@@ -165,8 +165,8 @@ struct ContactSurface {
 
 /// contact.<pair>.augmented_lagrangian (only with enforcement: augmented_lagrangian).
 struct AugmentedLagrangian {
-    /// Largest penetration accepted (length units, > 0); 0 = automatic: 1e-4 of the
-    /// smallest reference element of the pair's deformable sides (docs/deck.md).
+    /// Largest penetration accepted (length units, > 0); 0 = automatic: 1e-3 h p_max / E'
+    /// (h the smallest contact-side element, p_max the largest pressure; docs/deck.md).
     double gap_tolerance = 0.0;
     int max_updates = 30;  ///< Uzawa updates per increment before the attempt is cut back, >= 1
 
