@@ -168,6 +168,10 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
         result.text_attributes["enforcement"] = model.augmented ? "augmented_lagrangian" : "penalty";
         if (model.augmented)
             result.attributes["gap_tolerance"] = model.gap_tolerance_used;
+        if (model.penalty_auto) {  // the inputs of the rule eps = c E'/h
+            result.attributes["penalty_modulus"] = model.contact_modulus;
+            result.attributes["penalty_element_size"] = model.element_size;
+        }
         if (model.obstacle >= 0) {
             // The body's contact force is -r_c; the obstacle feels the opposite, +r_c.
             const int d = scene.dim;

@@ -166,7 +166,8 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
                              std::to_string(report.iterations) + " iterations, relative residual " +
                              format_g(report.residual_norm) +
                              (cutbacks > 0 ? ", " + std::to_string(cutbacks) + " cutbacks" : std::string()) +
-                             (outer_updates > 0 ? ", " + std::to_string(outer_updates) + " Uzawa updates"
+                             (outer_updates > 0 ? ", " + std::to_string(outer_updates) +
+                                                      (outer_updates == 1 ? " Uzawa update" : " Uzawa updates")
                                                 : std::string()));
         if (callbacks.converged)
             callbacks.converged(result.increments.back(), u);
