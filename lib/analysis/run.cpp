@@ -288,7 +288,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
                            "flip-flop, Gauss points entering and leaving contact (or switching the segment they "
                            "project onto) on alternate iterations. Use smaller increments (a larger steps.count) "
                            "or a smaller penalty (about 1e2-1e3 E/h is plenty)";
-    } else if (!result.completed && scene.has_contact()) {
+    } else if (!result.completed && scene.has_contact() &&
+               result.last_failure.status != solver::NewtonStatus::converged) {  // not an outer-loop rejection
         double E_min = std::numeric_limits<double>::infinity(), penalty_max = 0.0;
         for (const BodyModel& b : scene.bodies)
             E_min = std::min(E_min, b.material.E);

@@ -61,7 +61,9 @@ solver::OuterDecision UzawaLoop::after_solve(const Vector& u_free, double load_f
         return decision;  // accept
     if (updates_ >= max_updates) {
         decision.action = solver::OuterDecision::Action::reject;
-        decision.message = fmt::format("{} after {} Uzawa updates (augmented_lagrangian.max_updates)", over, updates_);
+        decision.message = fmt::format("{} after {} Uzawa updates (augmented_lagrangian.max_updates); allow more "
+                                       "updates or a larger gap_tolerance",
+                                       over, updates_);
         return decision;
     }
 

@@ -19,6 +19,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <limits>
 
@@ -43,8 +44,16 @@ double max_relative_deviation(const std::vector<double>& values, double expected
     return worst;
 }
 
+/// A number as YAML text, all digits (std::to_string would print 1e-12 as 0.000000).
+std::string number(double x)
+{
+    char text[40];
+    std::snprintf(text, sizeof text, "%.17g", x);
+    return text;
+}
+
 /// A one-block deck: [0,1] x [0,1] on a rigid floor y = 0, top driven down by Delta.
-std::string one_spring_deck(double penalty, double gap_tolerance)
+std::string one_spring_deck(double penalty, double gap_tolerance, int max_updates = 30)
 {
     return "format: 1\n"
            "analysis: {dimension: 2, plane: strain, kinematics: small}\n"
@@ -58,11 +67,11 @@ std::string one_spring_deck(double penalty, double gap_tolerance)
            "  - {body: block, side: v1, displacement: [0.0, -0.01]}\n"
            "contact:\n"
            "  - {name: touch, between: [block.v0, floor], penalty: " +
-           std::to_string(penalty) +
+           number(penalty) +
            ",\n"
            "     enforcement: augmented_lagrangian,\n"
            "     augmented_lagrangian: {gap_tolerance: " +
-           std::to_string(gap_tolerance) + ", max_updates: 30}}\n";
+           number(gap_tolerance) + ", max_updates: " + std::to_string(max_updates) + "}}\n";
 }
 
 TEST(AugmentedLagrangian, MultipliersFollowTheOneSpringClosedForm)
@@ -103,6 +112,51 @@ TEST(AugmentedLagrangian, MultipliersFollowTheOneSpringClosedForm)
     EXPECT_TRUE(at_most(max_relative_deviation(r.reals(side + "pressure"), lambda + penalty * gap),
                         closed_form_tolerance))
         << "p = lambda + eps g";
+}
+
+// Too few updates allowed: the attempt is rejected and cut back, and the multipliers
+// return to the committed ones (zero) each time. With g_n(L) = k Delta L rho^n/(k + eps)
+// at load factor L and two updates, g_2 = 2e-3 L / 25 is within 1.01e-5 first at
+// L = 1/8 (three cutbacks: 1, 1/2, 1/4 rejected); the multipliers there are the closed
+// form from ZERO, k Delta L (1 - rho^2) = 1200. Multipliers left over from the
+// rejected attempts (2400 at L = 1/4) would instead open the contact (g < 0), be
+// accepted without an update and keep lambda = 2400.
+TEST(AugmentedLagrangian, RejectedAttemptsAreCutBackWithTheirMultipliersRolledBack)
+{
+    constexpr double k = E / H, penalty = 4.0 * k, rho = k / (k + penalty);
+    constexpr int max_updates = 2, expected_cutbacks = 3;
+    constexpr double first_load_factor = 0.125;
+    const auto dir = scratch_dir("al_rollback");
+    const auto deck = dir / "spring.yaml";
+    std::ofstream(deck) << one_spring_deck(penalty, 1.01e-5, max_updates);
+    const auto file = dir / "spring.h5";
+    const analysis::RunOutcome outcome = run_deck(deck.string(), {}, file);
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    const Results r(file);
+    const std::string step = "steps/0001";
+    EXPECT_EQ(r.number(step, "cutbacks"), expected_cutbacks);
+    EXPECT_EQ(r.number(step, "load_factor"), first_load_factor);
+    EXPECT_EQ(r.number(step, "uzawa_updates"), max_updates);
+    const double lambda = k * Delta * first_load_factor * (1.0 - rho * rho);
+    constexpr double closed_form_tolerance = 1e-8;  // as in MultipliersFollowTheOneSpringClosedForm
+    EXPECT_TRUE(at_most(max_relative_deviation(r.reals(step + "/contact/touch/block.v0/gauss_points/multiplier"),
+                                               lambda),
+                        closed_form_tolerance));
+    EXPECT_GT(outcome.cutbacks, expected_cutbacks) << "later increments are cut back too";
+}
+
+// When cutbacks run out the run fails, naming the pair, the penetration and the tolerance.
+TEST(AugmentedLagrangian, UpdatesThatNeverSufficeEndTheRunWithAClearMessage)
+{
+    const auto dir = scratch_dir("al_max_updates");
+    const auto deck = dir / "spring.yaml";
+    std::ofstream(deck) << one_spring_deck(4.0 * E / H, 1.0e-12, 1) << "steps: {max_cutbacks: 1}\n";
+    const analysis::RunOutcome outcome = run_deck(deck.string(), {}, dir / "spring.h5");
+    EXPECT_EQ(outcome.status, "failed");
+    for (const char* part : {"the outer loop rejected the solution after 1 cutbacks", "contact pair 'touch'",
+                             "above gap_tolerance 1e-12 after 1 Uzawa updates", "allow more updates"})
+        EXPECT_NE(outcome.message.find(part), std::string::npos) << part << " in: " << outcome.message;
+    EXPECT_EQ(outcome.message.find("round-off"), std::string::npos) << "no penalty hint for an outer-loop failure";
 }
 
 /// The 2D contact patch test deck with the augmented Lagrangian at `penalty`.
