@@ -19,6 +19,7 @@
 #include <fmt/ranges.h>
 
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
@@ -38,10 +39,12 @@ extern "C" void on_interrupt(int signal)
     std::signal(signal, SIG_DFL);
 }
 
+}  // namespace
+
 /// Parses with CLI11; returns -1 when parsing succeeded, 0 after --help/--version
 /// (CLI11 printed them). A usage error throws UsageError, which main() prints as
 /// "igacontact: error: ..." like every other error.
-int parse(CLI::App& cli, int argc, char** argv)
+int parse_command_line(CLI::App& cli, int argc, char** argv)
 {
     try {
         cli.parse(argc, argv);
@@ -53,8 +56,6 @@ int parse(CLI::App& cli, int argc, char** argv)
     }
 }
 
-}  // namespace
-
 int run_command(int argc, char** argv)
 {
     CLI::App cli{"igacontact: isogeometric contact mechanics (two-half-pass Gauss-point-to-segment penalty).\n"
@@ -63,6 +64,7 @@ int run_command(int argc, char** argv)
     cli.footer("Other commands:\n"
                "  igacontact check DECK [--set PATH=VALUE]...   validate, print the resolved deck and side names\n"
                "  igacontact compare REF.h5 NEW.h5 [options]    regression check of two results files\n"
+               "  igacontact study DECK [--levels N] [--jobs J]  refinement study: error estimates and their cost\n"
                "Exit codes: 0 success, 1 the solve failed, 2 bad input or usage, 3 internal error.");
     cli.set_version_flag("--version", std::string("igacontact ") + program_version);
 
@@ -80,10 +82,28 @@ int run_command(int argc, char** argv)
     cli.add_option("--threads", threads,
                    "threads for the element assembly (default 0: automatic, serial for small scenes; README \"Threads\")")
         ->check(CLI::Range(0, 1024));
-    if (const int code = parse(cli, argc, argv); code >= 0)
+    int refine_levels = 0;
+    cli.add_option("--refine-levels", refine_levels,
+                   "halve every knot span of every patch K times after the deck's refinement (igacontact study)")
+        ->check(CLI::Range(0, 10));
+    if (const int code = parse_command_line(cli, argc, argv); code >= 0)
         return code;
 
     io::Deck deck = io::read_deck(deck_path, overrides);
+    if (refine_levels > 0) {
+        // The size check of the deck (analysis/size_estimate.hpp) sees the deck's own
+        // refinement; each halving multiplies the model by about 2^d.
+        const double bytes = analysis::estimate_size(deck).bytes * std::exp2(deck.analysis.dimension * refine_levels);
+        const double memory = analysis::machine_memory_bytes();
+        if (memory > 0 && bytes > memory)
+            throw UsageError(fmt::format("--refine-levels {}: the refined model needs about {:.3g} GB, more than this "
+                                         "machine's {:.3g} GB",
+                                         refine_levels, bytes / 1e9, memory / 1e9));
+        // /deck in the results file says how the run was refined.
+        deck.resolved_yaml += fmt::format("# run with --refine-levels {}: every knot span halved {} time(s) after the "
+                                          "refinement above\n",
+                                          refine_levels, refine_levels);
+    }
     if (!output.empty()) {
         deck.output.file = output;
         deck.resolved_yaml = io::write_resolved_yaml(deck);  // /deck shows the file actually written
@@ -108,6 +128,7 @@ int run_command(int argc, char** argv)
     analysis::RunOptions options;
     options.stop_requested = [] { return interrupt_requested.load(); };
     options.threads = threads;
+    options.refine_levels = refine_levels;
     if (terminal)
         options.progress = [](const std::string& line) { std::cerr << line << '\n'; };
     if (!quiet)
@@ -141,7 +162,7 @@ int check_command(int argc, char** argv)
     std::vector<std::string> overrides;
     cli.add_option("deck", deck_path, "deck file (YAML)")->required();
     cli.add_option("--set", overrides, "override a deck value, PATH=VALUE; repeatable")->allow_extra_args(false);
-    if (const int code = parse(cli, argc, argv); code >= 0)
+    if (const int code = parse_command_line(cli, argc, argv); code >= 0)
         return code;
 
     const io::Deck deck = io::read_deck(deck_path, overrides);
@@ -188,7 +209,7 @@ int compare_command(int argc, char** argv)
         ->allow_extra_args(false);
     cli.add_flag("--all", options.include_volatile, "also compare timings, versions and wall times");
     cli.add_flag("-v,--verbose", verbose, "list every compared item");
-    if (const int code = parse(cli, argc, argv); code >= 0)
+    if (const int code = parse_command_line(cli, argc, argv); code >= 0)
         return code;
 
     io::CompareReport report;

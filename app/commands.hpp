@@ -4,6 +4,10 @@
 
 #include <stdexcept>
 
+namespace CLI {
+class App;
+}
+
 namespace iga::app {
 
 /// Bad usage of the command line (unknown option, missing argument): exit 2.
@@ -20,5 +24,10 @@ inline constexpr int exit_internal = 3;   ///< a bug
 int run_command(int argc, char** argv);
 int check_command(int argc, char** argv);
 int compare_command(int argc, char** argv);
+int study_command(int argc, char** argv);  ///< app/study.cpp
+
+/// Parses with CLI11; returns -1 when parsing succeeded, 0 after --help/--version
+/// (CLI11 printed them). A usage error throws UsageError.
+int parse_command_line(CLI::App& cli, int argc, char** argv);
 
 }  // namespace iga::app

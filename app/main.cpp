@@ -4,9 +4,10 @@
 // as "igacontact: error: ..." or, for a deck error, "file:line:col: error: ...";
 // with `--summary json` every outcome also prints one JSON line on stdout.
 //
-//   igacontact DECK [-o OUT.h5] [--set PATH=VALUE]... [-q|-v] [--summary json] [--threads N]
+//   igacontact DECK [-o OUT.h5] [--set PATH=VALUE]... [-q|-v] [--summary json] [--threads N] [--refine-levels K]
 //   igacontact check DECK [--set PATH=VALUE]...
 //   igacontact compare REF.h5 NEW.h5 [--rtol R] [--atol A] [--only PATH]... [--all] [-v]
+//   igacontact study DECK [--levels N] [--jobs J] [--set PATH=VALUE]... [-q]
 
 #include "commands.hpp"
 #include "summary_json.hpp"
@@ -22,7 +23,7 @@ int main(int argc, char** argv)
 {
     using namespace iga::app;
     const std::string first = argc > 1 ? argv[1] : "";
-    const bool json = first != "check" && first != "compare" && summary_json_requested(argc, argv);
+    const bool json = first != "check" && first != "compare" && first != "study" && summary_json_requested(argc, argv);
     auto fail = [&](const std::string& status, const std::string& message, int code) {
         if (json)
             std::cout << error_summary_json(status, message, code) << std::endl;
@@ -33,6 +34,8 @@ int main(int argc, char** argv)
             return check_command(argc - 1, argv + 1);
         if (first == "compare")
             return compare_command(argc - 1, argv + 1);
+        if (first == "study")
+            return study_command(argc - 1, argv + 1);
         return run_command(argc, argv);
     } catch (const UsageError& e) {
         std::cerr << "igacontact: error: " << e.what() << "\nRun 'igacontact --help' for usage.\n";

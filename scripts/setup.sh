@@ -7,7 +7,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libsuitesparse-dev libopenblas0-serial libyaml-cpp-dev libhdf5-dev hdf5-tools
-  libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libcli11-dev libfmt-dev libtinyxml2-dev libgtest-dev libgmock-dev libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib python3-yaml
 )
 

@@ -52,7 +52,7 @@ std::vector<std::pair<std::string, std::string>> side_meanings(const io::Body& b
     return nurbs::shape_side_names(std::string(io::deck_name(body.shape->type)), body.shape->extrude.has_value());
 }
 
-nurbs::Patch build_patch(const io::Body& body, int dimension)
+nurbs::Patch build_patch(const io::Body& body, int dimension, int halvings)
 {
     IGA_CHECK(!body.rigid, "build_patch called for the rigid body '" + body.name + "'");
     nurbs::Patch patch = body.nurbs ? raw_patch(*body.nurbs, dimension) : shape_patch(*body.shape);
@@ -67,7 +67,7 @@ nurbs::Patch build_patch(const io::Body& body, int dimension)
     for (std::size_t dir = 0; dir < refine.insert.size(); ++dir)
         if (!refine.insert[dir].empty())
             patch = nurbs::insert_knots(patch, static_cast<int>(dir), refine.insert[dir]);
-    return patch;
+    return halvings > 0 ? nurbs::halve_spans(patch, halvings) : patch;
 }
 
 }  // namespace iga::analysis

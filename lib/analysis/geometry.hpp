@@ -25,6 +25,8 @@ inline VecN to_vec(const std::vector<double>& v)
 std::vector<std::pair<std::string, std::string>> side_meanings(const io::Body& body);
 
 /// The refined patch of a deformable body. Precondition: !body.rigid.
-nurbs::Patch build_patch(const io::Body& body, int dimension);
+/// `halvings` > 0 then halves every knot span that many times (nurbs::halve_spans:
+/// the uniform h-refinement of `igacontact study`, RunOptions::refine_levels).
+nurbs::Patch build_patch(const io::Body& body, int dimension, int halvings = 0);
 
 }  // namespace iga::analysis

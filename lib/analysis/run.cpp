@@ -98,7 +98,7 @@ std::vector<io::BodyFields> stress_fields(const Scene& scene, const std::vector<
 RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& context)
 {
     ScopedTimer total(nullptr, "total");
-    Scene scene = build_scene(deck);
+    Scene scene = build_scene(deck, options.refine_levels);
     assembly::limit_library_threads();  // CHOLMOD's OpenMP loops inline: nothing spins
     SceneSystem system(scene, context, options.threads);
 

@@ -31,6 +31,10 @@ struct RunOptions {
     /// Threads of the element assembly: >= 1 exactly that many, 0 automatic
     /// (serial below a work threshold; assembly/threads.hpp).
     int threads = 0;
+    /// Uniform h-refinement on top of the deck's: every knot span of every patch is
+    /// halved this many times after the deck's own refinement (`--refine-levels`,
+    /// the levels of `igacontact study`). 0: the deck as written.
+    int refine_levels = 0;
 };
 
 struct RunOutcome {

@@ -71,7 +71,7 @@ std::vector<int> coupling_full_dofs(const PairModel& pair, const contact::Coupli
     return full;
 }
 
-Scene build_scene(const io::Deck& deck)
+Scene build_scene(const io::Deck& deck, int refine_levels)
 {
     check_size(deck);  // refuse an absurd model before allocating any of it
     Scene scene;
@@ -90,7 +90,7 @@ Scene build_scene(const io::Deck& deck)
         scene.body_of_deck.push_back(static_cast<int>(scene.bodies.size()));
         nurbs::Patch patch = [&] {
             try {
-                return build_patch(body, d);
+                return build_patch(body, d, refine_levels);
             } catch (const Error& e) {
                 throw DeckError(body_issue(deck, "bodies." + body.name, std::string("cannot build the patch: ") + e.what()));
             }

@@ -100,6 +100,8 @@ std::vector<int> coupling_full_dofs(const PairModel& pair, const contact::Coupli
 
 /// Builds the scene. Geometry problems (a refinement that cannot be applied, a
 /// non-positive Jacobian) are reported as DeckError naming the body.
-Scene build_scene(const io::Deck& deck);
+/// `refine_levels` > 0 halves every knot span of every body that many times after
+/// the deck's refinement (RunOptions::refine_levels).
+Scene build_scene(const io::Deck& deck, int refine_levels = 0);
 
 }  // namespace iga::analysis

@@ -150,35 +150,59 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
         return scene_.bodies[static_cast<std::size_t>(o.body)].element_dofs[static_cast<std::size_t>(o.element)];
     };
 
-    // Small kinematics: the element stiffness matrices are computed and assembled
-    // once (again, from the stored K_e, when a contact coupling extended the
-    // pattern); afterwards f_int = K_e u_e element by element.
-    if (small && element_stiffness_.empty()) {
-        element_stiffness_.resize(static_cast<std::size_t>(scene_.n_element_blocks));
+    // Small kinematics: the elastic stiffness is assembled once over ALL dofs
+    // (constrained rows give the reactions, constrained columns the prescribed
+    // displacements), so f_int = K0 u is one sparse product per evaluation. The
+    // element matrices are not kept: their assembled form streams a few times
+    // less memory than the element-by-element products (3D degree 2: 81^2 entries
+    // per span), and a pattern extended by a new contact coupling takes K0's free
+    // block from it.
+    if (small && !full_stiffness_) {
+        // A pattern over all dofs (none constrained) scatters the element matrices
+        // without triplets: 4 bytes of positions per entry, dropped afterwards.
+        const assembly::DofMap& map = *scene_.dofs;
+        std::vector<int> nodes_per_body;
+        for (int b = 0; b < map.n_bodies(); ++b)
+            nodes_per_body.push_back(map.n_nodes(b));
+        const assembly::DofMap unconstrained(d, nodes_per_body, {});
+        std::vector<std::vector<int>> blocks;
+        for (int block = 0; block < scene_.n_element_blocks; ++block)
+            blocks.push_back(dofs_of(block));
+        const assembly::SparsePattern full_pattern(unconstrained, std::move(blocks));
+        SparseMatrix K0 = full_pattern.make_matrix();
         for (int block = 0; block < scene_.n_element_blocks; ++block) {  // once per run: not worth threads
             const mechanics::ElementGeometry& geometry = element_of(block);
-            mechanics::ElementResponse response = mechanics::element_response(
-                geometry, body_of(block).material, scene_.kinematics, Matrix::Zero(geometry.n_local(), d));
-            element_stiffness_[static_cast<std::size_t>(block)] = std::move(response.K);
+            full_pattern.add(block,
+                             mechanics::element_response(geometry, body_of(block).material, scene_.kinematics,
+                                                         Matrix::Zero(geometry.n_local(), d))
+                                 .K,
+                             K0);
         }
+        full_stiffness_ = std::move(K0);
     }
-    if (small && (!small_stiffness_ || !pattern.matches(*small_stiffness_))) {
+    if (small && need_tangent && (!small_stiffness_ || !pattern.matches(*small_stiffness_))) {
+        const assembly::DofMap& map = *scene_.dofs;
+        std::vector<Triplet> entries;
+        entries.reserve(static_cast<std::size_t>(full_stiffness_->nonZeros()));
+        for (Index j = 0; j < full_stiffness_->outerSize(); ++j) {
+            const int fj = map.free_index(static_cast<int>(j));
+            if (fj < 0)
+                continue;
+            for (SparseMatrix::InnerIterator it(*full_stiffness_, j); it; ++it)
+                if (const int fi = map.free_index(static_cast<int>(it.row())); fi >= 0)
+                    entries.emplace_back(fi, fj, it.value());
+        }
+        SparseMatrix free_block(map.n_free(), map.n_free());
+        free_block.setFromTriplets(entries.begin(), entries.end());
         SparseMatrix K0 = pattern.make_matrix();
-        for (int block = 0; block < scene_.n_element_blocks; ++block)
-            pattern.add(block, element_stiffness_[static_cast<std::size_t>(block)], K0);
+        K0 = SparseMatrix(K0 + free_block);  // the pattern holds every element block: the union is the pattern
+        K0.makeCompressed();
+        IGA_CHECK(pattern.matches(K0), "SceneSystem: the elastic stiffness lies outside the sparsity pattern");
         small_stiffness_ = std::move(K0);
     }
 
     if (small) {
-        // Only K_e u_e per span: too little work to pay for threads (measured slower,
-        // and far slower on a loaded machine).
-        for (int block = 0; block < scene_.n_element_blocks; ++block) {
-            const std::vector<int>& dofs = dofs_of(block);
-            Vector u_e(static_cast<Index>(dofs.size()));
-            for (std::size_t k = 0; k < dofs.size(); ++k)
-                u_e(static_cast<Index>(k)) = u_full(dofs[k]);
-            element_force_[static_cast<std::size_t>(block)] = element_stiffness_[static_cast<std::size_t>(block)] * u_e;
-        }
+        r_full += *full_stiffness_ * u_full;
         if (need_tangent)
             K = *small_stiffness_;
     } else {
@@ -214,15 +238,14 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
             out.ok = false;
             out.message = failure;
         }
-    }
-
-    // Vectors are scattered serially: cheap, and constrained entries (reactions)
-    // may be shared between blocks of one color.
-    for (int block = 0; block < scene_.n_element_blocks; ++block) {
-        const std::vector<int>& dofs = dofs_of(block);
-        const Vector& f = element_force_[static_cast<std::size_t>(block)];
-        for (std::size_t k = 0; k < dofs.size(); ++k)
-            r_full(dofs[k]) += f(static_cast<Index>(k));
+        // Vectors are scattered serially: cheap, and constrained entries (reactions)
+        // may be shared between blocks of one color.
+        for (int block = 0; block < scene_.n_element_blocks; ++block) {
+            const std::vector<int>& dofs = dofs_of(block);
+            const Vector& f = element_force_[static_cast<std::size_t>(block)];
+            for (std::size_t k = 0; k < dofs.size(); ++k)
+                r_full(dofs[k]) += f(static_cast<Index>(k));
+        }
     }
 }
 

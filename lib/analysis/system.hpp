@@ -71,13 +71,13 @@ private:
     Scene& scene_;
     RunContext& context_;
     std::unique_ptr<assembly::ThreadTeam> team_;  // null: serial element loop
-    std::optional<SparseMatrix> small_stiffness_;  // small kinematics: elastic K, assembled once
+    std::optional<SparseMatrix> small_stiffness_;  // small kinematics: its free block in the pattern
     struct BlockOwner {
         int body;
         int element;
     };
     std::vector<BlockOwner> owner_;                // element block -> (body, element), blocks come first
-    std::vector<Matrix> element_stiffness_;        // small kinematics: K_e per element block
+    std::optional<SparseMatrix> full_stiffness_;   // small kinematics: elastic K over all (full) dofs
     std::vector<Vector> element_force_;            // per element block, reused storage
     int last_active_ = 0;
 };

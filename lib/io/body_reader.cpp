@@ -1,5 +1,7 @@
 #include "io/body_reader.hpp"
 
+#include "io/knot_checks.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -87,41 +89,13 @@ std::optional<Cursor> required(const Cursor& map, std::string_view key)
     return std::nullopt;
 }
 
-/// Checks an open knot vector of degree p; records the first problem at `c`.
+/// Checks an open knot vector of degree p (io/knot_checks.hpp); records its problems at `c`.
 bool check_knots(const Cursor& c, const std::vector<double>& u, int p)
 {
-    const std::size_t order = static_cast<std::size_t>(p) + 1;
-    for (std::size_t i = 1; i < u.size(); ++i)
-        if (u[i] < u[i - 1]) {
-            c.item(i).fail(fmt::format("knots must be non-decreasing (the knot before is {})", u[i - 1]));
-            return false;
-        }
-    if (u.size() < 2 * order) {
-        c.fail(fmt::format("too few knots for degree {}: an open knot vector has at least 2(p+1) = {}", p,
-                           2 * order));
-        return false;
-    }
-    const auto n = u.size();
-    const bool open = u[order - 1] == u.front() && u[n - order] == u.back() && u[order] > u.front() &&
-                      u[n - order - 1] < u.back();
-    if (!open) {
-        c.fail(fmt::format("not an open knot vector: the first and the last value must each appear exactly "
-                           "degree + 1 = {} times, with a parameter interval of positive length",
-                           order));
-        return false;
-    }
-    bool ok = true;
-    for (std::size_t i = order; i < n - order;) {
-        std::size_t j = i;
-        while (j < n - order && u[j] == u[i])
-            ++j;
-        if (j - i > order - 1) {
-            c.item(i).fail(fmt::format("interior knot {} appears {} times, more than the degree {}", u[i], j - i, p));
-            ok = false;
-        }
-        i = j;
-    }
-    return ok;
+    const auto problems = knot_vector_problems(u, p);
+    for (const KnotProblem& problem : problems)
+        (problem.knot ? c.item(*problem.knot) : c).fail(problem.reason);
+    return problems.empty();
 }
 
 std::optional<NurbsData> read_nurbs(const Cursor& c, int dim, std::optional<Parametrization>& param)

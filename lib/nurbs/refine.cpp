@@ -348,6 +348,21 @@ Patch refine_uniform(const Patch& patch, int dir, int n_spans)
     return insert_knots(patch, dir, values);
 }
 
+Patch halve_spans(const Patch& patch, int times)
+{
+    IGA_CHECK(times >= 0, "halve_spans: times must be >= 0");
+    Patch refined = patch;
+    for (int dir = 0; dir < refined.n_par(); ++dir)
+        for (int t = 0; t < times; ++t) {
+            const std::vector<double> breaks = refined.knots(dir).breakpoints();
+            std::vector<double> midpoints;
+            for (std::size_t k = 0; k + 1 < breaks.size(); ++k)
+                midpoints.push_back(0.5 * (breaks[k] + breaks[k + 1]));
+            refined = insert_knots(refined, dir, midpoints);
+        }
+    return refined;
+}
+
 std::vector<Eigen::MatrixXd> bezier_extraction(const KnotVector& knots)
 {
     // Borden, Scott, Evans, Hughes (2011), Algorithm 1, 0-based. C_e maps the

@@ -25,6 +25,14 @@ Patch elevate_degree(const Patch& patch, int dir, int times);
 /// that grid, more otherwise.
 Patch refine_uniform(const Patch& patch, int dir, int n_spans);
 
+/// Halves every knot span of positive length `times` times in every parametric
+/// direction (inserts each span's midpoint, then again): n_spans * 2^times spans
+/// per direction, continuity at the existing knots unchanged. This is the uniform
+/// h-refinement of `igacontact study` (--refine-levels), applied after the deck's
+/// own refinement; on a conforming multi-patch body it keeps the interfaces
+/// conforming (both sides of an interface get the same midpoints).
+Patch halve_spans(const Patch& patch, int times);
+
 /// Bezier extraction operators of a knot vector (Borden et al. 2011): one
 /// (p+1) x (p+1) matrix C_e per span with N^e(u) = C_e B(u~), B the Bernstein
 /// basis on the span mapped to [0, 1].

@@ -53,7 +53,11 @@ const char* kind_name(LinearSolver::Kind kind)
     return kind == LinearSolver::Kind::lu ? "lu" : "cholesky";
 }
 
-LinearSolver::LinearSolver(Kind kind) : kind_(kind), backend_(std::make_unique<Backend>()) {}
+// Cholesky is tried again after this many skipped factorizations at most (the
+// back-off doubles from 1 with each refusal in a row).
+constexpr int max_cholesky_backoff = 32;
+
+LinearSolver::LinearSolver(Kind kind) : kind_(kind), factorized_kind_(kind), backend_(std::make_unique<Backend>()) {}
 LinearSolver::~LinearSolver() = default;
 LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
 LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
@@ -61,7 +65,7 @@ LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
 void LinearSolver::set_condensed_dofs(std::vector<int> dofs)
 {
     condensation_ = dofs.empty() ? nullptr : std::make_unique<Condensation>(std::move(dofs));
-    analysed_ = false;  // the backend and the condensation keep separate analyses
+    analysed_ = analysed_lu_ = analysed_llt_ = false;  // the backends and the condensation keep separate analyses
     factorized_ = false;
 }
 
@@ -69,8 +73,9 @@ void LinearSolver::set_kind(Kind kind)
 {
     if (kind != kind_) {
         kind_ = kind;
-        analysed_ = false;
         factorized_ = false;
+        cholesky_skips_ = 0;
+        cholesky_backoff_ = 1;
     }
 }
 
@@ -99,7 +104,7 @@ LinearStatus LinearSolver::factorize(const SparseMatrix& K)
         SparseMatrix copy = K;
         copy.makeCompressed();
         if (!(analysed_ && same_pattern(copy)))
-            analysed_ = false;
+            analysed_ = analysed_lu_ = analysed_llt_ = false;
         K_ = std::move(copy);
     }
     if (!all_finite(K_))
@@ -109,7 +114,7 @@ LinearStatus LinearSolver::factorize(const SparseMatrix& K)
         return LinearStatus::ok;
     }
     if (K_.nonZeros() == 0)  // the backends reject an empty pattern (CHOLMOD would crash)
-        return kind_ == Kind::lu ? LinearStatus::singular : LinearStatus::failed;
+        return LinearStatus::singular;
 
     if (condensation_) {
         if (!analysed_) {  // a new pattern (e.g. a contact coupling extended it): new block maps
@@ -122,10 +127,31 @@ LinearStatus LinearSolver::factorize(const SparseMatrix& K)
         return status;
     }
 
+    analysed_ = true;  // the backends' analyses below are made for K_'s pattern
+    if (kind_ == Kind::lu)
+        return factorize_with(Kind::lu);
+    if (cholesky_skips_ > 0) {
+        --cholesky_skips_;
+        return factorize_with(Kind::lu);
+    }
+    const LinearStatus status = factorize_with(Kind::cholesky);
+    if (status != LinearStatus::failed) {
+        cholesky_backoff_ = 1;
+        return status;
+    }
+    ++n_fallbacks_;
+    cholesky_skips_ = cholesky_backoff_;
+    cholesky_backoff_ = std::min(2 * cholesky_backoff_, max_cholesky_backoff);
+    return factorize_with(Kind::lu);
+}
+
+LinearStatus LinearSolver::factorize_with(Kind kind)
+{
     Backend& b = *backend_;
-    if (!analysed_) {
+    bool& analysed = kind == Kind::lu ? analysed_lu_ : analysed_llt_;
+    if (!analysed) {
         ++n_symbolic_;
-        if (kind_ == Kind::lu) {
+        if (kind == Kind::lu) {
             b.lu.analyzePattern(K_);
             if (b.lu.info() != Eigen::Success)
                 return LinearStatus::failed;
@@ -136,11 +162,11 @@ LinearStatus LinearSolver::factorize(const SparseMatrix& K)
             if (b.llt.info() != Eigen::Success || b.llt.cholmod().status < 0)
                 return LinearStatus::failed;
         }
-        analysed_ = true;
+        analysed = true;
     }
 
     ++n_numeric_;
-    if (kind_ == Kind::lu) {
+    if (kind == Kind::lu) {
         b.lu.factorize(K_);
         if (b.lu.info() != Eigen::Success)
             return LinearStatus::singular;
@@ -150,6 +176,7 @@ LinearStatus LinearSolver::factorize(const SparseMatrix& K)
             return LinearStatus::failed;
     }
     factorized_ = true;
+    factorized_kind_ = kind;
     return LinearStatus::ok;
 }
 
@@ -165,7 +192,7 @@ LinearStatus LinearSolver::solve(const Vector& b, Vector& x) const
     if (condensation_) {
         if (condensation_->solve(b, x) != LinearStatus::ok)
             return LinearStatus::singular;
-    } else if (kind_ == Kind::lu) {
+    } else if (factorized_kind_ == Kind::lu) {
         x = backend_->lu.solve(b);
     } else {
         x = backend_->llt.solve(b);

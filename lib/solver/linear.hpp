@@ -4,9 +4,16 @@
 // two-half-pass contact, physics.md §7.10) and CHOLMOD (supernodal LL^T, for a
 // tangent known to be symmetric positive definite).
 //
-// Invariants: the symbolic analysis (fill-reducing ordering, elimination tree) is
-// done again only when the sparsity pattern (the outer and inner index arrays of
-// the compressed matrix) or the kind changes; each factorize() does a numeric
+// Kind::cholesky means "expected symmetric positive definite": a matrix CHOLMOD
+// refuses (a rigid-body mode before first touch, an indefinite finite-strain
+// tangent) is factorized by UMFPACK instead, and Cholesky is tried again only after
+// 1, 2, 4, ... (at most 32) further factorizations, so a run whose tangent becomes
+// definite (contact closes) returns to the factorization that costs a fraction of
+// an LU, while a tangent that stays indefinite wastes few Cholesky attempts.
+//
+// Invariants: the symbolic analysis (fill-reducing ordering, elimination tree) of
+// each backend is done again only when the sparsity pattern (the outer and inner
+// index arrays of the compressed matrix) changes; each factorize() does a numeric
 // factorization. Numerical failures are statuses, never exceptions, and a status
 // `ok` never comes with a non-finite x. Shapes: K is n x n (column-major, int
 // indices, see core/types.hpp), b and x have n entries.
@@ -45,9 +52,9 @@ public:
     LinearSolver& operator=(const LinearSolver&) = delete;
 
     /// Numeric factorization of K (square), after a symbolic analysis if the
-    /// pattern or the kind changed since the last call. K need not be compressed.
-    /// Returns `failed` for Cholesky of a matrix that is not positive definite
-    /// (the caller may switch to lu), `singular` for an exactly singular LU.
+    /// pattern changed since the backend's last one. K need not be compressed.
+    /// Returns `singular` for an exactly singular LU (also the fallback LU of
+    /// Kind::cholesky), `failed` for a non-finite K or an input the backend rejects.
     LinearStatus factorize(const SparseMatrix& K);
 
     /// Solves K x = b with the last successful factorization. Returns `singular`
@@ -62,10 +69,13 @@ public:
     void set_condensed_dofs(std::vector<int> dofs);
     bool condensed() const { return condensation_ != nullptr; }
 
-    /// Switches the backend; the next factorize() does a new symbolic analysis.
+    /// Switches the backend (each keeps its own symbolic analysis).
     void set_kind(Kind kind);
 
     Kind kind() const { return kind_; }
+    /// The backend of the last successful factorization (lu after a Cholesky fallback).
+    Kind factorized_kind() const { return factorized_kind_; }
+    int n_cholesky_fallbacks() const { return n_fallbacks_; }  ///< matrices Cholesky refused so far
     int n_symbolic() const { return n_symbolic_; }  ///< symbolic analyses done so far
     int n_numeric() const { return n_numeric_; }    ///< numeric factorizations done so far
     Index size() const { return K_.rows(); }
@@ -75,12 +85,19 @@ private:
     std::unique_ptr<Condensation> condensation_;
 
     bool same_pattern(const SparseMatrix& K) const;
+    LinearStatus factorize_with(Kind kind);  // K_ by one backend, after its analysis if needed
 
     Kind kind_;
+    Kind factorized_kind_;
     std::unique_ptr<Backend> backend_;
     SparseMatrix K_;              // the factorized matrix (compressed), read by solve()
-    bool analysed_ = false;       // a symbolic analysis matches K_'s pattern and kind_
+    bool analysed_ = false;       // K_'s pattern is the one the analyses below were made for
+    bool analysed_lu_ = false;    // UMFPACK's symbolic analysis matches K_'s pattern
+    bool analysed_llt_ = false;   // CHOLMOD's symbolic analysis matches K_'s pattern
     bool factorized_ = false;     // the last numeric factorization succeeded
+    int cholesky_skips_ = 0;      // factorizations left before Cholesky is tried again
+    int cholesky_backoff_ = 1;    // skips after the next refusal (doubles, at most 32)
+    int n_fallbacks_ = 0;
     int n_symbolic_ = 0;
     int n_numeric_ = 0;
 };

@@ -125,15 +125,10 @@ StepResult newton_step(const SparseMatrix& K, const Vector& r, LinearSolver& sol
     ScopedTimer timer(context, "linear_solve");
     const Vector rhs = -r;
     StepResult result;
+    const int refusals = solver.n_cholesky_fallbacks();
     result.status = solver.factorize(K);
-    if (result.status == LinearStatus::failed && solver.kind() == LinearSolver::Kind::cholesky) {
-        // Not positive definite (e.g. an indefinite finite-strain or contact
-        // tangent, or a singular one): LU handles every case Cholesky refuses.
-        solver.set_kind(LinearSolver::Kind::lu);
-        if (context)
-            context->log(Verbosity::verbose, "  tangent not positive definite: switching to LU");
-        result.status = solver.factorize(K);
-    }
+    if (context && solver.n_cholesky_fallbacks() > refusals)
+        context->log(Verbosity::verbose, "  tangent not positive definite: factorized by LU");
     if (result.status == LinearStatus::ok)
         result.status = solver.solve(rhs, du);
     if (result.status != LinearStatus::singular)
@@ -221,7 +216,7 @@ static bool directional_search(const NonlinearSystem& system, const Vector& u, c
         alpha = 1.0;  // still downhill at the full step: take it
         return true;
     }
-    constexpr double slope_reduction = 0.5;  // Crisfield's acceptance |s| <= 0.5 |s0|
+    constexpr double slope_reduction = 0.1;  // Crisfield's acceptance |s| <= 0.5 |s0|
     double a = 0.0, sa = s0, b = 1.0, sb = s1;
     int retained = 0;  // which end was kept last: -1 left, +1 right
     for (int k = 0; k < settings.max_backtracks; ++k) {

@@ -121,9 +121,9 @@ struct NewtonReport {
 
 /// Solves r(u; load_factor) = 0 starting from u. On success u holds the solution;
 /// on failure u is restored to its input value. If the system is not symmetric
-/// and the solver's kind is cholesky, the solver is switched to lu; a Cholesky
-/// factorization that fails (tangent not positive definite) also switches it to
-/// lu, for this and later calls. context may be null; when given, the time in
+/// and the solver's kind is cholesky, the solver is switched to lu (a tangent
+/// that Cholesky refuses is factorized by LU inside LinearSolver, which tries
+/// Cholesky again later). context may be null; when given, the time in
 /// evaluate() is added to "assembly", factorize + solve to "linear_solve", and the
 /// steps to the counter "newton_iterations".
 NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vector& u,

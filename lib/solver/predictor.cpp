@@ -37,11 +37,7 @@ bool linearized_step(const NonlinearSystem& system, const Vector& u_n, double la
     ScopedTimer timer(context, "linear_solve");
     if (!system.symmetric && solver.kind() == LinearSolver::Kind::cholesky)
         solver.set_kind(LinearSolver::Kind::lu);
-    LinearStatus status = solver.factorize(at_n.tangent);
-    if (status == LinearStatus::failed && solver.kind() == LinearSolver::Kind::cholesky) {
-        solver.set_kind(LinearSolver::Kind::lu);  // not positive definite: as solve_newton does
-        status = solver.factorize(at_n.tangent);
-    }
+    LinearStatus status = solver.factorize(at_n.tangent);  // Cholesky falls back to LU itself
     if (status == LinearStatus::ok)
         status = solver.solve(rhs, du);
     if (status != LinearStatus::ok || !du.allFinite()) {

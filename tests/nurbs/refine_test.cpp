@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 namespace iga::nurbs {
@@ -150,6 +151,38 @@ TEST(Refine, UniformRefinementSpanCounts)
     const Patch shifted({KnotVector(1, {2, 2, 5, 5}), kv}, RowMatrix::Random(4, 2), Vector::Ones(4));
     const Patch shifted_fine = refine_uniform(shifted, 0, 3);
     EXPECT_EQ(shifted_fine.knots(0).breakpoints(), (std::vector<double>{2, 3, 4, 5}));
+}
+
+TEST(Refine, HalvingSpansDoublesEverySpanAndKeepsTheGeometry)
+{
+    std::mt19937 rng(43);
+    SCOPED_TRACE("seed 43");
+    for (const auto& degrees : std::vector<std::vector<int>>{{2, 1}, {3, 2}, {2, 1, 3}}) {
+        // Random rational patch with 3 spans per direction (non-uniform interior knots).
+        const Patch patch = test::random_patch(rng, degrees, 3, 3);
+        for (int times : {0, 1, 2}) {
+            const Patch refined = halve_spans(patch, times);
+            for (int dir = 0; dir < patch.n_par(); ++dir) {
+                const KnotVector& k = patch.knots(dir);
+                EXPECT_EQ(refined.knots(dir).n_spans(), k.n_spans() << times);
+                // Each old interior breakpoint keeps its multiplicity (continuity unchanged).
+                for (double b : k.breakpoints())
+                    EXPECT_EQ(refined.knots(dir).multiplicity(b), k.multiplicity(b)) << b;
+                // Spans are halved, not merely counted: each new span is 2^-times of an old one.
+                const std::vector<double> old_b = k.breakpoints(), new_b = refined.knots(dir).breakpoints();
+                for (std::size_t s = 0; s + 1 < new_b.size(); ++s) {
+                    const std::size_t parent = s >> times;
+                    // Each midpoint is rounded once per halving, on a domain of length 1:
+                    // the scaled lengths agree to a few ulp of 1 (times <= 2 here).
+                    constexpr double span_length_tolerance = 16 * std::numeric_limits<double>::epsilon();
+                    EXPECT_TRUE(test::at_most(std::abs((new_b[s + 1] - new_b[s]) * (1 << times) -
+                                                       (old_b[parent + 1] - old_b[parent])),
+                                              span_length_tolerance));
+                }
+            }
+            expect_same_geometry(refined, patch, rng, "halve " + std::to_string(times));
+        }
+    }
 }
 
 /// Bernstein polynomials of degree p at t in [0, 1].

@@ -102,8 +102,10 @@ TEST(LinearSolver, SingularMatrixIsReportedNotSolved)
     LinearSolver lu(LinearSolver::Kind::lu);
     EXPECT_EQ(lu.factorize(K), LinearStatus::singular);
 
+    // Cholesky refuses it and falls back to LU, which finds it singular.
     LinearSolver cholesky(LinearSolver::Kind::cholesky);
-    EXPECT_EQ(cholesky.factorize(K), LinearStatus::failed);
+    EXPECT_EQ(cholesky.factorize(K), LinearStatus::singular);
+    EXPECT_EQ(cholesky.n_cholesky_fallbacks(), 1);
 
     // A structurally zero column.
     Matrix zero_column = Matrix::Identity(3, 3);
@@ -119,7 +121,7 @@ TEST(LinearSolver, EmptyPatternIsSingularNotACrash)
     LinearSolver lu(LinearSolver::Kind::lu);
     EXPECT_EQ(lu.factorize(K), LinearStatus::singular);
     LinearSolver cholesky(LinearSolver::Kind::cholesky);
-    EXPECT_EQ(cholesky.factorize(K), LinearStatus::failed);
+    EXPECT_EQ(cholesky.factorize(K), LinearStatus::singular);
 }
 
 TEST(LinearSolver, NoUnknownsIsATrivialSolve)
@@ -133,19 +135,44 @@ TEST(LinearSolver, NoUnknownsIsATrivialSolve)
     }
 }
 
-TEST(LinearSolver, CholeskyRefusesIndefiniteMatrix)
+TEST(LinearSolver, IndefiniteMatrixIsFactorizedByLuAndCholeskyIsTriedAgainLater)
 {
-    Matrix dense(2, 2);
-    dense << 1, 2, 2, 1;  // eigenvalues 3 and -1
-    LinearSolver solver(LinearSolver::Kind::cholesky);
-    EXPECT_EQ(solver.factorize(dense.sparseView()), LinearStatus::failed);
+    Matrix indefinite(2, 2);
+    indefinite << 1, 2, 2, 1;  // eigenvalues 3 and -1
+    Matrix definite(2, 2);
+    definite << 3, 1, 1, 3;    // eigenvalues 4 and 2 (same pattern)
+    const SparseMatrix K_indefinite = indefinite.sparseView();
+    const SparseMatrix K_definite = definite.sparseView();
 
-    // The same matrix is fine for LU, and the solve is correct.
-    LinearSolver lu(LinearSolver::Kind::lu);
-    ASSERT_EQ(lu.factorize(dense.sparseView()), LinearStatus::ok);
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    ASSERT_EQ(solver.factorize(K_indefinite), LinearStatus::ok) << "LU takes what Cholesky refuses";
+    EXPECT_EQ(solver.factorized_kind(), LinearSolver::Kind::lu);
+    EXPECT_EQ(solver.n_cholesky_fallbacks(), 1);
     Vector x;
-    ASSERT_EQ(lu.solve(Vector::Ones(2), x), LinearStatus::ok);
+    ASSERT_EQ(solver.solve(Vector::Ones(2), x), LinearStatus::ok);
     EXPECT_TRUE(test::at_most((x - Vector::Constant(2, 1.0 / 3.0)).norm(), solve_tolerance));
+
+    // The back-off: the next factorization is LU without trying Cholesky, the one after is Cholesky again.
+    ASSERT_EQ(solver.factorize(K_definite), LinearStatus::ok);
+    EXPECT_EQ(solver.factorized_kind(), LinearSolver::Kind::lu);
+    ASSERT_EQ(solver.factorize(2.0 * K_definite), LinearStatus::ok);
+    EXPECT_EQ(solver.factorized_kind(), LinearSolver::Kind::cholesky);
+    ASSERT_EQ(solver.solve(Vector::Ones(2), x), LinearStatus::ok);
+    EXPECT_TRUE(test::at_most((x - Vector::Constant(2, 1.0 / 8.0)).norm(), solve_tolerance));
+    EXPECT_EQ(solver.n_cholesky_fallbacks(), 1);
+    EXPECT_EQ(solver.kind(), LinearSolver::Kind::cholesky);
+    EXPECT_EQ(solver.n_symbolic(), 2) << "one analysis per backend for the one pattern";
+
+    // Refusals in a row double the back-off: 1, then 2 LU-only factorizations.
+    ASSERT_EQ(solver.factorize(K_indefinite), LinearStatus::ok);   // refused (back-off 1)
+    ASSERT_EQ(solver.factorize(-K_indefinite), LinearStatus::ok);  // skipped
+    ASSERT_EQ(solver.factorize(K_indefinite), LinearStatus::ok);   // refused again (back-off 2)
+    EXPECT_EQ(solver.n_cholesky_fallbacks(), 3);
+    ASSERT_EQ(solver.factorize(K_definite), LinearStatus::ok);
+    ASSERT_EQ(solver.factorize(2.0 * K_definite), LinearStatus::ok);
+    EXPECT_EQ(solver.factorized_kind(), LinearSolver::Kind::lu) << "still inside the back-off of 2";
+    ASSERT_EQ(solver.factorize(3.0 * K_definite), LinearStatus::ok);
+    EXPECT_EQ(solver.factorized_kind(), LinearSolver::Kind::cholesky);
 }
 
 TEST(LinearSolver, NonFiniteInputIsNeverOk)
@@ -219,7 +246,7 @@ TEST(LinearSolver, SymbolicAnalysisIsReusedWhileThePatternIsUnchanged)
         EXPECT_EQ(solver.n_symbolic(), 2);
         EXPECT_EQ(solver.n_numeric(), 4);
 
-        // Switching the kind also needs a new analysis.
+        // Switching the kind needs the other backend's analysis.
         solver.set_kind(kind == LinearSolver::Kind::lu ? LinearSolver::Kind::cholesky : LinearSolver::Kind::lu);
         ASSERT_EQ(solver.factorize(grown), LinearStatus::ok);
         EXPECT_EQ(solver.n_symbolic(), 3);

@@ -1,0 +1,215 @@
+// `igacontact study` on the built executable: a tiny Hertz deck in three levels
+// writes <deck>_study.csv with the documented columns and sane values; a bad
+// deck is exit 2 with nothing written; Ctrl-C (SIGINT) stops the running level
+// and still writes the table of the levels that finished.
+
+#include "cli_support.hpp"
+#include "support/tolerance.hpp"
+
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace iga::test {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+
+fs::path scratch_dir(const std::string& name)
+{
+    const fs::path dir = fs::path(IGA_BINARY_DIR) / "test_scratch" / "app" / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+// A quarter cylinder (R = 1) on a rigid floor, degree 2, 16 x 4 spans at level 0:
+// three levels run in about a second.
+const std::string tiny_hertz = R"(format: 1
+analysis: {dimension: 2, plane: strain, kinematics: small}
+materials:
+  - {name: rubber, model: linear_elastic, E: 1000.0, nu: 0.3}
+bodies:
+  - name: cylinder
+    material: rubber
+    shape: {type: quarter_disc, center: [0.0, 1.0], radius: 1.0}
+    refine: {elevate: [0, 1], spans: [16, 4]}
+  - name: floor
+    rigid: {plane: {point: [0.0, 0.0], normal: [0.0, 1.0]}}
+constraints:
+  - {body: cylinder, side: u0, fix: [x]}
+loads:
+  - {body: cylinder, side: v1, force: [0.0, -5.0]}
+contact:
+  - {name: cyl_floor, between: [cylinder.v0, floor], penalty: 1.0e5}
+output:
+  reference: {pair: cyl_floor, type: hertz_cylinder_plane, radius: 1.0, force: 10.0}
+)";
+
+std::vector<std::vector<std::string>> read_csv(const fs::path& path)
+{
+    std::vector<std::vector<std::string>> rows;
+    std::istringstream in(read_text(path));
+    for (std::string line; std::getline(in, line);) {
+        std::vector<std::string> fields;
+        std::string field;
+        std::istringstream fs(line);
+        while (std::getline(fs, field, ','))
+            fields.push_back(field);
+        if (!line.empty() && line.back() == ',')
+            fields.emplace_back();
+        rows.push_back(fields);
+    }
+    return rows;
+}
+
+double number(const std::string& s)
+{
+    try {
+        return std::stod(s);
+    } catch (...) {
+        return std::nan("");
+    }
+}
+
+TEST(Study, TinyHertzWritesTheDocumentedCsv)
+{
+    const fs::path dir = scratch_dir("study_tiny");
+    const fs::path deck = dir / "tiny.yaml";
+    std::ofstream(deck) << tiny_hertz;
+    const CliResult r = run_cli("study " + shell_quote(deck.string()) + " --levels 3 -q", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto rows = read_csv(dir / "tiny_study.csv");
+    ASSERT_FALSE(rows.empty());
+    // The spec's columns, then the true-error columns (the deck has a reference).
+    EXPECT_EQ(rows[0], (std::vector<std::string>{"level", "dofs", "wall_s", "quantity", "value", "extrapolated",
+                                                 "observed_order", "estimated_rel_error", "reference_value",
+                                                 "true_rel_error"}));
+    std::map<std::string, std::vector<std::vector<std::string>>> by_quantity;
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+        ASSERT_EQ(rows[i].size(), 10u) << "row " << i;
+        by_quantity[rows[i][3]].push_back(rows[i]);
+    }
+    for (const char* q : {"normal_force:cyl_floor:cylinder.v0", "peak_pressure:cyl_floor:cylinder.v0",
+                          "max_penetration:cyl_floor"}) {
+        SCOPED_TRACE(q);
+        const auto& levels = by_quantity[q];
+        ASSERT_EQ(levels.size(), 3u);
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_EQ(levels[static_cast<std::size_t>(k)][0], std::to_string(k));
+            EXPECT_GT(number(levels[static_cast<std::size_t>(k)][2]), 0.0);  // wall_s
+            EXPECT_TRUE(std::isfinite(number(levels[static_cast<std::size_t>(k)][4])));
+            EXPECT_TRUE(std::isfinite(number(levels[static_cast<std::size_t>(k)][7])));  // estimated error
+        }
+        // Every level halves every span: about 2^2 times the dofs of the one before.
+        for (int k = 1; k < 3; ++k)
+            EXPECT_GT(number(levels[static_cast<std::size_t>(k)][1]), 2.5 * number(levels[static_cast<std::size_t>(k) - 1][1]));
+    }
+    // The contact force balances the applied load (force control) at every level.
+    constexpr double equilibrium = 1e-8;  // Newton tolerance 1e-10 on a residual of order 5
+    for (const auto& row : by_quantity["normal_force:cyl_floor:cylinder.v0"])
+        EXPECT_TRUE(near(number(row[4]), 5.0, equilibrium));
+    // The peak pressure converges: the estimated error shrinks level by level, the
+    // observed order lies between 0.5 and 3 (contact limits it below the degree's),
+    // and the true error against Hertz is filled in (p0 = 59.143).
+    const auto& peak = by_quantity["peak_pressure:cyl_floor:cylinder.v0"];
+    EXPECT_GT(number(peak[0][7]), number(peak[1][7]));
+    EXPECT_GT(number(peak[1][7]), number(peak[2][7]));
+    const double order = number(peak[0][6]);
+    EXPECT_TRUE(std::isfinite(order) && order > 0.5 && order < 3.0) << order;
+    constexpr double hertz_p0_digits = 1e-4;  // p0 = 59.1431... printed with 10 digits
+    EXPECT_TRUE(near_rel(number(peak[0][8]), 59.1431, hertz_p0_digits));
+    EXPECT_TRUE(std::isfinite(number(peak[0][9])));
+    // The symmetry side's reaction is round-off: left out. The levels' files are in <deck>_study/.
+    EXPECT_EQ(by_quantity.count("reaction:cylinder.u0:x"), 0u);
+    for (int k = 0; k < 3; ++k)
+        EXPECT_TRUE(fs::exists(dir / "tiny_study" / ("level" + std::to_string(k) + ".h5")));
+    EXPECT_FALSE(fs::exists(dir / "tiny.h5")) << "the deck's own results file is never written";
+}
+
+TEST(Study, BadDeckIsExit2AndWritesNothing)
+{
+    const fs::path dir = scratch_dir("study_bad");
+    const fs::path deck = dir / "bad.yaml";
+    std::ofstream(deck) << tiny_hertz;
+    const CliResult r =
+        run_cli("study " + shell_quote(deck.string()) + " --set contact.cyl_floor.penalti=1 --levels 2", dir);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("did you mean 'penalty'"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "bad_study"));
+    EXPECT_FALSE(fs::exists(dir / "bad_study.csv"));
+}
+
+TEST(Study, SigintKeepsTheFinishedLevels)
+{
+    // The block stretch with 400 increments: levels 0..2 take about 0.4, 0.9 and
+    // 2.5 s, level 3 about four times level 2: the signal arrives while level 3 runs.
+    const fs::path dir = scratch_dir("study_sigint");
+    const fs::path deck = dir / "stretch.yaml";
+    fs::copy_file(std::string(IGA_SOURCE_DIR) + "/inputs/block_stretch_finite_2d.yaml", deck);
+    const fs::path err = dir / "stderr.txt";
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        std::freopen(err.c_str(), "w", stderr);
+        std::freopen((dir / "stdout.txt").c_str(), "w", stdout);
+        const std::string exe = cli_path(), deck_arg = deck.string();
+        ::execl(exe.c_str(), exe.c_str(), "study", deck_arg.c_str(), "--levels", "4", "--set", "steps.count=400",
+                "--set", "steps.adaptive=false", static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    ASSERT_GT(pid, 0);
+    // Wait until levels 0..2 have finished (the log says so) and level 3 has started.
+    const auto deadline = std::chrono::steady_clock::now() + 120s;
+    bool last_level_running = false;
+    while (std::chrono::steady_clock::now() < deadline && !last_level_running) {
+        last_level_running = read_text(err).find("level 3 started") != std::string::npos;
+        std::this_thread::sleep_for(20ms);
+    }
+    ASSERT_TRUE(last_level_running) << read_text(err);
+    std::this_thread::sleep_for(200ms);
+    ::kill(pid, SIGINT);
+    int status = 0;
+    bool ended = false;
+    const auto stop_deadline = std::chrono::steady_clock::now() + 60s;
+    while (std::chrono::steady_clock::now() < stop_deadline) {
+        if (::waitpid(pid, &status, WNOHANG) == pid) {
+            ended = true;
+            break;
+        }
+        std::this_thread::sleep_for(20ms);
+    }
+    if (!ended) {
+        ::kill(pid, SIGKILL);
+        ::waitpid(pid, nullptr, 0);
+    }
+    ASSERT_TRUE(ended) << "the study did not stop after SIGINT:\n" << read_text(err);
+    ASSERT_TRUE(WIFEXITED(status));
+    const std::string log = read_text(err);
+    if (log.find("level 3 completed") != std::string::npos)
+        GTEST_SKIP() << "level 3 finished before the signal arrived (a very fast machine)";
+    EXPECT_EQ(WEXITSTATUS(status), 1) << log;
+    EXPECT_NE(log.find("level 3 interrupted"), std::string::npos) << log;
+    // The table holds the finished levels 0..2 only; the interrupted level left a
+    // readable results file of its own (as any interrupted run does).
+    const auto rows = read_csv(dir / "stretch_study.csv");
+    ASSERT_GE(rows.size(), 4u) << log;
+    for (std::size_t i = 1; i < rows.size(); ++i)
+        EXPECT_TRUE(rows[i][0] == "0" || rows[i][0] == "1" || rows[i][0] == "2") << rows[i][0];
+    EXPECT_TRUE(fs::exists(dir / "stretch_study" / "level3.h5"));
+}
+
+}  // namespace
+}  // namespace iga::test
