@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <map>
 
 namespace iga::analysis {
@@ -23,7 +24,7 @@ std::string point_text(const RowMatrix& points, int row)
 
 std::string item_label(const io::Constraint& c, std::size_t index)
 {
-    return fmt::format("constraints.{} ({}.{})", index, c.body, side_name(c.side));
+    return fmt::format("constraints.{} ({}.{})", index, c.body, io::side_text(c.patch, c.side, c.surface));
 }
 
 }  // namespace
@@ -48,15 +49,32 @@ DirichletData dirichlet_data(const io::Deck& deck, const std::vector<BodyModel>&
                 b = body_of_deck[i];
         IGA_CHECK(b >= 0, "the deck reader let a constraint on a rigid or unknown body through");
         const BodyModel& body = bodies[static_cast<std::size_t>(b)];
-        const nurbs::SidePatch side = nurbs::extract_side(body.patch, c.side);
+        const io::Body* deck_body = deck.find_body(c.body);
+        const std::vector<BodySide> sides = resolve_sides(*deck_body, body.patch_names(), c.patch, c.side, c.surface);
+        std::vector<int> side_nodes;  // each once, in side order
+        for (const BodySide& s : sides) {
+            for (const nurbs::Interface& i : body.interfaces)
+                if ((i.patch_a == s.patch && i.side_a == s.side) || (i.patch_b == s.patch && i.side_b == s.side))
+                    throw DeckError(io::located_issue(
+                        deck.source_file, fmt::format("constraints.{}.side", k), "",
+                        fmt::format("the side {} of body '{}' is an interface between two patches (inside the "
+                                    "body), not a boundary side",
+                                    body_side_text(body.patch_names(), s), c.body)));
+            const PatchModel& patch = body.patches[static_cast<std::size_t>(s.patch)];
+            for (const int a : nurbs::extract_side(patch.patch, s.side).parent_index) {
+                const int node = patch.node[static_cast<std::size_t>(a)];
+                if (std::find(side_nodes.begin(), side_nodes.end(), node) == side_nodes.end())
+                    side_nodes.push_back(node);
+            }
+        }
 
-        const std::string name = c.body + "." + std::string(side_name(c.side));
+        const std::string name = c.body + "." + io::side_text(c.patch, c.side, c.surface);
         auto [group, added] = group_of.try_emplace(name, out.reactions.size());
         if (added)
             out.reactions.push_back({name, {}});
         std::vector<int>& group_dofs = out.reactions[group->second].dofs;
 
-        for (int p : side.parent_index)
+        for (int p : side_nodes)
             for (int i = 0; i < d; ++i) {
                 if (!c.fixed[static_cast<std::size_t>(i)])
                     continue;
@@ -79,8 +97,9 @@ DirichletData dirichlet_data(const io::Deck& deck, const std::vector<BodyModel>&
                                 "there. Leave that component free in one of them (~ in 'displacement', or drop "
                                 "it from 'fix')",
                                 item_label(first, it->second.item), component_names[i],
-                                point_text(body.patch.control_points(), p), c.body, component_names[i], value,
-                                it->second.value, first.body, side_name(first.side), c.body, side_name(c.side))));
+                                point_text(body.node_points, p), c.body, component_names[i], value,
+                                it->second.value, first.body, io::side_text(first.patch, first.side, first.surface),
+                                c.body, io::side_text(c.patch, c.side, c.surface))));
             }
     }
     return out;

@@ -51,7 +51,8 @@ AutoPenalty auto_penalty(const std::vector<const contact::DeformableSide*>& side
     out.element_size = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < sides.size(); ++k) {
         out.modulus = std::min(out.modulus, contact_modulus(*materials[k]));
-        out.element_size = std::min(out.element_size, smallest_element_size(sides[k]->side.patch));
+        for (const contact::SidePiece& piece : sides[k]->pieces)  // every patch side of a named surface
+            out.element_size = std::min(out.element_size, smallest_element_size(piece.side.patch));
     }
     IGA_CHECK(std::isfinite(out.element_size) && out.element_size > 0.0,
               "auto penalty: the contact sides have no element of positive size");

@@ -49,11 +49,12 @@ bool regular_point(const nurbs::Patch& patch, const VecN& xi)
 }
 
 /// The stress at a regular point, or nothing (det F <= 0, a failed material evaluation).
-std::optional<mechanics::PointStress> direct_stress(const BodyModel& body, mechanics::Kinematics kinematics,
-                                                    const RowMatrix& u, const VecN& xi)
+std::optional<mechanics::PointStress> direct_stress(const nurbs::Patch& patch, const mechanics::Material& material,
+                                                    mechanics::Kinematics kinematics, const RowMatrix& u,
+                                                    const VecN& xi)
 {
     try {
-        mechanics::PointStress s = mechanics::cauchy_stress(body.patch, body.material, kinematics, u, xi);
+        mechanics::PointStress s = mechanics::cauchy_stress(patch, material, kinematics, u, xi);
         if (s.status != mechanics::ResponseStatus::ok || !s.cauchy.allFinite() || !std::isfinite(s.cauchy33))
             return std::nullopt;
         return s;
@@ -62,14 +63,15 @@ std::optional<mechanics::PointStress> direct_stress(const BodyModel& body, mecha
     }
 }
 
-std::optional<mechanics::PointStress> stress_at(const BodyModel& body, mechanics::Kinematics kinematics,
-                                                const RowMatrix& u, const VecN& xi)
+/// u: the patch's control-point displacements.
+std::optional<mechanics::PointStress> stress_at(const nurbs::Patch& patch, const mechanics::Material& material,
+                                                mechanics::Kinematics kinematics, const RowMatrix& u, const VecN& xi)
 {
-    if (regular_point(body.patch, xi))
-        return direct_stress(body, kinematics, u, xi);
+    if (regular_point(patch, xi))
+        return direct_stress(patch, material, kinematics, u, xi);
     // Singular point: linear extrapolation from two points inside, 2 s(h) - s(2h).
-    const auto s1 = direct_stress(body, kinematics, u, moved_inside(body.patch, xi, inner_fraction_1));
-    const auto s2 = direct_stress(body, kinematics, u, moved_inside(body.patch, xi, inner_fraction_2));
+    const auto s1 = direct_stress(patch, material, kinematics, u, moved_inside(patch, xi, inner_fraction_1));
+    const auto s2 = direct_stress(patch, material, kinematics, u, moved_inside(patch, xi, inner_fraction_2));
     if (!s1 || !s2)
         return std::nullopt;
     mechanics::PointStress out = *s1;
@@ -90,8 +92,15 @@ double von_mises(const Eigen::Ref<const Eigen::Matrix<double, 1, 6>>& s)
 FieldsResult body_fields(const BodyModel& body, const TessellatedBody& tessellation, mechanics::Kinematics kinematics,
                          const RowMatrix& u)
 {
-    const int d = body.patch.dim();
+    const int d = static_cast<int>(u.cols());
     const Index n = tessellation.mesh.points.rows();
+    std::vector<RowMatrix> u_patch;  // each patch's control-point displacements
+    for (const PatchModel& patch : body.patches) {
+        RowMatrix up(static_cast<Index>(patch.node.size()), d);
+        for (std::size_t a = 0; a < patch.node.size(); ++a)
+            up.row(static_cast<Index>(a)) = u.row(patch.node[a]);
+        u_patch.push_back(std::move(up));
+    }
     FieldsResult out;
     io::BodyFields& f = out.fields;
     f.body = body.name;
@@ -100,8 +109,9 @@ FieldsResult body_fields(const BodyModel& body, const TessellatedBody& tessellat
     f.stress = RowMatrix::Zero(n, 6);
     f.von_mises = Vector::Zero(n);
     for (Index p = 0; p < n; ++p) {
-        const std::optional<mechanics::PointStress> s =
-            stress_at(body, kinematics, u, tessellation.parameters[static_cast<std::size_t>(p)]);
+        const auto k = static_cast<std::size_t>(tessellation.patch[static_cast<std::size_t>(p)]);
+        const std::optional<mechanics::PointStress> s = stress_at(body.patches[k].patch, body.material, kinematics,
+                                                                  u_patch[k], tessellation.parameters[static_cast<std::size_t>(p)]);
         if (!s) {
             ++out.n_unevaluated;
             continue;

@@ -30,8 +30,8 @@ struct FieldsResult {
     int n_unevaluated = 0;  ///< points left at zero (see above)
 };
 
-/// Fields of `body` at the points of `tessellation` for the control-point
-/// displacements `u` (n_cp x d).
+/// Fields of `body` at the points of `tessellation` for the body-node
+/// displacements `u` (n_nodes x d).
 FieldsResult body_fields(const BodyModel& body, const TessellatedBody& tessellation, mechanics::Kinematics kinematics,
                          const RowMatrix& u);
 

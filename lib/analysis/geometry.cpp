@@ -6,8 +6,6 @@
 
 namespace iga::analysis {
 
-namespace {
-
 nurbs::Patch raw_patch(const io::NurbsData& data, int dimension)
 {
     std::vector<nurbs::KnotVector> knots;
@@ -24,6 +22,8 @@ nurbs::Patch raw_patch(const io::NurbsData& data, int dimension)
     }
     return nurbs::Patch(std::move(knots), std::move(points), std::move(weights));
 }
+
+namespace {
 
 nurbs::Patch planar_or_solid_shape(const io::Shape& shape)
 {
@@ -55,9 +55,13 @@ std::vector<std::pair<std::string, std::string>> side_meanings(const io::Body& b
 nurbs::Patch build_patch(const io::Body& body, int dimension, int halvings)
 {
     IGA_CHECK(!body.rigid, "build_patch called for the rigid body '" + body.name + "'");
-    nurbs::Patch patch = body.nurbs ? raw_patch(*body.nurbs, dimension) : shape_patch(*body.shape);
+    IGA_CHECK(!body.multi_patch(), "build_patch called for the multi-patch body '" + body.name + "'");
+    return nurbs::halve_spans(
+        refined(body.nurbs ? raw_patch(*body.nurbs, dimension) : shape_patch(*body.shape), body.refine), halvings);
+}
 
-    const io::Refine& refine = body.refine;
+nurbs::Patch refined(nurbs::Patch patch, const io::Refine& refine)
+{
     for (std::size_t dir = 0; dir < refine.elevate.size(); ++dir)
         if (refine.elevate[dir] > 0)
             patch = nurbs::elevate_degree(patch, static_cast<int>(dir), refine.elevate[dir]);
@@ -67,7 +71,7 @@ nurbs::Patch build_patch(const io::Body& body, int dimension, int halvings)
     for (std::size_t dir = 0; dir < refine.insert.size(); ++dir)
         if (!refine.insert[dir].empty())
             patch = nurbs::insert_knots(patch, static_cast<int>(dir), refine.insert[dir]);
-    return halvings > 0 ? nurbs::halve_spans(patch, halvings) : patch;
+    return patch;
 }
 
 }  // namespace iga::analysis

@@ -24,9 +24,16 @@ inline VecN to_vec(const std::vector<double>& v)
 /// a body given as raw NURBS.
 std::vector<std::pair<std::string, std::string>> side_meanings(const io::Body& body);
 
-/// The refined patch of a deformable body. Precondition: !body.rigid.
-/// `halvings` > 0 then halves every knot span that many times (nurbs::halve_spans:
-/// the uniform h-refinement of `igacontact study`, RunOptions::refine_levels).
+/// The refined patch of a single-patch deformable body (nurbs or shape).
+/// Precondition: !body.rigid && !body.multi_patch(). `halvings` > 0 then halves
+/// every knot span that many times (nurbs::halve_spans: the uniform h-refinement
+/// of `igacontact study`, RunOptions::refine_levels).
 nurbs::Patch build_patch(const io::Body& body, int dimension, int halvings = 0);
+
+/// The patch of raw NURBS data (rows [x, y, (z,) w]).
+nurbs::Patch raw_patch(const io::NurbsData& data, int dimension);
+
+/// Applies `refine` in its fixed order: elevate, uniform spans, inserted knots.
+nurbs::Patch refined(nurbs::Patch patch, const io::Refine& refine);
 
 }  // namespace iga::analysis

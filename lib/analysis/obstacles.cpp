@@ -34,7 +34,7 @@ void check_obstacle_side(const io::Deck& deck, const Scene& scene, const io::Con
         return;
     const auto& obstacle = std::get<contact::RigidObstacle>(model.pair.surface(k));
     const BodyModel& body = scene.bodies[static_cast<std::size_t>(b)];
-    const RowMatrix& points = body.patch.control_points();
+    const RowMatrix& points = body.node_points;
     // Points on the surface count as inside: a body that touches a flipped plane at
     // its lowest point (the usual Hertz set-up) lies wholly behind it all the same.
     const double on_surface = touching_tolerance * (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();

@@ -108,16 +108,28 @@ std::vector<io::BodyGeometry> body_geometry(const io::Deck& deck, const Scene& s
         const int b = scene.body_of_deck[k];
         if (b < 0)
             continue;
-        const nurbs::Patch& patch = scene.bodies[static_cast<std::size_t>(b)].patch;
+        const BodyModel& body = scene.bodies[static_cast<std::size_t>(b)];
         io::BodyGeometry g;
         g.name = deck.bodies[k].name;
-        for (int dir = 0; dir < patch.n_par(); ++dir) {
-            g.degrees.push_back(patch.degree(dir));
-            g.knots.push_back(patch.knots(dir).knot_values());
+        for (const PatchModel& model : body.patches) {
+            const nurbs::Patch& patch = model.patch;
+            io::PatchGeometry p;
+            p.name = model.name;
+            for (int dir = 0; dir < patch.n_par(); ++dir) {
+                p.degrees.push_back(patch.degree(dir));
+                p.knots.push_back(patch.knots(dir).knot_values());
+            }
+            p.control_points.resize(patch.n_control_points(), patch.dim() + 1);
+            p.control_points.leftCols(patch.dim()) = patch.control_points();
+            p.control_points.col(patch.dim()) = patch.weights();
+            if (body.multi_patch) {
+                g.patches.push_back(std::move(p));
+            } else {
+                g.degrees = std::move(p.degrees);
+                g.knots = std::move(p.knots);
+                g.control_points = std::move(p.control_points);
+            }
         }
-        g.control_points.resize(patch.n_control_points(), patch.dim() + 1);
-        g.control_points.leftCols(patch.dim()) = patch.control_points();
-        g.control_points.col(patch.dim()) = patch.weights();
         if (deck.bodies[k].shape)
             g.side_names = nurbs::shape_side_names(std::string(io::deck_name(deck.bodies[k].shape->type)));
         out.push_back(std::move(g));
@@ -144,8 +156,22 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
     io::StepData step;
     step.load_factor = load_factor;
     const Vector u_full = scene.dofs->expand(u_free, load_factor);
-    for (std::size_t b = 0; b < scene.bodies.size(); ++b)
-        step.displacement.emplace_back(scene.bodies[b].name, system.body_displacement(u_full, static_cast<int>(b)));
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+        const BodyModel& body = scene.bodies[b];
+        const RowMatrix u = system.body_displacement(u_full, static_cast<int>(b));
+        if (!body.multi_patch) {
+            step.displacement.emplace_back(body.name, u);
+            continue;
+        }
+        std::vector<std::pair<std::string, RowMatrix>> patches;
+        for (const PatchModel& patch : body.patches) {
+            RowMatrix up(static_cast<Index>(patch.node.size()), u.cols());
+            for (std::size_t a = 0; a < patch.node.size(); ++a)
+                up.row(static_cast<Index>(a)) = u.row(patch.node[a]);
+            patches.emplace_back(patch.name, std::move(up));
+        }
+        step.patch_displacement.emplace_back(body.name, std::move(patches));
+    }
     // One evaluation gives the reactions and the contact state of the increment.
     std::vector<contact::PairEvaluation> states;
     step.reactions = reactions(scene, system.full_residual(u_free, load_factor, &states));
@@ -183,7 +209,7 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
             const contact::DeformableSide* side = deformable(model.pair, carrier.surface);
             IGA_CHECK(side != nullptr, "a rigid surface cannot carry Gauss points");
             const contact::RecoveredPressure recovered = contact::recover_pressure(
-                side->side.patch, system.side_displacement(u_full, static_cast<int>(p), carrier.surface), carrier,
+                *side, system.side_displacement(u_full, static_cast<int>(p), carrier.surface), carrier,
                 samples_per_span);
             io::ContactSideResult r;
             r.side_name = model.label[static_cast<std::size_t>(carrier.surface)];
@@ -267,7 +293,16 @@ std::vector<io::ReferenceData> references(const io::Deck& deck, const Scene& sce
         else
             normal << 0.0, 1.0;
         tangent << normal(1), -normal(0);
-        center = first_touch_point(deformable(model->pair, k_body)->side.patch, normal);
+        // The deepest of the pieces' first-touch points.
+        const contact::DeformableSide* surface = deformable(model->pair, k_body);
+        double deepest = std::numeric_limits<double>::infinity();
+        for (const contact::SidePiece& piece : surface->pieces) {
+            const VecN x = first_touch_point(piece.side.patch, normal);
+            if (x.dot(normal) < deepest) {
+                deepest = x.dot(normal);
+                center = x;
+            }
+        }
         data.inputs["radius"] = ref.radius;
         data.inputs["E"] = E;
         data.inputs["nu"] = nu;
@@ -280,11 +315,19 @@ std::vector<io::ReferenceData> references(const io::Deck& deck, const Scene& sce
         const contact::DeformableSide* s0 = deformable(model->pair, 0);
         const contact::DeformableSide* s1 = deformable(model->pair, 1);
         IGA_CHECK(s0 && s1, "hertz_two_cylinders needs two deformable sides");
-        const ClosestPair closest = closest_points(s0->side.patch, s1->side.patch);
-        center = 0.5 * (closest.x_a + closest.x_b);
-        VecN p(1);
-        p(0) = closest.xi_a;
-        tangent = nurbs::evaluate(s0->side.patch, p, 1).dx.col(0).normalized();
+        double nearest = std::numeric_limits<double>::infinity();
+        for (const contact::SidePiece& a : s0->pieces)
+            for (const contact::SidePiece& b : s1->pieces) {
+                const ClosestPair closest = closest_points(a.side.patch, b.side.patch);
+                const double gap = (closest.x_a - closest.x_b).norm();
+                if (gap >= nearest)
+                    continue;
+                nearest = gap;
+                center = 0.5 * (closest.x_a + closest.x_b);
+                VecN p(1);
+                p(0) = closest.xi_a;
+                tangent = nurbs::evaluate(a.side.patch, p, 1).dx.col(0).normalized();
+            }
         data.inputs["radius_first"] = ref.radii[0];
         data.inputs["radius_second"] = ref.radii[1];
     }

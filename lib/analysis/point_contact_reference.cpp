@@ -67,11 +67,12 @@ io::ReferenceData point_contact_reference(const io::Deck& deck, const Scene& sce
         const auto& obstacle = std::get<contact::RigidObstacle>(model.pair.surface(1 - k_body));
         normal = std::get<contact::RigidPlane>(obstacle.shape).normal;
         double lowest = std::numeric_limits<double>::infinity();
-        for (const VecN& x : face_samples(deformable(model.pair, k_body)->side.patch, samples_per_span))
-            if (x.dot(normal) < lowest) {
-                lowest = x.dot(normal);
-                center = x;
-            }
+        for (const contact::SidePiece& piece : deformable(model.pair, k_body)->pieces)
+            for (const VecN& x : face_samples(piece.side.patch, samples_per_span))
+                if (x.dot(normal) < lowest) {
+                    lowest = x.dot(normal);
+                    center = x;
+                }
         data.inputs["radius"] = ref.radius;
         data.inputs["E"] = E;
         data.inputs["nu"] = nu;
@@ -85,14 +86,16 @@ io::ReferenceData point_contact_reference(const io::Deck& deck, const Scene& sce
         const contact::DeformableSide* b = deformable(model.pair, 1);
         IGA_CHECK(a && b, "hertz_two_spheres needs two deformable sides");
         double best = std::numeric_limits<double>::infinity();
-        for (const VecN& x : face_samples(a->side.patch, 4)) {
-            const contact::Projection p = contact::project_to_surface(b->side.patch, b->outward_sign, x);
-            if (p.status == contact::Projection::Status::failed || !(p.distance < best))
-                continue;
-            best = p.distance;
-            center = 0.5 * (x + p.point);
-            normal = p.normal;
-        }
+        for (const contact::SidePiece& pa : a->pieces)
+            for (const VecN& x : face_samples(pa.side.patch, 4))
+                for (const contact::SidePiece& pb : b->pieces) {
+                    const contact::Projection p = contact::project_to_surface(pb.side.patch, pb.outward_sign, x);
+                    if (p.status == contact::Projection::Status::failed || !(p.distance < best))
+                        continue;
+                    best = p.distance;
+                    center = 0.5 * (x + p.point);
+                    normal = p.normal;
+                }
         data.inputs["radius_first"] = ref.radii[0];
         data.inputs["radius_second"] = ref.radii[1];
     }

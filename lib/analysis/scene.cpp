@@ -61,7 +61,65 @@ std::vector<int> dofs_of(const assembly::DofMap& dofs, int body, const std::vect
     return out;
 }
 
+/// The side quadrature of a list of patch sides, element indices over body nodes.
+mechanics::SideQuadrature body_side_quadrature(const BodyModel& body, const std::vector<BodySide>& sides)
+{
+    mechanics::SideQuadrature out;
+    for (const BodySide& side : sides) {
+        const PatchModel& patch = body.patches[static_cast<std::size_t>(side.patch)];
+        mechanics::SideQuadrature q = mechanics::side_quadrature(patch.patch, side.side);
+        out.side = q.side;
+        out.dim = q.dim;
+        for (mechanics::SideElement& element : q.elements) {
+            for (int& a : element.indices)
+                a = patch.node[static_cast<std::size_t>(a)];
+            out.elements.push_back(std::move(element));
+        }
+    }
+    return out;
+}
+
+/// A load or contact on an interface side is bad input (it lies inside the body).
+void check_not_interface(const io::Deck& deck, const BodyModel& body, const std::vector<BodySide>& sides,
+                         const std::string& path)
+{
+    for (const BodySide& side : sides)
+        for (const nurbs::Interface& i : body.interfaces)
+            if ((i.patch_a == side.patch && i.side_a == side.side) || (i.patch_b == side.patch && i.side_b == side.side))
+                throw DeckError(body_issue(deck, path,
+                                           fmt::format("the side {} of body '{}' is an interface between two patches "
+                                                       "(inside the body), not a boundary side",
+                                                       body_side_text(body.patch_names(), side), body.name)));
+}
+
 }  // namespace
+
+std::vector<std::string> BodyModel::patch_names() const
+{
+    std::vector<std::string> names;
+    for (const PatchModel& p : patches)
+        names.push_back(p.name);
+    return names;
+}
+
+int BodyModel::patch_of_element(int e) const
+{
+    for (std::size_t p = 0; p < patches.size(); ++p)
+        if (e >= patches[p].first_element && e < patches[p].first_element + patches[p].n_elements)
+            return static_cast<int>(p);
+    return -1;
+}
+
+std::vector<BodySide> sides_of(const io::Deck& deck, const Scene& scene, const std::string& body,
+                               const std::string& patch, Side side, const std::string& surface)
+{
+    for (std::size_t k = 0; k < deck.bodies.size(); ++k)
+        if (deck.bodies[k].name == body && scene.body_of_deck[k] >= 0)
+            return resolve_sides(deck.bodies[k], scene.bodies[static_cast<std::size_t>(scene.body_of_deck[k])].patch_names(),
+                                 patch, side, surface);
+    IGA_CHECK(false, "sides_of: '" + body + "' is not a deformable body of the scene");
+    return {};
+}
 
 std::vector<int> coupling_full_dofs(const PairModel& pair, const contact::Coupling& coupling)
 {
@@ -80,7 +138,7 @@ Scene build_scene(const io::Deck& deck, int refine_levels)
     scene.kinematics =
         deck.analysis.kinematics == io::Kinematics::finite ? mechanics::Kinematics::finite : mechanics::Kinematics::small;
 
-    // Bodies: patches and element geometry.
+    // Bodies: patches, glued, and element geometry over body nodes.
     Eigen::VectorXd lo = Eigen::VectorXd::Constant(d, 1e300), hi = Eigen::VectorXd::Constant(d, -1e300);
     for (const io::Body& body : deck.bodies) {
         if (body.rigid) {
@@ -88,33 +146,45 @@ Scene build_scene(const io::Deck& deck, int refine_levels)
             continue;
         }
         scene.body_of_deck.push_back(static_cast<int>(scene.bodies.size()));
-        nurbs::Patch patch = [&] {
+        BodyPatches built = build_body_patches(deck, body, refine_levels);
+        BodyModel model;
+        model.name = body.name;
+        model.multi_patch = body.multi_patch();
+        model.interfaces = built.topology.interfaces;
+        model.n_nodes = built.topology.n_nodes;
+        model.node_points.resize(model.n_nodes, d);
+        for (std::size_t p = 0; p < built.patches.size(); ++p) {
+            nurbs::Patch& patch = built.patches[p];
+            const std::vector<int>& node = built.topology.node[p];
+            const std::string path = "bodies." + body.name + (body.multi_patch() ? ".patches." + built.names[p] : "");
+            std::vector<mechanics::ElementGeometry> elements;
             try {
-                return build_patch(body, d, refine_levels);
-            } catch (const Error& e) {
-                throw DeckError(body_issue(deck, "bodies." + body.name, std::string("cannot build the patch: ") + e.what()));
+                elements = mechanics::patch_geometry(patch);
+            } catch (const mechanics::NonPositiveJacobian& e) {
+                throw DeckError(body_issue(
+                    deck, path,
+                    fmt::format("the parametrization is inverted or degenerate: det(dX/dxi) = {:.3g} at parameter {} "
+                                "(X = {}); check the control point order (u index fastest) and that u, v(, w) "
+                                "form a right-handed system",
+                                e.det_J(), format_vec(e.xi()), format_vec(e.X()))));
             }
-        }();
-        if (patch.n_par() != d)
-            throw DeckError(body_issue(deck, "bodies." + body.name,
-                                       fmt::format("a {}D analysis needs a patch with {} parametric directions", d, d)));
-        std::vector<mechanics::ElementGeometry> elements;
-        try {
-            elements = mechanics::patch_geometry(patch);
-        } catch (const mechanics::NonPositiveJacobian& e) {
-            throw DeckError(body_issue(
-                deck, "bodies." + body.name,
-                fmt::format("the parametrization is inverted or degenerate: det(dX/dxi) = {:.3g} at parameter {} "
-                            "(X = {}); check the control point order (u index fastest) and that u, v(, w) "
-                            "form a right-handed system",
-                            e.det_J(), format_vec(e.xi()), format_vec(e.X()))));
+            for (int a = 0; a < patch.n_control_points(); ++a)
+                model.node_points.row(node[static_cast<std::size_t>(a)]) = patch.control_points().row(a);
+            PatchModel pm{built.names[p], patch, node, static_cast<int>(model.elements.size()),
+                          static_cast<int>(elements.size())};
+            for (mechanics::ElementGeometry& element : elements) {
+                for (int& a : element.indices)
+                    a = node[static_cast<std::size_t>(a)];
+                model.elements.push_back(std::move(element));
+            }
+            lo = lo.cwiseMin(patch.control_points().colwise().minCoeff().transpose());
+            hi = hi.cwiseMax(patch.control_points().colwise().maxCoeff().transpose());
+            model.patches.push_back(std::move(pm));
         }
-        lo = lo.cwiseMin(patch.control_points().colwise().minCoeff().transpose());
-        hi = hi.cwiseMax(patch.control_points().colwise().maxCoeff().transpose());
         const io::Material* material = deck.find_material(body.material);
         IGA_CHECK(material != nullptr, "the deck reader let an unknown material through");
-        scene.bodies.push_back(BodyModel{body.name, std::move(patch), to_material(*material, deck.analysis),
-                                         std::move(elements), {}, 0});
+        model.material = to_material(*material, deck.analysis);
+        scene.bodies.push_back(std::move(model));
     }
     if (!scene.bodies.empty())
         scene.model_size = std::max((hi - lo).norm(), 1e-300);
@@ -132,8 +202,8 @@ Scene build_scene(const io::Deck& deck, int refine_levels)
     int n_nodes = 0;
     for (const BodyModel& b : scene.bodies) {
         node_offset.push_back(n_nodes);
-        nodes_per_body.push_back(b.patch.n_control_points());
-        n_nodes += b.patch.n_control_points();
+        nodes_per_body.push_back(b.n_nodes);
+        n_nodes += b.n_nodes;
     }
     DirichletData dirichlet = dirichlet_data(deck, scene.bodies, scene.body_of_deck, node_offset);
     scene.dofs = std::make_unique<assembly::DofMap>(d, nodes_per_body, dirichlet.prescribed);
@@ -173,10 +243,14 @@ Scene build_scene(const io::Deck& deck, int refine_levels)
         }
         mechanics::SideQuadrature side;
         try {
-            side = mechanics::side_quadrature(body.patch, *load.side);
+            side = body_side_quadrature(body, sides_of(deck, scene, load.body, load.patch, load.side.value_or(Side::u0),
+                                                       load.surface));
         } catch (const boundary::FoldedSide& e) {
             throw DeckError(body_issue(deck, fmt::format("loads.{}.side", load_index), e.what()));
         }
+        check_not_interface(deck, body, sides_of(deck, scene, load.body, load.patch, load.side.value_or(Side::u0),
+                                                 load.surface),
+                            fmt::format("loads.{}.side", load_index));
         if (load.kind == io::LoadKind::traction || load.kind == io::LoadKind::force) {
             VecN traction = to_vec(load.vector);
             if (load.kind == io::LoadKind::force) {
@@ -225,10 +299,29 @@ Scene build_scene(const io::Deck& deck, int refine_levels)
                 return rigid_obstacle(*deck_body);
             }
             body[k] = body_index(s.body);
-            label[k] = s.body + "." + std::string(side_name(*s.side));
-            contact::DeformableSide side = contact::DeformableSide::make(scene.bodies[body[k]].patch, *s.side);
-            parent[k] = side.side.parent_index;
-            return side;
+            label[k] = s.body + "." + io::side_text(s.patch, s.side.value_or(Side::u0), s.surface);
+            const BodyModel& model = scene.bodies[static_cast<std::size_t>(body[k])];
+            const std::vector<BodySide> sides = sides_of(deck, scene, s.body, s.patch, s.side.value_or(Side::u0), s.surface);
+            check_not_interface(deck, model, sides, "contact." + c.name + ".between");
+            if (sides.size() == 1) {
+                // One patch side: the side's own numbering (the single-patch layout).
+                const PatchModel& patch = model.patches[static_cast<std::size_t>(sides.front().patch)];
+                contact::DeformableSide side = contact::DeformableSide::make(patch.patch, sides.front().side);
+                parent[k].clear();
+                for (const int a : side.pieces.front().side.parent_index)
+                    parent[k].push_back(patch.node[static_cast<std::size_t>(a)]);
+                return side;
+            }
+            std::vector<const nurbs::Patch*> parents;
+            std::vector<Side> which;
+            std::vector<std::vector<int>> nodes;
+            for (const BodySide& bs : sides) {
+                const PatchModel& patch = model.patches[static_cast<std::size_t>(bs.patch)];
+                parents.push_back(&patch.patch);
+                which.push_back(bs.side);
+                nodes.push_back(patch.node);
+            }
+            return contact::DeformableSide::make(parents, which, nodes, parent[k]);
         };
         AutoPenalty rule;  // E', h and the auto penalty of the pair's deformable sides
         auto pair = [&]() {

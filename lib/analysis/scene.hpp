@@ -16,6 +16,7 @@
 // Only the effects the deck calls for are built: no contact pairs means no
 // contact data at all; small kinematics caches the constant element stiffness.
 
+#include "analysis/multipatch.hpp"
 #include "assembly/dof_map.hpp"
 #include "assembly/sparse_pattern.hpp"
 #include "contact/contact_pair.hpp"
@@ -24,6 +25,7 @@
 #include "mechanics/loads.hpp"
 #include "mechanics/material.hpp"
 #include "nurbs/patch.hpp"
+#include "nurbs/topology.hpp"
 
 #include <map>
 #include <memory>
@@ -33,13 +35,35 @@
 
 namespace iga::analysis {
 
+/// One patch of a body: its geometry and where its control points sit in the
+/// body's node numbering (interface control points share one node).
+struct PatchModel {
+    std::string name;         ///< deck name; "" for a single-patch body
+    nurbs::Patch patch;
+    std::vector<int> node;    ///< patch control point -> body node
+    int first_element = 0;    ///< its elements are BodyModel::elements[first_element, + n_elements)
+    int n_elements = 0;
+};
+
+/// A deformable body: one or more patches glued conformingly (analysis/multipatch.hpp).
+/// Nodes are the body's distinct control points (a single patch: its control points,
+/// in order); element geometry lists every patch's elements in patch order, with
+/// ElementGeometry::indices holding BODY NODES.
 struct BodyModel {
     std::string name;
-    nurbs::Patch patch;
+    std::vector<PatchModel> patches;
+    bool multi_patch = false;                     ///< given as `patches:` / `geometry:` in the deck
+    std::vector<nurbs::Interface> interfaces;
+    int n_nodes = 0;
+    RowMatrix node_points;                        ///< n_nodes x d reference coordinates
     mechanics::Material material;
     std::vector<mechanics::ElementGeometry> elements;
     std::vector<std::vector<int>> element_dofs;  ///< full dofs of each element (local dof a*d+i order)
     int first_block = 0;                         ///< pattern block of elements[0]
+
+    std::vector<std::string> patch_names() const;
+    /// The patch (index) of element e.
+    int patch_of_element(int e) const;
 };
 
 /// A follower pressure in finite kinematics (recomputed each evaluation).
@@ -54,7 +78,7 @@ struct FollowerPressure {
 /// The constrained dofs of one side (all constraint items on the same body.side
 /// together): their residual entries sum to the side's reaction.
 struct ReactionGroup {
-    std::string name;       ///< "body.side"
+    std::string name;       ///< "body.side", "body.patch.side" or "body.surface"
     std::vector<int> dofs;  ///< full dofs the side prescribes (each once); component = dof % d
 };
 
@@ -62,8 +86,8 @@ struct PairModel {
     std::string name;
     contact::ContactPair pair;
     std::array<int, 2> body{-1, -1};                 ///< deformable body index of each surface, -1 rigid
-    std::array<std::vector<int>, 2> parent_index;    ///< side control point -> body control point
-    std::array<std::string, 2> label;                ///< "cylinder.v0" or the rigid body's name
+    std::array<std::vector<int>, 2> parent_index;    ///< surface control point -> body node
+    std::array<std::string, 2> label;                ///< "cylinder.v0", "cyl.arc" or the rigid body's name
     std::vector<int> local_to_full;                  ///< pair-local dof -> full dof
     std::map<contact::Coupling, int> blocks;         ///< registered coupling -> pattern block
     int obstacle = -1;                               ///< surface index (0/1) of a rigid obstacle, -1 if none
@@ -94,6 +118,10 @@ struct Scene {
 
     bool has_contact() const { return !pairs.empty(); }
 };
+
+/// The sides a deck reference names on deformable body b of the scene.
+std::vector<BodySide> sides_of(const io::Deck& deck, const Scene& scene, const std::string& body,
+                               const std::string& patch, Side side, const std::string& surface);
 
 /// Full dofs of a coupling of pair p, in contact::LocalBlock::dofs order.
 std::vector<int> coupling_full_dofs(const PairModel& pair, const contact::Coupling& coupling);

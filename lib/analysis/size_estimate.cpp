@@ -27,11 +27,14 @@ struct Direction {
 std::vector<Direction> base_directions(const io::Body& body)
 {
     std::vector<Direction> out;
-    if (body.nurbs) {
-        for (std::size_t i = 0; i < body.nurbs->degrees.size() && i < body.nurbs->knots.size(); ++i) {
-            const std::vector<double>& knots = body.nurbs->knots[i];
+    // A multi-patch body is estimated from its first patch times the patch count
+    // (multi_patch_factor): the estimate guards against absurd refinements only.
+    const io::NurbsData* nurbs = body.nurbs ? &*body.nurbs : body.multi_patch() ? &body.patches.front().nurbs : nullptr;
+    if (nurbs) {
+        for (std::size_t i = 0; i < nurbs->degrees.size() && i < nurbs->knots.size(); ++i) {
+            const std::vector<double>& knots = nurbs->knots[i];
             Direction dir;
-            dir.degree = body.nurbs->degrees[i];
+            dir.degree = nurbs->degrees[i];
             dir.interior_knots = std::max(0.0, static_cast<double>(knots.size()) - 2.0 * (dir.degree + 1));
             for (std::size_t k = 1; k < knots.size(); ++k)
                 if (knots[k] != knots[k - 1] && k + 1 < knots.size() && knots[k] < knots.back())
@@ -189,8 +192,9 @@ SizeEstimate estimate_size(const io::Deck& deck)
         }
         const double n_local = product(dirs, [](const Direction& x) { return x.degree + 1; });
         const double gauss_per_element = n_local;  // (p+1) points per direction
-        b.elements = product(dirs, [](const Direction& x) { return x.spans(); });
-        b.dofs = d * product(dirs, [](const Direction& x) { return x.control_points(); });
+        const double multi_patch_factor = body.multi_patch() ? static_cast<double>(body.patches.size()) : 1.0;
+        b.elements = multi_patch_factor * product(dirs, [](const Direction& x) { return x.spans(); });
+        b.dofs = multi_patch_factor * d * product(dirs, [](const Direction& x) { return x.control_points(); });
         b.nonzeros = b.dofs * d * product(dirs, [](const Direction& x) { return 2 * x.degree + 1; });
         e.dofs += b.dofs;
         e.nonzeros += b.nonzeros;

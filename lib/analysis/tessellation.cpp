@@ -2,9 +2,11 @@
 
 namespace iga::analysis {
 
-TessellatedBody tessellate(const BodyModel& body, int per_span)
+namespace {
+
+void tessellate_patch(const PatchModel& model, int patch_index, int per_span, TessellatedBody& out)
 {
-    const nurbs::Patch& patch = body.patch;
+    const nurbs::Patch& patch = model.patch;
     const int n_par = patch.n_par();
     std::array<std::vector<double>, 3> params;
     for (int dir = 0; dir < n_par; ++dir) {
@@ -18,10 +20,10 @@ TessellatedBody tessellate(const BodyModel& body, int per_span)
     const int nv = n_par > 1 ? static_cast<int>(params[1].size()) : 1;
     const int nw = n_par > 2 ? static_cast<int>(params[2].size()) : 1;
 
-    TessellatedBody out;
-    out.mesh.body = body.name;
-    out.mesh.points = RowMatrix::Zero(static_cast<Index>(nu) * nv * nw, 3);
-    auto id = [&](int i, int j, int k) { return i + nu * (j + nv * k); };
+    const int first = static_cast<int>(out.mesh.points.rows());
+    out.mesh.points.conservativeResize(first + static_cast<Index>(nu) * nv * nw, 3);
+    out.mesh.points.bottomRows(static_cast<Index>(nu) * nv * nw).setZero();
+    auto id = [&](int i, int j, int k) { return first + i + nu * (j + nv * k); };
     for (int k = 0; k < nw; ++k)
         for (int j = 0; j < nv; ++j)
             for (int i = 0; i < nu; ++i) {
@@ -36,9 +38,13 @@ TessellatedBody tessellate(const BodyModel& body, int per_span)
                 for (std::size_t a = 0; a < basis.indices.size(); ++a)
                     x += basis.R(static_cast<Index>(a)) * patch.control_points().row(basis.indices[a]).transpose();
                 out.mesh.points.row(id(i, j, k)).head(patch.dim()) = x.transpose();
-                out.indices.push_back(basis.indices);
+                std::vector<int> nodes = basis.indices;
+                for (int& a : nodes)
+                    a = model.node[static_cast<std::size_t>(a)];
+                out.indices.push_back(std::move(nodes));
                 out.R.push_back(basis.R);
                 out.parameters.push_back(xi);
+                out.patch.push_back(patch_index);
             }
     if (n_par == 2) {
         out.mesh.nodes_per_cell = 4;
@@ -56,6 +62,17 @@ TessellatedBody tessellate(const BodyModel& body, int per_span)
                                            id(i, j, k + 1), id(i + 1, j, k + 1), id(i + 1, j + 1, k + 1),
                                            id(i, j + 1, k + 1)});
     }
+}
+
+}  // namespace
+
+TessellatedBody tessellate(const BodyModel& body, int per_span)
+{
+    TessellatedBody out;
+    out.mesh.body = body.name;
+    out.mesh.points = RowMatrix::Zero(0, 3);
+    for (std::size_t p = 0; p < body.patches.size(); ++p)
+        tessellate_patch(body.patches[p], static_cast<int>(p), per_span, out);
     return out;
 }
 

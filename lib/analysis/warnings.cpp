@@ -18,7 +18,7 @@ std::string point_text(const RowMatrix& points, Index row)
 
 double body_size(const BodyModel& body)
 {
-    const RowMatrix& p = body.patch.control_points();
+    const RowMatrix& p = body.node_points;
     return (p.colwise().maxCoeff() - p.colwise().minCoeff()).norm();
 }
 

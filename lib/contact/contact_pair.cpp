@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <sstream>
 
 namespace iga::contact {
@@ -27,7 +28,7 @@ constexpr double collapsed_relative_tolerance = 1e-13;
 int surface_dim(const Surface& s)
 {
     if (const auto* side = std::get_if<DeformableSide>(&s))
-        return side->side.patch.dim();
+        return side->pieces.front().side.patch.dim();
     return std::get<RigidObstacle>(s).dim();
 }
 
@@ -35,22 +36,50 @@ void check_surface(const Surface& s, const char* which, int dim)
 {
     if (surface_dim(s) != dim)
         throw Error(std::string("contact: the two surfaces of a pair live in different dimensions"));
-    if (const auto* side = std::get_if<DeformableSide>(&s)) {
-        const nurbs::Patch& p = side->side.patch;
-        if (p.n_par() != dim - 1 || (dim != 2 && dim != 3))
-            throw Error(std::string("contact: ") + which + " surface is not a curve in 2D or a surface in 3D");
-        const double scale = std::max(1.0, p.control_points().cwiseAbs().maxCoeff());
-        if (nurbs::is_collapsed(side->side, collapsed_relative_tolerance * scale))
-            throw Error(std::string("contact: ") + which + " surface, side " +
-                        std::string(side_name(side->side.side)) + ", is collapsed to a point");
-        IGA_CHECK(side->outward_sign == 1 || side->outward_sign == -1, "contact: outward sign must be +1 or -1");
+    if (const auto* surface = std::get_if<DeformableSide>(&s)) {
+        IGA_CHECK(!surface->pieces.empty(), "contact: a deformable surface needs at least one side");
+        for (const SidePiece& piece : surface->pieces) {
+            const nurbs::Patch& p = piece.side.patch;
+            if (p.dim() != dim)
+                throw Error(std::string("contact: the pieces of a surface live in different dimensions"));
+            if (p.n_par() != dim - 1 || (dim != 2 && dim != 3))
+                throw Error(std::string("contact: ") + which + " surface is not a curve in 2D or a surface in 3D");
+            const double scale = std::max(1.0, p.control_points().cwiseAbs().maxCoeff());
+            if (nurbs::is_collapsed(piece.side, collapsed_relative_tolerance * scale))
+                throw Error(std::string("contact: ") + which + " surface, side " +
+                            std::string(side_name(piece.side.side)) + ", is collapsed to a point");
+            IGA_CHECK(piece.outward_sign == 1 || piece.outward_sign == -1, "contact: outward sign must be +1 or -1");
+            IGA_CHECK(static_cast<int>(piece.surface_index.size()) == p.n_control_points(),
+                      "contact: a surface piece needs a surface index per control point");
+        }
     }
 }
 
-/// Current control points of a side: reference + displacement.
+/// Current control points of a surface: reference + displacement.
 RowMatrix current_points(const DeformableSide& s, const RowMatrix& disp)
 {
-    return s.side.patch.control_points() + disp;
+    return s.control_points() + disp;
+}
+
+/// The rows of `surface_points` of a piece's control points.
+RowMatrix piece_points(const SidePiece& piece, const RowMatrix& surface_points)
+{
+    RowMatrix out(static_cast<Index>(piece.surface_index.size()), surface_points.cols());
+    for (std::size_t a = 0; a < piece.surface_index.size(); ++a)
+        out.row(static_cast<Index>(a)) = surface_points.row(piece.surface_index[a]);
+    return out;
+}
+
+/// Nearer wins; at (numerically) equal distance an orthogonal foot beats a
+/// clamped one (the rule of project_to_surface between regions of one patch).
+bool nearer_foot(const Projection& a, const Projection& b, double surface_size)
+{
+    constexpr double relative_tie = 1e-14;  // a few ulps of the coordinates
+    const double tie = relative_tie * (surface_size + b.distance);
+    if (a.distance < b.distance - tie)
+        return true;
+    return std::abs(a.distance - b.distance) <= tie && a.status == Projection::Status::ok &&
+           b.status != Projection::Status::ok;
 }
 
 class Stopwatch {
@@ -80,7 +109,9 @@ std::string describe_point(int surface, int g, const VecN& xi, const VecN& x)
 
 }  // namespace
 
-DeformableSide DeformableSide::make(const nurbs::Patch& parent, Side side)
+namespace {
+
+SidePiece make_piece(const nurbs::Patch& parent, Side side)
 {
     if (parent.n_par() != parent.dim() || (parent.dim() != 2 && parent.dim() != 3))
         throw Error("contact: a deformable contact side needs a solid patch (2 parameters in 2D, 3 in 3D)");
@@ -90,7 +121,69 @@ DeformableSide DeformableSide::make(const nurbs::Patch& parent, Side side)
     if (patch_side.outward_sign() == 0)
         throw Error("contact: side " + std::string(side_name(side)) +
                     " has no outward normal (it is degenerate: zero length or area)");
-    return DeformableSide{patch_side.side(), patch_side.outward_sign()};
+    return SidePiece{patch_side.side(), patch_side.outward_sign(), {}};
+}
+
+}  // namespace
+
+DeformableSide DeformableSide::make(const nurbs::Patch& parent, Side side)
+{
+    DeformableSide out;
+    out.pieces.push_back(make_piece(parent, side));
+    SidePiece& piece = out.pieces.front();
+    out.n_control_points = piece.side.patch.n_control_points();
+    piece.surface_index.resize(static_cast<std::size_t>(out.n_control_points));
+    for (int a = 0; a < out.n_control_points; ++a)
+        piece.surface_index[static_cast<std::size_t>(a)] = a;
+    return out;
+}
+
+DeformableSide DeformableSide::make(const std::vector<const nurbs::Patch*>& parents, const std::vector<Side>& sides,
+                                    const std::vector<std::vector<int>>& parent_node, std::vector<int>& surface_node)
+{
+    IGA_CHECK(!parents.empty() && parents.size() == sides.size() && parents.size() == parent_node.size(),
+              "contact: one side and one node map per parent patch");
+    DeformableSide out;
+    surface_node.clear();
+    std::map<int, int> surface_of_node;
+    for (std::size_t k = 0; k < parents.size(); ++k) {
+        SidePiece piece = make_piece(*parents[k], sides[k]);
+        for (const int parent_cp : piece.side.parent_index) {
+            const int node = parent_node[k][static_cast<std::size_t>(parent_cp)];
+            const auto [it, fresh] = surface_of_node.try_emplace(node, static_cast<int>(surface_node.size()));
+            if (fresh)
+                surface_node.push_back(node);
+            piece.surface_index.push_back(it->second);
+        }
+        out.pieces.push_back(std::move(piece));
+    }
+    out.n_control_points = static_cast<int>(surface_node.size());
+    return out;
+}
+
+RowMatrix DeformableSide::control_points() const
+{
+    RowMatrix out(n_control_points, pieces.front().side.patch.dim());
+    for (const SidePiece& piece : pieces)
+        for (std::size_t a = 0; a < piece.surface_index.size(); ++a)
+            out.row(piece.surface_index[a]) = piece.side.patch.control_points().row(static_cast<Index>(a));
+    return out;
+}
+
+int DeformableSide::n_elements() const
+{
+    int n = 0;
+    for (const SidePiece& piece : pieces)
+        n += static_cast<int>(piece.side.patch.elements().size());
+    return n;
+}
+
+int DeformableSide::first_element(int k) const
+{
+    int n = 0;
+    for (int j = 0; j < k; ++j)
+        n += static_cast<int>(pieces[static_cast<std::size_t>(j)].side.patch.elements().size());
+    return n;
 }
 
 ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
@@ -121,7 +214,7 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
     double size = 0.0;
     for (int i = 0; i < 2; ++i)
         if (deformable[i]) {
-            const RowMatrix& cps = std::get<DeformableSide>(surfaces_[i]).side.patch.control_points();
+            const RowMatrix cps = std::get<DeformableSide>(surfaces_[i]).control_points();
             size = std::max(size, (cps.colwise().maxCoeff() - cps.colwise().minCoeff()).norm());
         }
     search_distance_ = settings_.search_distance > 0.0 ? settings_.search_distance : auto_search_fraction * size;
@@ -129,18 +222,51 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
     for (int i = 0; i < 2; ++i) {
         if (!deformable[i])
             continue;
-        const nurbs::Patch& patch = std::get<DeformableSide>(surfaces_[i]).side.patch;
-        const std::vector<nurbs::Element> elements = patch.elements();
-        for (std::size_t e = 0; e < elements.size(); ++e) {
-            VecN mid(patch.n_par());
-            for (int k = 0; k < patch.n_par(); ++k)
-                mid(k) = 0.5 * (elements[e].lower[static_cast<std::size_t>(k)] + elements[e].upper[static_cast<std::size_t>(k)]);
-            element_points_[i].push_back(nurbs::rational_basis(patch, elements[e].span, mid, 0).indices);
+        const DeformableSide& surface = std::get<DeformableSide>(surfaces_[i]);
+        for (const SidePiece& piece : surface.pieces) {
+            const nurbs::Patch& patch = piece.side.patch;
+            const std::vector<nurbs::Element> elements = patch.elements();
+            for (std::size_t e = 0; e < elements.size(); ++e) {
+                VecN mid(patch.n_par());
+                for (int k = 0; k < patch.n_par(); ++k)
+                    mid(k) = 0.5 * (elements[e].lower[static_cast<std::size_t>(k)] + elements[e].upper[static_cast<std::size_t>(k)]);
+                std::vector<int> points = nurbs::rational_basis(patch, elements[e].span, mid, 0).indices;
+                for (int& a : points)
+                    a = piece.surface_index[static_cast<std::size_t>(a)];
+                element_points_[i].push_back(std::move(points));
+            }
+            // Edges shared with another piece: all their control points belong to it too.
+            std::array<std::array<bool, 2>, 2> inner{};
+            const int q = patch.n_par();
+            const std::array<int, 2> n{patch.n_basis(0), q > 1 ? patch.n_basis(1) : 1};
+            for (int k = 0; k < q; ++k)
+                for (int end = 0; end < 2; ++end) {
+                    bool shared = surface.pieces.size() > 1;
+                    for (int a = 0; a < n[0] * n[1] && shared; ++a) {
+                        const int ik = k == 0 ? a % n[0] : a / n[0];
+                        if (ik != (end ? n[k] - 1 : 0))
+                            continue;
+                        const int s = piece.surface_index[static_cast<std::size_t>(a)];
+                        bool elsewhere = false;
+                        for (const SidePiece& other : surface.pieces)
+                            if (&other != &piece &&
+                                std::find(other.surface_index.begin(), other.surface_index.end(), s) !=
+                                    other.surface_index.end())
+                                elsewhere = true;
+                        shared = elsewhere;
+                    }
+                    inner[k][end] = shared;
+                }
+            inner_edge_[i].push_back(inner);
         }
     }
 
     for (Carrier& c : carriers_) {
-        const nurbs::Patch& patch = std::get<DeformableSide>(surfaces_[c.slave]).side.patch;
+        const DeformableSide& surface = std::get<DeformableSide>(surfaces_[c.slave]);
+        for (std::size_t piece_index = 0; piece_index < surface.pieces.size(); ++piece_index) {
+        const SidePiece& piece = surface.pieces[piece_index];
+        const nurbs::Patch& patch = piece.side.patch;
+        const int first = surface.first_element(static_cast<int>(piece_index));
         int max_degree = 0;
         for (int k = 0; k < patch.n_par(); ++k)
             max_degree = std::max(max_degree, patch.degree(k));
@@ -154,15 +280,19 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
                 const nurbs::BasisValues basis = nurbs::rational_basis(patch, element.span, xi, 1);
                 const nurbs::PointDerivatives X = nurbs::combine(basis, patch.control_points());
                 GaussPoint gp;
-                gp.element = static_cast<int>(e);
+                gp.piece = static_cast<int>(piece_index);
+                gp.element = first + static_cast<int>(e);
                 gp.xi = xi;
                 // W = w_g * reference length (2D) or area (3D) element, |raw normal|.
                 gp.weight = rule.weights(q) * boundary::raw_normal(X.dx).norm();
                 gp.reference = X.x;
                 gp.indices = basis.indices;
+                for (int& a : gp.indices)
+                    a = piece.surface_index[static_cast<std::size_t>(a)];
                 gp.N = basis.R;
                 c.points.push_back(std::move(gp));
             }
+        }
         }
     }
     trial_xi_.resize(carriers_.size());
@@ -197,7 +327,7 @@ void ContactPair::set_penalty(double penalty)
 int ContactPair::n_control_points(int i) const
 {
     if (const auto* side = std::get_if<DeformableSide>(&surfaces_[i]))
-        return side->side.patch.n_control_points();
+        return side->n_control_points;
     return 0;
 }
 
@@ -233,11 +363,14 @@ std::vector<Coupling> ContactPair::candidate_couplings() const
                 out.push_back(coupling(e, -1));
             continue;
         }
-        const ElementSearch search(master->side.patch, SearchOptions{.distance = search_distance_});
-        for (const GaussPoint& gp : c.points) {
-            search.candidates(gp.reference, candidates);
-            for (const int k : candidates)  // element index of the master side (= span number on a curve)
-                out.push_back(coupling(gp.element, k));
+        for (std::size_t k = 0; k < master->pieces.size(); ++k) {
+            const ElementSearch search(master->pieces[k].side.patch, SearchOptions{.distance = search_distance_});
+            const int first = master->first_element(static_cast<int>(k));
+            for (const GaussPoint& gp : c.points) {
+                search.candidates(gp.reference, candidates);
+                for (const int e : candidates)  // element index of the piece (= span number on a curve)
+                    out.push_back(coupling(gp.element, first + e));
+            }
         }
     }
     std::sort(out.begin(), out.end());
@@ -287,6 +420,7 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
         const int n_g = static_cast<int>(c.points.size());
         CarrierResult cr;
         cr.surface = c.slave;
+        cr.piece.resize(static_cast<std::size_t>(n_g));
         cr.parameter.resize(n_g, d - 1);
         cr.reference_coordinates.resize(n_g, d);
         cr.coordinates.resize(n_g, d);
@@ -300,6 +434,7 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
             VecN x = VecN::Zero(d);
             for (std::size_t a = 0; a < gp.indices.size(); ++a)
                 x += gp.N(a) * current[c.slave].row(gp.indices[a]).transpose();
+            cr.piece[static_cast<std::size_t>(g)] = gp.piece;
             cr.parameter.row(g) = gp.xi.transpose();
             cr.reference_coordinates.row(g) = gp.reference.transpose();
             cr.coordinates.row(g) = x.transpose();
@@ -385,45 +520,93 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
         }
 
         const DeformableSide& master = std::get<DeformableSide>(surfaces_[c.master]);
-        const nurbs::Patch master_patch = master.side.patch.with_control_points(current[c.master]);
+        const std::size_t n_pieces = master.pieces.size();
+        std::vector<nurbs::Patch> master_patches;
+        std::vector<ElementSearch> searches;
+        std::vector<int> first_element;
         search_time.start();
-        const ElementSearch search(master_patch, SearchOptions{.distance = search_distance_});
-        const bool may_touch = bounding_box(current[c.slave]).overlaps(search.bounds());
+        bool may_touch = false;
+        const Box slave_box = bounding_box(current[c.slave]);
+        for (std::size_t k = 0; k < n_pieces; ++k) {
+            const SidePiece& piece = master.pieces[k];
+            master_patches.push_back(piece.side.patch.with_control_points(piece_points(piece, current[c.master])));
+            searches.emplace_back(master_patches.back(), SearchOptions{.distance = search_distance_});
+            first_element.push_back(master.first_element(static_cast<int>(k)));
+            may_touch = may_touch || slave_box.overlaps(searches.back().bounds());
+        }
         search_time.stop();
         if (!may_touch) {  // the slave side's hull misses every inflated master span box
             ev.carriers.push_back(std::move(cr));
             continue;
         }
+        const double master_size =
+            (current[c.master].colwise().maxCoeff() - current[c.master].colwise().minCoeff()).norm();
         KernelSettings kernel_settings = kernel_base;
         kernel_settings.master_rows = c.master_rows;
 
         for (int g = 0; g < n_g; ++g) {
             const GaussPoint& gp = c.points[g];
             const VecN x = cr.coordinates.row(g).transpose();
-            search_time.start();
-            search.candidates(x, candidates);
-            search_time.stop();
-            if (candidates.empty())
-                continue;
-            ev.candidates += static_cast<long long>(candidates.size());
-
-            ProjectionOptions options;
+            std::optional<Projection> best;
+            std::size_t best_piece = 0;
+            bool failed = false;
             const Foot& warm = trial_xi_[ci][g];
-            if (warm.element >= 0) {
-                options.start = warm.xi;
-                options.start_element = warm.element;
+            for (std::size_t k = 0; k < n_pieces && !failed; ++k) {
+                search_time.start();
+                searches[k].candidates(x, candidates);
+                search_time.stop();
+                if (candidates.empty())
+                    continue;
+                ev.candidates += static_cast<long long>(candidates.size());
+
+                ProjectionOptions options;
+                const int n_piece_elements = searches[k].n_elements();
+                if (warm.element >= first_element[k] && warm.element < first_element[k] + n_piece_elements) {
+                    options.start = warm.xi;
+                    options.start_element = warm.element - first_element[k];
+                }
+                options.candidate_elements = candidates;  // elements of a curve = its spans, in order
+                projection_time.start();
+                Projection proj = project_to_surface(master_patches[k], master.pieces[k].outward_sign, x, options);
+                projection_time.stop();
+                ++ev.projections;
+                ev.projection_iterations += proj.iterations;
+                if (proj.status == Projection::Status::failed) {
+                    failed = true;
+                    break;
+                }
+                if (!best || nearer_foot(proj, *best, master_size)) {
+                    best = std::move(proj);
+                    best_piece = k;
+                }
             }
-            options.candidate_elements = candidates;  // elements of a curve = its spans, in order
-            projection_time.start();
-            Projection proj = project_to_surface(master_patch, master.outward_sign, x, options);
-            projection_time.stop();
-            ++ev.projections;
-            ev.projection_iterations += proj.iterations;
-            if (proj.status == Projection::Status::failed) {
+            if (failed) {
                 ev.ok = false;
                 ev.message = "contact: closest-point projection failed at " + describe_point(c.slave, g, gp.xi, x);
                 flush();
                 return ev;
+            }
+            if (!best)
+                continue;
+            Projection& proj = *best;
+            if (n_pieces > 1) {
+                // Piece numbering -> surface numbering; an end shared with another piece is a crease.
+                for (int& a : proj.basis.indices)
+                    a = master.pieces[best_piece].surface_index[static_cast<std::size_t>(a)];
+                proj.element += first_element[best_piece];
+                if (proj.status == Projection::Status::off_end) {
+                    const nurbs::Patch& patch = master_patches[best_piece];
+                    bool outer = false;
+                    for (int k = 0; k < patch.n_par(); ++k)
+                        for (int end = 0; end < 2; ++end) {
+                            const auto& kv = patch.knots(k);
+                            const bool at = end ? proj.xi(k) >= kv.back() : proj.xi(k) <= kv.front();
+                            if (at && !inner_edge_[static_cast<std::size_t>(c.master)][best_piece][k][end])
+                                outer = true;
+                        }
+                    if (!outer)
+                        proj.status = Projection::Status::at_kink;
+                }
             }
             trial_xi_[ci][g] = Foot{proj.xi, proj.element};
             cr.gap(g) = proj.gap;

@@ -21,7 +21,8 @@
 //
 // Local numbering (shapes): the first surface's control points, then the
 // second's (a rigid surface has none); dof = cp * d + component, d = 2 or 3; cp is
-// the SIDE control-point index (SidePatch::parent_index maps it to the parent).
+// the SURFACE control-point index (DeformableSide: one numbering over its pieces;
+// for a one-piece surface the side's, which SidePatch::parent_index maps to the parent).
 // Displacements are given per side, n_cp_side x d, row-major.
 //
 // Tangent (sparse coupling): evaluate() returns the tangent as small dense
@@ -31,15 +32,23 @@
 // one coupling are summed; against a rigid obstacle the obstacle's element is -1).
 // A block's dofs are pair-local: the first surface element's control points, then
 // the second's (component fastest), so both half passes of a two-half-pass pair
-// land in the same block. "Element" is the side patch's element number
-// (nurbs::Patch::elements() order). No n_local x n_local matrix is ever formed.
+// land in the same block. "Element" is the surface's element number
+// (pieces in order, each in nurbs::Patch::elements() order). No n_local x n_local matrix is ever formed.
 // candidate_couplings() lists the couplings the global search admits in the
 // reference configuration: the caller registers them in its sparsity pattern up
 // front and extends the pattern when evaluate() meets another one (sliding).
 //
+// Multi-piece master surfaces: each piece holding a candidate element is
+// projected on; the nearest foot wins (at equal distance an orthogonal one). A
+// foot clamped to an edge that another piece shares is not off the surface's end:
+// the neighbour holds the point (then it is nearer or orthogonal and wins), or the
+// point lies in the normal fan of the crease between them (at_kink, inactive, as
+// at an interior C0 knot of one patch). off_end only at the surface's own boundary.
+//
 // Warm starts: evaluate() remembers each Gauss point's last foot point as a
 // trial state; commit() keeps the trial state (call it after a converged
 // increment), rollback() returns to the last committed one (after a cutback).
+// Because of this cache, evaluate() is const but not thread-safe on one pair.
 //
 // Augmented Lagrangian (docs/theory.md "Augmented Lagrangian"): every Gauss point
 // carries a multiplier lambda >= 0 (pressure units, 0 at the start) and its
@@ -48,7 +57,7 @@
 // lambda <- p of an evaluation at a converged state. The multipliers are state
 // like the foot points: commit() keeps them, rollback() restores the committed
 // ones. set_penalty() changes eps (the safeguard that raises it); it is not rolled back.
-// Because of this cache, evaluate() is const but not thread-safe on one pair.
+//
 // Both surfaces live in the same dimension d (2 or 3), else the constructor throws
 // iga::Error.
 
@@ -75,14 +84,40 @@ struct PairSettings {
     double search_distance = 0.0; ///< global search margin; 0 = auto (a tenth of the larger side's size)
 };
 
-/// A deformable side in its REFERENCE configuration with its orientation sign.
-struct DeformableSide {
-    nurbs::SidePatch side;
+/// One patch side of a deformable contact surface, in its REFERENCE configuration.
+struct SidePiece {
+    nurbs::SidePatch side;           ///< side.parent_index: control points of its parent patch
     int outward_sign = 1;
+    std::vector<int> surface_index;  ///< side control point -> surface control point
+};
 
-    /// Extracts `side` of `parent` (a solid patch: 2 parameters in 2D, 3 in 3D) and its
-    /// outward sign (boundary::PatchSide); throws iga::Error for a collapsed or degenerate side.
+/// A deformable contact surface: one patch side, or several patch sides of one
+/// body glued along their edges (a named surface of a multi-patch body). It is ONE
+/// surface for search, projection and post-processing: its control points are
+/// numbered once (a control point on an interface between two pieces is one
+/// surface control point) and its elements are numbered consecutively over the
+/// pieces (piece order, each in Patch::elements() order).
+struct DeformableSide {
+    std::vector<SidePiece> pieces;
+    int n_control_points = 0;  ///< surface control points
+
+    /// Side `side` of a solid patch (2 parameters in 2D, 3 in 3D), with its outward
+    /// sign (boundary::PatchSide); throws iga::Error for a collapsed or degenerate side.
+    /// The surface numbering is the side's.
     static DeformableSide make(const nurbs::Patch& parent, Side side);
+    /// Several sides: sides[k] of parents[k], where parent_node[k] maps the parent's
+    /// control points to body nodes; side control points on the same body node are
+    /// one surface control point (numbered by first appearance). surface_node
+    /// receives the body node of each surface control point.
+    static DeformableSide make(const std::vector<const nurbs::Patch*>& parents, const std::vector<Side>& sides,
+                               const std::vector<std::vector<int>>& parent_node, std::vector<int>& surface_node);
+
+    /// Reference control points of the surface, n_control_points x d.
+    RowMatrix control_points() const;
+    /// Elements of the surface (all pieces).
+    int n_elements() const;
+    /// First surface element of piece k.
+    int first_element(int k) const;
 };
 
 using Surface = std::variant<DeformableSide, RigidObstacle>;
@@ -91,14 +126,15 @@ using Surface = std::variant<DeformableSide, RigidObstacle>;
 enum class PointState {
     far,      ///< pruned by the global search (gap not computed)
     ok,       ///< projected (or plane gap); active when gap > 0
-    off_end,  ///< nearest master point at a patch end, not orthogonal: inactive
+    off_end,  ///< nearest master point at the surface's boundary, not orthogonal: inactive
     at_kink,  ///< nearest master point at a C0 corner, not orthogonal: inactive
 };
 
 /// Gauss point data of one carrying side, n_g points in element order.
 struct CarrierResult {
     int surface = 0;                    ///< 0: the pair's first surface, 1: the second
-    RowMatrix parameter;                ///< n_g x q, the Gauss point's parameters on the side
+    std::vector<int> piece;             ///< n_g, the piece (patch side) of the surface holding the Gauss point
+    RowMatrix parameter;                ///< n_g x q, the Gauss point's parameters on its piece
     RowMatrix reference_coordinates;    ///< n_g x d
     RowMatrix coordinates;              ///< n_g x d, current configuration
     Vector gap;                         ///< n_g, g_N (positive = penetration); far: -search distance, a bound
@@ -146,7 +182,7 @@ public:
     int n_carriers() const { return static_cast<int>(carriers_.size()); }
     int n_gauss_points(int carrier) const { return static_cast<int>(carriers_[carrier].points.size()); }
 
-    /// Elements of side patch i (0 for a rigid obstacle).
+    /// Elements of surface i (0 for a rigid obstacle).
     int n_elements(int i) const { return static_cast<int>(element_points_[i].size()); }
     /// Pair-local dofs of a coupling, in LocalBlock::dofs order.
     std::vector<int> coupling_dofs(const Coupling& element) const;
@@ -186,11 +222,12 @@ public:
 
 private:
     struct GaussPoint {
-        int element;               ///< element number on the carrying side
+        int piece;                 ///< piece of the carrying surface
+        int element;               ///< element number on the carrying surface
         VecN xi;                   ///< d - 1 parameters on the side
         double weight;             ///< W = w_g * reference length / area element
         VecN reference;            ///< X(xi)
-        std::vector<int> indices;  ///< side control points with non-zero basis
+        std::vector<int> indices;  ///< surface control points with non-zero basis
         Vector N;                  ///< their basis values
     };
     struct Carrier {
@@ -205,7 +242,10 @@ private:
     int dim_ = 2;
     double search_distance_ = 0.0;
     std::vector<Carrier> carriers_;
-    std::array<std::vector<std::vector<int>>, 2> element_points_;  ///< side control points of each element
+    std::array<std::vector<std::vector<int>>, 2> element_points_;  ///< surface control points of each element
+    /// Per surface and piece: per side direction k, whether its lower / upper edge
+    /// is shared with another piece (an interface inside the surface).
+    std::array<std::vector<std::array<std::array<bool, 2>, 2>>, 2> inner_edge_;
     struct Foot {                  ///< a Gauss point's last foot point (warm start)
         VecN xi;
         int element = -1;          ///< -1: none yet

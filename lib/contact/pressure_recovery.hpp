@@ -29,6 +29,9 @@ struct RecoveredPressure {
     Vector control_point_pressure;   ///< n_cp, p_A
     RowMatrix parameter;             ///< n_s x q, sample parameters (u fastest)
     std::array<Index, 2> grid{0, 0}; ///< surfaces: (n_u, n_v) samples per direction; curves: (n_s, 1)
+    /// Multi-piece surfaces: the grid of each piece, samples piece after piece
+    /// (then `grid` is (n_s, 1)); empty for one piece.
+    std::vector<std::array<Index, 2>> grids;
     RowMatrix coordinates;           ///< n_s x d, current configuration
     RowMatrix reference_coordinates; ///< n_s x d
     Vector pressure;                 ///< n_s, p^h at the samples
@@ -48,6 +51,13 @@ Vector control_point_pressure(const nurbs::Patch& side, const std::vector<double
 /// control-point displacements, `carrier` its Gauss-point data from
 /// ContactPair::evaluate. samples_per_span >= 1.
 RecoveredPressure recover_pressure(const nurbs::Patch& side_reference, const RowMatrix& side_displacement,
+                                   const CarrierResult& carrier, int samples_per_span);
+
+/// The same on a (possibly multi-piece) surface: p_A over the surface's control
+/// points (an interface control point averages the Gauss points of every piece
+/// around it, once), samples of every piece in piece order. surface_displacement:
+/// n_cp x d in the surface numbering. One piece: exactly the single-side result.
+RecoveredPressure recover_pressure(const DeformableSide& surface, const RowMatrix& surface_displacement,
                                    const CarrierResult& carrier, int samples_per_span);
 
 }  // namespace iga::contact

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 namespace iga::io {
@@ -14,6 +15,12 @@ const std::pair<std::string, bool>* KnownNames::find_body(const std::string& nam
 {
     const auto it = std::find_if(bodies.begin(), bodies.end(), [&](const auto& b) { return b.first == name; });
     return it == bodies.end() ? nullptr : &*it;
+}
+
+const BodyParts* KnownNames::find_parts(const std::string& name) const
+{
+    const auto it = std::find_if(parts.begin(), parts.end(), [&](const auto& b) { return b.first == name; });
+    return it == parts.end() ? nullptr : &it->second;
 }
 
 std::vector<std::string> KnownNames::body_names() const
@@ -69,6 +76,52 @@ std::optional<Side> side_from_text(const Cursor& at, const std::string& text, in
     at.fail("'" + text + "' is not a side of a " + std::to_string(dim) + "D patch (sides: " +
             join_names(side_names(dim)) + ")");
     return std::nullopt;
+}
+
+std::optional<SideReference> side_reference(const Cursor& at, const std::string& text, const std::string& body,
+                                            const KnownNames& known)
+{
+    const BodyParts* parts = known.find_parts(body);
+    if (!parts)
+        return std::nullopt;  // an unknown body is reported where it is named
+    if (std::find(parts->surfaces.begin(), parts->surfaces.end(), text) != parts->surfaces.end())
+        return SideReference{"", Side::u0, text};
+    const auto dot = text.find('.');
+    if (!parts->multi_patch) {
+        if (dot != std::string::npos) {
+            at.fail("body '" + body + "' is a single patch: write a side (" + join_names(side_names(known.dim)) +
+                    ")" + (parts->surfaces.empty() ? "" : " or a named surface (" + join_names(parts->surfaces) + ")"));
+            return std::nullopt;
+        }
+        if (!parse_side(text) && !parts->surfaces.empty()) {
+            at.fail("'" + text + "' is neither a side (" + join_names(side_names(known.dim)) +
+                    ") nor a named surface of body '" + body + "'" + hint_or_list(text, parts->surfaces, "surfaces"));
+            return std::nullopt;
+        }
+        const auto side = side_from_text(at, text, known.dim);
+        return side ? std::optional(SideReference{"", *side, ""}) : std::nullopt;
+    }
+    if (dot == std::string::npos) {
+        std::vector<std::string> choices = parts->surfaces;
+        at.fail("'" + text + "' is not a named surface of the multi-patch body '" + body +
+                "'; write a surface" + (choices.empty() ? "" : " (" + join_names(choices) + ")") +
+                " or patch.side (e.g. " + parts->patches.front() + ".v0)");
+        return std::nullopt;
+    }
+    const std::string patch = text.substr(0, dot);
+    if (std::find(parts->patches.begin(), parts->patches.end(), patch) == parts->patches.end()) {
+        at.fail("unknown patch '" + patch + "' of body '" + body + "'" + hint_or_list(patch, parts->patches, "patches"));
+        return std::nullopt;
+    }
+    const auto side = side_from_text(at, text.substr(dot + 1), known.dim);
+    return side ? std::optional(SideReference{patch, *side, ""}) : std::nullopt;
+}
+
+void read_geometry_file(const Cursor& at, const std::string& path, Body& body)
+{
+    (void)path;
+    (void)body;
+    at.fail("geometry files are not supported yet (give the patches inline with 'patches:')");
 }
 
 namespace {
@@ -372,12 +425,99 @@ void read_rigid(const Cursor& c, int dim, Body& b)
         b.motion = c.child("motion").to_numbers(dim).value_or(std::vector<double>{});
 }
 
+/// `patches:` of a multi-patch body: a list of {name, nurbs, refine}.
+std::vector<PatchData> read_patches(const Cursor& list, int dim, const Refine& body_refine)
+{
+    std::vector<PatchData> out;
+    if (!list.expect_list())
+        return out;
+    if (list.size() == 0)
+        list.fail_here("must list at least one patch");
+    NameRegistry names("patch");
+    for (const Cursor& c : list.items()) {
+        if (!c.allow_only({"name", "nurbs", "refine"}))
+            continue;
+        PatchData patch;
+        if (const auto name = read_name(c)) {
+            patch.name = *name;
+            names.add(*name, c.child("name"));
+        }
+        std::optional<Parametrization> param;
+        if (const auto nurbs = required(c, "nurbs"))
+            if (auto data = read_nurbs(*nurbs, dim, param))
+                patch.nurbs = std::move(*data);
+        if (c.has("refine")) {
+            // Inserted knots are checked against the patch as the body's refine leaves it.
+            if (param)
+                for (std::size_t dir = 0; dir < body_refine.elevate.size() && dir < param->degrees.size(); ++dir)
+                    param->degrees[dir] += body_refine.elevate[dir];
+            patch.refine = read_refine(c.child("refine"), dim, param);
+        }
+        out.push_back(std::move(patch));
+    }
+    return out;
+}
+
+/// `surfaces: {name: [patch.side, ...]}`: each side once per surface.
+std::vector<NamedSurface> read_surfaces(const Cursor& map, const std::string& body, KnownNames& known)
+{
+    std::vector<NamedSurface> out;
+    if (!map.expect_map())
+        return out;
+    BodyParts* parts = nullptr;
+    for (auto& [name, p] : known.parts)
+        if (name == body)
+            parts = &p;
+    for (const std::string& key : map.keys()) {
+        const Cursor list = map.child(key);
+        if (key.empty() || key.find('.') != std::string::npos || parse_side(key)) {
+            list.fail_here("a surface name must be a non-empty word without '.' and not a side name (" +
+                           join_names(side_names(known.dim)) + ")");
+            continue;
+        }
+        if (parts && std::find(parts->patches.begin(), parts->patches.end(), key) != parts->patches.end()) {
+            list.fail_here("'" + key + "' names a patch already; give the surface another name");
+            continue;
+        }
+        NamedSurface surface{key, {}};
+        if (!list.is_list() || list.size() == 0) {
+            list.fail("expected a list of patch sides, e.g. [" +
+                      (parts && parts->multi_patch ? parts->patches.front() + ".v0" : std::string("v0")) + "]");
+            continue;
+        }
+        for (std::size_t i = 0; i < list.size(); ++i) {
+            const Cursor item = list.item(i);
+            const auto text = item.to_string();
+            if (!text)
+                continue;
+            const auto ref = side_reference(item, *text, body, known);
+            if (!ref)
+                continue;
+            if (!ref->surface.empty()) {
+                item.fail("a surface lists patch sides, not other surfaces");
+                continue;
+            }
+            const PatchSideRef side{ref->patch, ref->side};
+            if (std::find(surface.sides.begin(), surface.sides.end(), side) != surface.sides.end()) {
+                item.fail("names the side " + side_text(side.patch, side.side, "") + " twice");
+                continue;
+            }
+            surface.sides.push_back(side);
+        }
+        out.push_back(std::move(surface));
+    }
+    if (parts)
+        for (const auto& s : out)
+            parts->surfaces.push_back(s.name);
+    return out;
+}
+
 }  // namespace
 
 Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names)
 {
     Body b;
-    if (!c.allow_only({"name", "material", "nurbs", "shape", "refine", "rigid"}))
+    if (!c.allow_only({"name", "material", "nurbs", "shape", "patches", "geometry", "refine", "surfaces", "rigid"}))
         return b;
     b.rigid = c.has("rigid");
     if (const auto name = read_name(c)) {
@@ -386,7 +526,7 @@ Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names)
             known.bodies.emplace_back(*name, b.rigid);
     }
     if (b.rigid) {
-        for (const char* key : {"material", "nurbs", "shape", "refine"})
+        for (const char* key : {"material", "nurbs", "shape", "patches", "geometry", "refine", "surfaces"})
             if (c.has(key))
                 c.child(key).fail_here("a rigid body takes no '" + std::string(key) + "'");
         if (const Cursor rigid = c.child("rigid"); rigid.expect_map())
@@ -401,17 +541,44 @@ Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names)
     }
     const bool has_nurbs = c.has("nurbs");
     const bool has_shape = c.has("shape");
-    if (has_nurbs && has_shape)
-        c.fail_here("takes 'nurbs' or 'shape', not both");
-    else if (!has_nurbs && !has_shape)
-        c.fail_here("needs 'nurbs' or 'shape' (or 'rigid' for an obstacle)");
+    const bool has_patches = c.has("patches");
+    const bool has_file = c.has("geometry");
+    const int n_given = has_nurbs + has_shape + has_patches + has_file;
+    if (n_given > 1)
+        c.fail_here("takes one of 'nurbs', 'shape', 'patches' or 'geometry', not several");
+    else if (n_given == 0)
+        c.fail_here("needs 'nurbs', 'shape', 'patches' or 'geometry' (or 'rigid' for an obstacle)");
+    const bool alone = n_given == 1;
     std::optional<Parametrization> param;
-    if (has_nurbs && !has_shape)
+    if (has_nurbs && alone)
         b.nurbs = read_nurbs(c.child("nurbs"), known.dim, param);
-    if (has_shape && !has_nurbs)
+    if (has_shape && alone)
         b.shape = read_shape(c.child("shape"), known.dim, param);
     if (c.has("refine"))
-        b.refine = read_refine(c.child("refine"), known.dim, param);
+        b.refine = read_refine(c.child("refine"), known.dim, param);  // multi-patch: checked per patch at build
+    if (has_patches && alone)
+        b.patches = read_patches(c.child("patches"), known.dim, b.refine);
+    if (has_file && alone) {
+        const Cursor g = c.child("geometry");
+        if (g.allow_only({"file"}))
+            if (const auto file = g.get<std::string>("file")) {
+                b.geometry_file = *file;
+                const std::filesystem::path p(*file);
+                const std::string path = p.is_absolute() || known.deck_dir.empty()
+                                             ? p.lexically_normal().string()
+                                             : (std::filesystem::path(known.deck_dir) / p).lexically_normal().string();
+                read_geometry_file(g.child("file"), path, b);
+            }
+    }
+    BodyParts parts;
+    parts.multi_patch = has_patches || has_file;
+    for (const PatchData& patch : b.patches)
+        parts.patches.push_back(patch.name);
+    if (parts.multi_patch && parts.patches.empty())
+        parts.patches.push_back("p0");  // keeps later messages well-formed after an error here
+    known.parts.emplace_back(b.name, std::move(parts));
+    if (c.has("surfaces"))
+        b.surfaces = read_surfaces(c.child("surfaces"), b.name, known);
     return b;
 }
 

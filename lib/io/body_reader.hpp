@@ -20,16 +20,39 @@
 
 namespace iga::io {
 
+/// The patch and surface names of a deformable body, what side references are checked against.
+struct BodyParts {
+    bool multi_patch = false;
+    std::vector<std::string> patches;
+    std::vector<std::string> surfaces;
+};
+
 /// Names defined by the sections read so far.
 struct KnownNames {
     int dim = 0;  ///< analysis.dimension once valid, else 0
+    std::string deck_dir;  ///< folder of the deck: relative file names are relative to it
     std::vector<std::string> materials;
     std::vector<std::pair<std::string, bool>> bodies;  ///< name, is rigid
+    std::vector<std::pair<std::string, BodyParts>> parts;  ///< deformable bodies only
     std::vector<std::string> pairs;
 
     const std::pair<std::string, bool>* find_body(const std::string& name) const;
+    const BodyParts* find_parts(const std::string& name) const;
     std::vector<std::string> body_names() const;
 };
+
+/// A side reference of a deformable body as read: a side, patch.side or a named surface.
+struct SideReference {
+    std::string patch;
+    Side side = Side::u0;
+    std::string surface;
+};
+
+/// Parses `text` as a side of deformable body `body`: a named surface of it, else
+/// `patch.side` (multi-patch bodies) or `side` (single-patch bodies). Records an
+/// issue at `at` (unknown patch, unknown surface, ...) and returns nullopt when it is none.
+std::optional<SideReference> side_reference(const Cursor& at, const std::string& text, const std::string& body,
+                                            const KnownNames& known);
 
 /// Keeps the item names of one list unique.
 class NameRegistry {
@@ -51,6 +74,10 @@ std::optional<std::string> read_name(const Cursor& item);
 std::vector<std::string> side_names(int dim);
 /// `text` as a side of a dim-D patch; records an issue at `at` if it is not one.
 std::optional<Side> side_from_text(const Cursor& at, const std::string& text, int dim);
+
+/// Reads the patches of a geometry file (G+Smo XML) into `body.patches`; the
+/// hook the G+Smo reader plugs into. Records an issue at `at` when it cannot.
+void read_geometry_file(const Cursor& at, const std::string& path, Body& body);
 
 /// One entry of `bodies` (known.dim must be valid); registers its name in `known`.
 Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names);

@@ -89,6 +89,14 @@ inline std::vector<int> shape_degrees(const Shape& shape)
     return {};
 }
 
+/// The text of a side reference as the deck writes it: `surface`, `patch.side` or `side`.
+inline std::string side_text(const std::string& patch, Side side, const std::string& surface)
+{
+    if (!surface.empty())
+        return surface;
+    return patch.empty() ? std::string(side_name(side)) : patch + "." + std::string(side_name(side));
+}
+
 /// Refinement, applied in this order: elevate, then uniform spans, then insert.
 struct Refine {
     std::vector<int> elevate;                ///< empty: none; else one per direction
@@ -114,18 +122,58 @@ struct RigidSphere {
     bool operator==(const RigidSphere&) const = default;
 };
 
+/// One patch of a multi-patch body (`patches:` in the deck, or imported from a
+/// geometry file). Its refine applies after the body's.
+struct PatchData {
+    std::string name;  ///< unique in the body, no '.'; imported patches are p<id>
+    NurbsData nurbs;
+    Refine refine;
+
+    bool operator==(const PatchData&) const = default;
+};
+
+/// `patch.side` of a multi-patch body (patch empty: the side of a single-patch body).
+struct PatchSideRef {
+    std::string patch;
+    Side side = Side::u0;
+
+    bool operator==(const PatchSideRef&) const = default;
+};
+
+/// A named set of patch sides (`surfaces: {name: [patch.side, ...]}`), each side once.
+struct NamedSurface {
+    std::string name;  ///< no '.', not a side name
+    std::vector<PatchSideRef> sides;
+
+    bool operator==(const NamedSurface&) const = default;
+};
+
 struct Body {
     std::string name;
     bool rigid = false;
-    // Deformable body: a material and exactly one of nurbs / shape.
+    // Deformable body: a material and exactly one of nurbs / shape / patches
+    // (`geometry: {file}` fills `patches` when read).
     std::string material;
     std::optional<NurbsData> nurbs;
     std::optional<Shape> shape;
-    Refine refine;
+    std::vector<PatchData> patches;  ///< a multi-patch body: its patches; empty otherwise
+    std::string geometry_file;       ///< `geometry: {file}` as written (relative to the deck folder); "" if inline
+    Refine refine;                   ///< applies to every patch
+    std::vector<NamedSurface> surfaces;
     // Rigid obstacle: exactly one of plane / sphere, and its motion.
     std::optional<RigidPlane> plane;
     std::optional<RigidSphere> sphere;   ///< `circle` in 2D, `sphere` in 3D
     std::vector<double> motion;          ///< rigid translation at load factor 1; empty: fixed
+
+    /// True when the body is given as a list of patches (inline or from a file).
+    bool multi_patch() const { return !patches.empty(); }
+    const NamedSurface* find_surface(const std::string& surface) const
+    {
+        for (const auto& s : surfaces)
+            if (s.name == surface)
+                return &s;
+        return nullptr;
+    }
 
     bool moves() const { return std::any_of(motion.begin(), motion.end(), [](double m) { return m != 0.0; }); }
 
@@ -140,25 +188,34 @@ struct Constraint {
     Side side = Side::u0;
     std::vector<bool> fixed;    ///< d entries: which components are prescribed
     std::vector<double> value;  ///< d entries: prescribed values at load factor 1 (0 for `fix` and free ones)
+    std::string patch;          ///< multi-patch body: the patch of `side` (`patch.side`)
+    std::string surface;        ///< a named surface of the body instead of patch/side
 
     bool operator==(const Constraint&) const = default;
 };
 
 struct Load {
     std::string body;
-    std::optional<Side> side;     ///< all kinds but gravity
+    std::optional<Side> side;     ///< all kinds but gravity (unset for a named surface)
     LoadKind kind = LoadKind::traction;
     std::vector<double> vector;   ///< traction, force, gravity: d components
     double pressure = 0.0;        ///< pressure: follower, along the inward normal
     double density = 0.0;         ///< gravity: mass per unit reference volume (area in 2D)
+    std::string patch;            ///< multi-patch body: the patch of `side`
+    std::string surface;          ///< a named surface of the body instead of patch/side
 
     bool operator==(const Load&) const = default;
 };
 
-/// One side of a contact pair: a deformable body's side, or a rigid body (no side).
+/// One side of a contact pair: a deformable body's side (`side`, `patch.side`, or
+/// a named surface), or a rigid body (no side, no surface).
 struct ContactSurface {
     std::string body;
     std::optional<Side> side;
+    std::string patch;    ///< multi-patch body: the patch of `side`
+    std::string surface;  ///< a named surface of the body (then side is unset)
+
+    bool deformable() const { return side.has_value() || !surface.empty(); }
 
     bool operator==(const ContactSurface&) const = default;
 };

@@ -122,7 +122,9 @@ std::optional<std::string> deformable_body(const Cursor& map, const KnownNames& 
     return name;
 }
 
-std::optional<Side> required_side(const Cursor& map, int dim)
+/// The required `side` of a constraint or load on deformable body `body` (a side,
+/// patch.side or a named surface; body "" when the body is unknown or rigid).
+std::optional<SideReference> required_side(const Cursor& map, const std::string& body, const KnownNames& known)
 {
     const Cursor c = map.child("side");
     if (!c.exists()) {
@@ -130,7 +132,11 @@ std::optional<Side> required_side(const Cursor& map, int dim)
         return std::nullopt;
     }
     const auto text = c.to_string();
-    return text ? side_from_text(c, *text, dim) : std::nullopt;
+    if (!text)
+        return std::nullopt;
+    if (body.empty())  // the body was reported; still check the word where it can only be a side
+        return parse_side(*text) ? std::optional(SideReference{"", *parse_side(*text), ""}) : std::nullopt;
+    return side_reference(c, *text, body, known);
 }
 
 std::vector<Constraint> read_constraints(const Cursor& root, const KnownNames& known)
@@ -147,7 +153,11 @@ std::vector<Constraint> read_constraints(const Cursor& root, const KnownNames& k
             continue;
         Constraint k;
         k.body = deformable_body(c, known, "constraints").value_or("");
-        k.side = required_side(c, dim).value_or(Side::u0);
+        if (const auto ref = required_side(c, k.body, known)) {
+            k.side = ref->side;
+            k.patch = ref->patch;
+            k.surface = ref->surface;
+        }
         const bool fix = c.has("fix");
         const bool displacement = c.has("displacement");
         k.fixed.assign(dim, false);
@@ -242,7 +252,12 @@ std::vector<Load> read_loads(const Cursor& root, const KnownNames& known)
         } else {
             if (c.has("density"))
                 c.child("density").fail("applies to gravity loads only");
-            l.side = required_side(c, dim);
+            if (const auto ref = required_side(c, l.body, known)) {
+                if (ref->surface.empty())
+                    l.side = ref->side;
+                l.patch = ref->patch;
+                l.surface = ref->surface;
+            }
         }
         if (l.kind == LoadKind::pressure)
             l.pressure = value.to_number().value_or(0.0);
@@ -253,7 +268,8 @@ std::vector<Load> read_loads(const Cursor& root, const KnownNames& known)
     return out;
 }
 
-/// One entry of `between`: "body.side" of a deformable body, or a rigid body's name.
+/// One entry of `between`: "body.side", "body.patch.side" or "body.surface" of a
+/// deformable body, or a rigid body's name.
 std::optional<ContactSurface> read_surface(const Cursor& c, const KnownNames& known)
 {
     const auto text = c.to_string();
@@ -266,7 +282,7 @@ std::optional<ContactSurface> read_surface(const Cursor& c, const KnownNames& kn
         c.fail("a deformable body's surface needs a side, e.g. '" + *text + ".v0' " + sides);
         return std::nullopt;
     }
-    const auto dot = text->rfind('.');
+    const auto dot = text->find('.');
     const std::string name = text->substr(0, dot);
     const auto* body = known.find_body(name);
     if (!body) {
@@ -277,8 +293,15 @@ std::optional<ContactSurface> read_surface(const Cursor& c, const KnownNames& kn
         c.fail("'" + name + "' is a rigid body: it has no sides, write just '" + name + "'");
         return std::nullopt;
     }
-    const auto side = side_from_text(c, text->substr(dot + 1), known.dim);
-    return side ? std::optional(ContactSurface{name, side}) : std::nullopt;
+    if (dot == std::string::npos)
+        return std::nullopt;  // unreachable: a body name alone was handled above
+    const auto ref = side_reference(c, text->substr(dot + 1), name, known);
+    if (!ref)
+        return std::nullopt;
+    ContactSurface s{name, std::nullopt, ref->patch, ref->surface};
+    if (ref->surface.empty())
+        s.side = ref->side;
+    return s;
 }
 
 /// contact.<pair>.penalty: a number > 0, or `auto`.
@@ -350,7 +373,7 @@ std::vector<ContactPair> read_contact(const Cursor& root, KnownNames& known)
             const auto first = read_surface(between.item(0), known);
             const auto second = read_surface(between.item(1), known);
             if (first && second) {
-                if (!first->side && !second->side)
+                if (!first->deformable() && !second->deformable())
                     between.fail("at least one surface must be the side of a deformable body");
                 else if (*first == *second)
                     between.fail("the two surfaces are the same side");
@@ -480,6 +503,7 @@ Deck read_tree(const Cursor& root, const std::string& file_label, const std::str
         root.child("format").fail("unsupported deck format: this program reads format 1");
     deck.title = root.get_or<std::string>("title", "");
     KnownNames known;
+    known.deck_dir = deck_dir;
     deck.analysis = read_analysis(root, known);
     deck.materials = read_materials(root, known);
     if (known.dim == 0)

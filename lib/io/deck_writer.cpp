@@ -58,7 +58,44 @@ void integers(YAML::Emitter& out, const std::vector<int>& values)
 
 std::string surface(const ContactSurface& s)
 {
-    return s.side ? s.body + "." + word(*s.side) : s.body;
+    return s.deformable() ? s.body + "." + side_text(s.patch, s.side.value_or(Side::u0), s.surface) : s.body;
+}
+
+void write_nurbs(YAML::Emitter& out, const NurbsData& nurbs)
+{
+    out << YAML::BeginMap;
+    out << YAML::Key << "degrees" << YAML::Value;
+    integers(out, nurbs.degrees);
+    out << YAML::Key << "knots" << YAML::Value << YAML::BeginSeq;
+    for (const auto& u : nurbs.knots)
+        numbers(out, u);
+    out << YAML::EndSeq;
+    out << YAML::Key << "control_points" << YAML::Value << YAML::BeginSeq;
+    for (const auto& p : nurbs.control_points)
+        numbers(out, p);
+    out << YAML::EndSeq << YAML::EndMap;
+}
+
+void write_refine(YAML::Emitter& out, const Refine& r)
+{
+    if (r.elevate.empty() && r.spans.empty() && r.insert.empty())
+        return;
+    out << YAML::Key << "refine" << YAML::Value << YAML::BeginMap;
+    if (!r.elevate.empty()) {
+        out << YAML::Key << "elevate" << YAML::Value;
+        integers(out, r.elevate);
+    }
+    if (!r.spans.empty()) {
+        out << YAML::Key << "spans" << YAML::Value;
+        integers(out, r.spans);
+    }
+    if (!r.insert.empty()) {
+        out << YAML::Key << "insert" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+        for (const auto& values : r.insert)
+            numbers(out, values);
+        out << YAML::EndSeq;
+    }
+    out << YAML::EndMap;
 }
 
 void write_body(YAML::Emitter& out, const Body& b)
@@ -91,17 +128,22 @@ void write_body(YAML::Emitter& out, const Body& b)
     }
     out << YAML::Key << "material" << YAML::Value << b.material;
     if (b.nurbs) {
-        out << YAML::Key << "nurbs" << YAML::Value << YAML::BeginMap;
-        out << YAML::Key << "degrees" << YAML::Value;
-        integers(out, b.nurbs->degrees);
-        out << YAML::Key << "knots" << YAML::Value << YAML::BeginSeq;
-        for (const auto& u : b.nurbs->knots)
-            numbers(out, u);
+        out << YAML::Key << "nurbs" << YAML::Value;
+        write_nurbs(out, *b.nurbs);
+    }
+    if (!b.geometry_file.empty()) {
+        out << YAML::Key << "geometry" << YAML::Value << YAML::Flow << YAML::BeginMap;
+        out << YAML::Key << "file" << YAML::Value << b.geometry_file << YAML::EndMap;
+    } else if (b.multi_patch()) {
+        out << YAML::Key << "patches" << YAML::Value << YAML::BeginSeq;
+        for (const PatchData& patch : b.patches) {
+            out << YAML::BeginMap << YAML::Key << "name" << YAML::Value << patch.name;
+            out << YAML::Key << "nurbs" << YAML::Value;
+            write_nurbs(out, patch.nurbs);
+            write_refine(out, patch.refine);
+            out << YAML::EndMap;
+        }
         out << YAML::EndSeq;
-        out << YAML::Key << "control_points" << YAML::Value << YAML::BeginSeq;
-        for (const auto& p : b.nurbs->control_points)
-            numbers(out, p);
-        out << YAML::EndSeq << YAML::EndMap;
     }
     if (b.shape) {
         const Shape& s = *b.shape;
@@ -121,21 +163,13 @@ void write_body(YAML::Emitter& out, const Body& b)
             out << YAML::Key << "extrude" << YAML::Value << format_number(*s.extrude);
         out << YAML::EndMap;
     }
-    const Refine& r = b.refine;
-    if (!r.elevate.empty() || !r.spans.empty() || !r.insert.empty()) {
-        out << YAML::Key << "refine" << YAML::Value << YAML::BeginMap;
-        if (!r.elevate.empty()) {
-            out << YAML::Key << "elevate" << YAML::Value;
-            integers(out, r.elevate);
-        }
-        if (!r.spans.empty()) {
-            out << YAML::Key << "spans" << YAML::Value;
-            integers(out, r.spans);
-        }
-        if (!r.insert.empty()) {
-            out << YAML::Key << "insert" << YAML::Value << YAML::Flow << YAML::BeginSeq;
-            for (const auto& values : r.insert)
-                numbers(out, values);
+    write_refine(out, b.refine);
+    if (!b.surfaces.empty()) {
+        out << YAML::Key << "surfaces" << YAML::Value << YAML::BeginMap;
+        for (const NamedSurface& surface : b.surfaces) {
+            out << YAML::Key << surface.name << YAML::Value << YAML::Flow << YAML::BeginSeq;
+            for (const PatchSideRef& side : surface.sides)
+                out << side_text(side.patch, side.side, "");
             out << YAML::EndSeq;
         }
         out << YAML::EndMap;
@@ -147,7 +181,7 @@ void write_constraint(YAML::Emitter& out, const Constraint& k, int dim)
 {
     out << YAML::Flow << YAML::BeginMap;
     out << YAML::Key << "body" << YAML::Value << k.body;
-    out << YAML::Key << "side" << YAML::Value << word(k.side);
+    out << YAML::Key << "side" << YAML::Value << side_text(k.patch, k.side, k.surface);
     // Zero values are written as `fix`, the others as `displacement` with ~ for
     // the components it leaves to `fix` or free: reads back to the same constraint.
     constexpr const char* components[] = {"x", "y", "z"};
@@ -181,8 +215,8 @@ void write_load(YAML::Emitter& out, const Load& l)
 {
     out << YAML::Flow << YAML::BeginMap;
     out << YAML::Key << "body" << YAML::Value << l.body;
-    if (l.side)
-        out << YAML::Key << "side" << YAML::Value << word(*l.side);
+    if (l.side || !l.surface.empty())
+        out << YAML::Key << "side" << YAML::Value << side_text(l.patch, l.side.value_or(Side::u0), l.surface);
     switch (l.kind) {
     case LoadKind::traction: out << YAML::Key << "traction" << YAML::Value; break;
     case LoadKind::force: out << YAML::Key << "force" << YAML::Value; break;

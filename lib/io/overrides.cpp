@@ -49,7 +49,12 @@ Schema make_deck_schema()
                              {"material", v},
                              {"nurbs", map({{"degrees", v}, {"knots", v}, {"control_points", v}})},
                              {"shape", map({{"type", v}, {"center", v}, {"radius", v}, {"corner", v}, {"size", v}, {"extrude", v}})},
+                             {"patches", list(map({{"name", v},
+                                                   {"nurbs", map({{"degrees", v}, {"knots", v}, {"control_points", v}})},
+                                                   {"refine", map({{"elevate", v}, {"spans", v}, {"insert", v}})}}))},
+                             {"geometry", map({{"file", v}})},
                              {"refine", map({{"elevate", v}, {"spans", v}, {"insert", v}})},
+                             {"surfaces", v},  // a map of user-chosen names: set as a whole
                              {"rigid", map({{"plane", map({{"point", v}, {"normal", v}})},
                                             {"circle", map({{"center", v}, {"radius", v}})},
                                             {"sphere", map({{"center", v}, {"radius", v}})},

@@ -19,9 +19,20 @@
 
 namespace iga::io {
 
+/// One patch of a multi-patch body: /bodies/<body>/patches/<name>/.
+struct PatchGeometry {
+    std::string name;
+    std::vector<int> degrees;
+    std::vector<std::vector<double>> knots;
+    RowMatrix control_points;  ///< n_cp x (d+1)
+};
+
 /// The analysed (refined) geometry of one deformable body: /bodies/<name>/.
+/// A multi-patch body lists its patches (and leaves degrees, knots and
+/// control_points empty).
 struct BodyGeometry {
     std::string name;
+    std::vector<PatchGeometry> patches;      ///< multi-patch bodies only
     std::vector<int> degrees;                ///< one per parametric direction
     std::vector<std::vector<double>> knots;  ///< knots[0] = u, knots[1] = v (, knots[2] = w)
     RowMatrix control_points;                ///< n_cp x (d+1): x, y[, z], w
@@ -103,7 +114,9 @@ struct StepData {
     int cutbacks = 0;
     double wall_s = 0.0;
     int uzawa_updates = -1;  ///< augmented-Lagrangian updates of the increment; written when >= 0 (contact)
-    std::vector<std::pair<std::string, RowMatrix>> displacement;  ///< (body, n_cp x d) per deformable body
+    std::vector<std::pair<std::string, RowMatrix>> displacement;  ///< (body, n_cp x d) per single-patch body
+    /// Multi-patch bodies: (body, [(patch, n_cp of the patch x d)]) -> displacement/<body>/<patch>.
+    std::vector<std::pair<std::string, std::vector<std::pair<std::string, RowMatrix>>>> patch_displacement;
     std::vector<ContactPairResult> contact;
     /// Displacements at the tessellation points (output.paraview): steps/<kkkk>/paraview/<body>/displacement.
     std::vector<std::pair<std::string, RowMatrix>> tessellation_displacement;

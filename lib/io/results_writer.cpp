@@ -61,20 +61,36 @@ std::string folder_problem(const std::string& path)
     return {};
 }
 
-void write_body(hid_t bodies, const BodyGeometry& body)
+/// degrees, knots/u, knots/v(, knots/w), control_points of one patch into `group`.
+void write_patch(hid_t group, const std::string& name, const std::vector<int>& degrees,
+                 const std::vector<std::vector<double>>& knot_vectors, const RowMatrix& control_points)
 {
-    const std::size_t n_directions = body.degrees.size();
-    IGA_CHECK(!body.name.empty(), "a body needs a name");
-    IGA_CHECK(n_directions >= 1 && n_directions <= 3 && body.knots.size() == n_directions,
-              "body " + body.name + ": need one knot vector per degree (1 to 3)");
-    h5::Handle group = h5::create_group(bodies, body.name);
-    h5::write_dataset(group.id(), "degrees", std::span<const int>(body.degrees));
-    h5::Handle knots = h5::create_group(group.id(), "knots");
+    const std::size_t n_directions = degrees.size();
+    IGA_CHECK(n_directions >= 1 && n_directions <= 3 && knot_vectors.size() == n_directions,
+              "body " + name + ": need one knot vector per degree (1 to 3)");
+    h5::write_dataset(group, "degrees", std::span<const int>(degrees));
+    h5::Handle knots = h5::create_group(group, "knots");
     constexpr const char* direction_names[] = {"u", "v", "w"};
     for (std::size_t k = 0; k < n_directions; ++k)
-        h5::write_dataset(knots.id(), direction_names[k], std::span<const double>(body.knots[k]),
-                          {static_cast<hsize_t>(body.knots[k].size())});
-    h5::write_dataset(group.id(), "control_points", body.control_points);
+        h5::write_dataset(knots.id(), direction_names[k], std::span<const double>(knot_vectors[k]),
+                          {static_cast<hsize_t>(knot_vectors[k].size())});
+    h5::write_dataset(group, "control_points", control_points);
+}
+
+void write_body(hid_t bodies, const BodyGeometry& body)
+{
+    IGA_CHECK(!body.name.empty(), "a body needs a name");
+    h5::Handle group = h5::create_group(bodies, body.name);
+    if (body.patches.empty()) {
+        write_patch(group.id(), body.name, body.degrees, body.knots, body.control_points);
+    } else {
+        h5::Handle patches = h5::create_group(group.id(), "patches");
+        for (const PatchGeometry& patch : body.patches) {
+            h5::Handle patch_group = h5::create_group(patches.id(), patch.name);
+            write_patch(patch_group.id(), body.name + "." + patch.name, patch.degrees, patch.knots,
+                        patch.control_points);
+        }
+    }
     if (!body.side_names.empty()) {
         std::vector<std::string> table;
         for (const auto& [name, side] : body.side_names) {
@@ -323,6 +339,11 @@ void ResultsWriter::write_step(const StepData& step)
         h5::Handle displacement = h5::create_group(group.id(), "displacement");
         for (const auto& [body, values] : step.displacement)
             h5::write_dataset(displacement.id(), body, values);
+        for (const auto& [body, patches] : step.patch_displacement) {
+            h5::Handle body_group = h5::create_group(displacement.id(), body);
+            for (const auto& [patch, values] : patches)
+                h5::write_dataset(body_group.id(), patch, values);
+        }
 
         h5::Handle contact = h5::create_group(group.id(), "contact");
         for (const ContactPairResult& pair : step.contact) {

@@ -230,6 +230,17 @@ bool Cursor::expect_list() const
     return false;
 }
 
+std::vector<std::string> Cursor::keys() const
+{
+    std::vector<std::string> out;
+    if (!is_map())
+        return out;
+    for (auto it = node_.begin(); it != node_.end(); ++it)
+        if (it->first.IsScalar())
+            out.push_back(it->first.Scalar());
+    return out;
+}
+
 bool Cursor::allow_only(std::initializer_list<std::string_view> keys) const
 {
     if (!expect_map())

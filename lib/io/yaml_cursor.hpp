@@ -111,6 +111,8 @@ public:
     /// Checks that this is a map whose keys are all in `keys`: records an issue
     /// for each unknown key (with "did you mean") and each duplicate key.
     bool allow_only(std::initializer_list<std::string_view> keys) const;
+    /// The scalar keys of this map, in file order (empty for anything else).
+    std::vector<std::string> keys() const;
 
     // This node converted; on failure an issue is recorded here and nullopt returned.
     // Numbers must be finite. Integers may be written 3 or 3.0.

@@ -36,7 +36,7 @@ TEST(Fields, LinearDisplacementGivesConstantStressAlsoAtTheCollapsedCorner)
 
     Eigen::Matrix2d G;
     G << 1e-3, 4e-4, -2e-4, -5e-4;
-    const RowMatrix X = body.patch.control_points();
+    const RowMatrix X = body.node_points;
     const RowMatrix u = X * G.transpose();  // rows u_A = G X_A
 
     const mechanics::Lame lame = mechanics::lame_parameters(body.material);
@@ -54,7 +54,7 @@ TEST(Fields, LinearDisplacementGivesConstantStressAlsoAtTheCollapsedCorner)
     for (Index k = 0; k < r.fields.stress.rows(); ++k) {
         const VecN& xi = t.parameters[static_cast<std::size_t>(k)];
         try {
-            mechanics::cauchy_stress(body.patch, body.material, mechanics::Kinematics::small, u, xi);
+            mechanics::cauchy_stress(body.patches.at(0).patch, body.material, mechanics::Kinematics::small, u, xi);
         } catch (const mechanics::NonPositiveJacobian&) {
             ++singular_points;
         }

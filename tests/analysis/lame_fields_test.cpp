@@ -44,7 +44,7 @@ TEST(LameFields, StressAtTessellationPointsMatchesTheClosedForm)
     ASSERT_EQ(scene.bodies.size(), 1u);
     const analysis::BodyModel& body = scene.bodies[0];
     const RowMatrix u = Results(file).matrix("results/displacement/tube");
-    ASSERT_EQ(u.rows(), body.patch.n_control_points());
+    ASSERT_EQ(u.rows(), body.n_nodes);
 
     const analysis::TessellatedBody tessellation = analysis::tessellate(body, tessellation_cells_per_span);
     const analysis::FieldsResult result = analysis::body_fields(body, tessellation, scene.kinematics, u);

@@ -133,10 +133,10 @@ double patch_residual(const analysis::Scene& scene, int n_per_direction)
 {
     const analysis::BodyModel& body = scene.bodies.at(0);
     const assembly::DofMap& dofs = *scene.dofs;
-    const RowMatrix& P = body.patch.control_points();
+    const RowMatrix& P = body.patches.at(0).patch.control_points();
     Vector r = -scene.f_ext;
-    for (const nurbs::Element& element : body.patch.elements()) {
-        const mechanics::ElementGeometry geometry = mechanics::element_geometry(body.patch, element, n_per_direction);
+    for (const nurbs::Element& element : body.patches.at(0).patch.elements()) {
+        const mechanics::ElementGeometry geometry = mechanics::element_geometry(body.patches.at(0).patch, element, n_per_direction);
         Matrix u_local(geometry.n_local(), 2);
         for (int a = 0; a < geometry.n_local(); ++a) {
             const int A = geometry.indices[static_cast<std::size_t>(a)];
@@ -156,7 +156,7 @@ TEST(PatchTest, RationalPatchIsExactWithExactIntegration)
 {
     const analysis::Scene scene = analysis::build_scene(io::read_deck(patch_deck()));
     ASSERT_EQ(scene.bodies.size(), 1u);
-    const Vector& w = scene.bodies[0].patch.weights();
+    const Vector& w = scene.bodies[0].patches.at(0).patch.weights();
     ASSERT_GT((w.array() - 1.0).abs().maxCoeff(), 0.1) << "the deck must stay rational";
 
     // 12 points per direction integrate these mildly rational integrands (weights

@@ -259,7 +259,11 @@ TEST(ContactPair, UnsupportedInputsAreClearErrors)
     n3 << 0, 0, 1;
     EXPECT_THROW(ContactPair({.penalty = 1e3}, s.disc, RigidPlane::make(p3, n3)), Error);
     // A collapsed side (the half disc's u0) cannot carry contact.
-    EXPECT_THROW(ContactPair({.penalty = 1e3}, DeformableSide{nurbs::extract_side(test::refined_half_disc(2), Side::u0), 1}, floor), Error);
+    SidePiece collapsed{nurbs::extract_side(test::refined_half_disc(2), Side::u0), 1, {}};
+    for (int a = 0; a < collapsed.side.patch.n_control_points(); ++a)
+        collapsed.surface_index.push_back(a);
+    const int n_collapsed = collapsed.side.patch.n_control_points();
+    EXPECT_THROW(ContactPair({.penalty = 1e3}, DeformableSide{{collapsed}, n_collapsed}, floor), Error);
 }
 
 }  // namespace

@@ -85,8 +85,8 @@ TEST(Orientation, CurvesAreClearErrorsAndCubeFacesPointOutward)
         const DeformableSide face = DeformableSide::make(cube, s);
         VecN mid(2);
         mid << 0.5, 0.5;
-        const nurbs::PointDerivatives p = nurbs::evaluate(face.side.patch, mid, 1);
-        const VecN n = face.outward_sign * boundary::raw_normal(p.dx).normalized();
+        const nurbs::PointDerivatives p = nurbs::evaluate(face.pieces[0].side.patch, mid, 1);
+        const VecN n = face.pieces[0].outward_sign * boundary::raw_normal(p.dx).normalized();
         VecN expected = VecN::Zero(3);
         expected(side_direction(s)) = side_at_end(s) ? 1.0 : -1.0;
         EXPECT_TRUE(test::near((n - expected).norm(), 0.0, normal_tolerance)) << side_name(s);

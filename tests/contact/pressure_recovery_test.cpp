@@ -55,7 +55,7 @@ TEST(PressureRecovery, UniformPressureIsRecoveredExactly)
     for (Index g = 0; g < ev.carriers[0].pressure.size(); ++g)
         ASSERT_TRUE(test::near_rel(ev.carriers[0].pressure(g), p, sum_tolerance));
 
-    const RecoveredPressure r = recover_pressure(top.side.patch, u, ev.carriers[0], 4);
+    const RecoveredPressure r = recover_pressure(top.pieces[0].side.patch, u, ev.carriers[0], 4);
     // A weighted average of equal values, and a partition of unity of them.
     constexpr double uniform_tolerance = 1e-12;
     for (Index A = 0; A < r.control_point_pressure.size(); ++A)
@@ -97,7 +97,7 @@ TEST(PressureRecovery, TotalForceIsPreservedAndPressuresArePositive)
     ASSERT_TRUE(s.ev.ok);
     ASSERT_GE(s.ev.n_active, 3);
     const CarrierResult& c = s.ev.carriers[0];
-    const nurbs::Patch& side = s.disc.side.patch;
+    const nurbs::Patch& side = s.disc.pieces[0].side.patch;
     const RecoveredPressure r = recover_pressure(side, s.u, c, 8);
 
     // sum_A p_A sum_g R_A(eta_g) W_g = sum_g p_g W_g, with R_A re-evaluated here.

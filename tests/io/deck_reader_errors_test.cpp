@@ -322,10 +322,10 @@ TEST(DeckReaderErrors, BuiltInShapes)
                                         "quarter_disc (it takes center and radius)",
                                         "hertz.yaml:11:12: error: bodies.block.shape: missing required key 'center'"}));
     EXPECT_EQ(issue_of(replaced(minimal_deck, "    shape: {type: rectangle, corner: [0, 0], size: [2, 1]}\n", "")),
-              "hertz.yaml:9:5: error: bodies.block: needs 'nurbs' or 'shape' (or 'rigid' for an obstacle)");
+              "hertz.yaml:9:5: error: bodies.block: needs 'nurbs', 'shape', 'patches' or 'geometry' (or 'rigid' for an obstacle)");
     EXPECT_EQ(issue_of(replaced(cube_deck_3d, "refine: {spans: [2, 2, 2]}",
                                 "shape: {type: rectangle, corner: [0, 0], size: [1, 1]}")),
-              "hertz.yaml:6:5: error: bodies.cube: takes 'nurbs' or 'shape', not both");
+              "hertz.yaml:6:5: error: bodies.cube: takes one of 'nurbs', 'shape', 'patches' or 'geometry', not several");
 }
 
 // Built-in shapes in 3D decks and shapes of the wrong dimension: one row per
