@@ -315,6 +315,24 @@ TEST(AugmentedLagrangian, FineGradedHertzAtPenalty1e4MatchesPenalty1e8)
     EXPECT_TRUE(near(al.l2, stiff.l2, same_curve)) << al.l2 << " vs " << stiff.l2;
 }
 
+// The half cylinder of two patches glued at x = 0 (inputs/hertz_two_patches.yaml): a
+// C0 patch corner right under the peak, the contact surface spanning both patches
+// (one set of multipliers over both pieces). Penalty 1e8 measures peak -0.10 %,
+// half-width +1.08 %, L2 0.71 % there.
+TEST(AugmentedLagrangian, TwoPatchHertzAtPenalty1e4ReachesThePenalty1e8Accuracy)
+{
+    const auto file = scratch_dir("al_hertz_two_patches") / "hertz.h5";
+    const analysis::RunOutcome outcome =
+        run_deck(source_path("inputs/hertz_two_patches.yaml"),
+                 {"contact.cyl_floor.enforcement=augmented_lagrangian", "contact.cyl_floor.penalty=1.0e4"}, file);
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    const Results r(file);
+    expect_within_bounds({r.number(hertz_reference, "peak"), r.number(hertz_reference, "half_width"),
+                          r.number(hertz_reference, "l2")});
+    EXPECT_GT(r.number("results", "uzawa_updates"), 0);
+    EXPECT_FALSE(r.reals("results/contact/cyl_floor/cylinder.arc/gauss_points/multiplier").empty());
+}
+
 // ---- penalty: auto ----------------------------------------------------------
 
 TEST(PenaltyAuto, HertzReportsTheRuleAndMeetsTheBounds)
