@@ -245,6 +245,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
                                            record.report.iterations);
             if (record.cutbacks > 0)
                 line += fmt::format(", {} cutback(s)", record.cutbacks);
+            if (record.outer_updates > 0)
+                line += fmt::format(", {} Uzawa update(s)", record.outer_updates);
             if (scene.has_contact())
                 line += fmt::format(", {} active Gauss points", system.last_active());
             options.progress(line);
