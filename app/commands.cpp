@@ -189,6 +189,7 @@ int check_command(int argc, char** argv)
             std::cout << fmt::format("# contact pair {}: penalty auto = {:.4g} ({:g} E'/h, E' = {:.4g}, h = {:.4g})\n",
                                      pair.name, pair.initial_penalty, analysis::auto_penalty_factor,
                                      pair.contact_modulus, pair.element_size);
+    std::cout.flush();  // the listing before the verdict, also when both streams go to one pipe
     std::cerr << deck_path << ": ok\n";
     return exit_ok;
 }

@@ -1,5 +1,6 @@
 #include "io/body_reader.hpp"
 
+#include "io/gismo_xml.hpp"
 #include "io/knot_checks.hpp"
 
 #include <fmt/format.h>
@@ -82,8 +83,8 @@ std::optional<SideReference> side_reference(const Cursor& at, const std::string&
                                             const KnownNames& known)
 {
     const BodyParts* parts = known.find_parts(body);
-    if (!parts)
-        return std::nullopt;  // an unknown body is reported where it is named
+    if (!parts || parts->unknown)
+        return std::nullopt;  // an unknown body is reported where it is named, an unread file where it is given
     if (std::find(parts->surfaces.begin(), parts->surfaces.end(), text) != parts->surfaces.end())
         return SideReference{"", Side::u0, text};
     const auto dot = text.find('.');
@@ -117,11 +118,15 @@ std::optional<SideReference> side_reference(const Cursor& at, const std::string&
     return side ? std::optional(SideReference{patch, *side, ""}) : std::nullopt;
 }
 
-void read_geometry_file(const Cursor& at, const std::string& path, Body& body)
+void read_geometry_file(const Cursor& at, const std::string& path, int dim, Body& body)
 {
-    (void)path;
-    (void)body;
-    at.fail("geometry files are not supported yet (give the patches inline with 'patches:')");
+    try {
+        for (ImportedPatch& imported : read_gismo_xml(path, dim))
+            body.patches.push_back(PatchData{std::move(imported.name), std::move(imported.nurbs), {}});
+    } catch (const DeckError& e) {
+        // The file's own messages carry its path and line; the deck location says who asked for it.
+        at.fail(std::string("cannot read the G+Smo XML geometry:\n") + e.what());
+    }
 }
 
 namespace {
@@ -567,11 +572,12 @@ Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names)
                 const std::string path = p.is_absolute() || known.deck_dir.empty()
                                              ? p.lexically_normal().string()
                                              : (std::filesystem::path(known.deck_dir) / p).lexically_normal().string();
-                read_geometry_file(g.child("file"), path, b);
+                read_geometry_file(g.child("file"), path, known.dim, b);
             }
     }
     BodyParts parts;
     parts.multi_patch = has_patches || has_file;
+    parts.unknown = has_file && b.patches.empty();
     for (const PatchData& patch : b.patches)
         parts.patches.push_back(patch.name);
     if (parts.multi_patch && parts.patches.empty())

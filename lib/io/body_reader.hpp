@@ -23,6 +23,7 @@ namespace iga::io {
 /// The patch and surface names of a deformable body, what side references are checked against.
 struct BodyParts {
     bool multi_patch = false;
+    bool unknown = false;  ///< its geometry file could not be read: side references are not checked
     std::vector<std::string> patches;
     std::vector<std::string> surfaces;
 };
@@ -75,9 +76,10 @@ std::vector<std::string> side_names(int dim);
 /// `text` as a side of a dim-D patch; records an issue at `at` if it is not one.
 std::optional<Side> side_from_text(const Cursor& at, const std::string& text, int dim);
 
-/// Reads the patches of a geometry file (G+Smo XML) into `body.patches`; the
-/// hook the G+Smo reader plugs into. Records an issue at `at` when it cannot.
-void read_geometry_file(const Cursor& at, const std::string& path, Body& body);
+/// Reads the patches of a G+Smo XML geometry file (io/gismo_xml.hpp) of a dim-D
+/// deck into `body.patches`, named p<id>; records an issue at `at` (with the
+/// file's own located messages) when it cannot.
+void read_geometry_file(const Cursor& at, const std::string& path, int dim, Body& body);
 
 /// One entry of `bodies` (known.dim must be valid); registers its name in `known`.
 Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names);

@@ -217,3 +217,59 @@ TEST(MultiPatch, UniformStrainOverEightBoxesIsExact3D)
 
 }  // namespace
 }  // namespace iga::test
+
+namespace iga::test {
+namespace {
+
+// The contact patch test on a body read from G+Smo XML: inputs/four_squares.xml
+// (four bilinear patches forming the unit square, the bottom y = 0 on p2.v0 and
+// p3.v0), degree raised and refined at body level, its top pushed down by delta
+// onto a frictionless rigid floor, its left side held in x (the exact solution is
+// symmetric about x = 0 there). Uniform uniaxial stress: with the penalty gap
+// g = p / eps, p = E' (delta - g) / H, so p = E' delta / (H (1 + E' / (eps H))),
+// E' = E / (1 - nu^2) (plane strain, sigma_xx = 0). Every Gauss point of both
+// bottom patches must carry it.
+TEST(MultiPatch, FourSquaresFromGismoXmlCarryTheExactUniformPressureOnBothBottomPatches)
+{
+    const auto dir = scratch_dir("multipatch_four_squares");
+    std::filesystem::copy_file(source_path("inputs/four_squares.xml"), dir / "four_squares.xml");
+    write_text(dir / "deck.yaml", R"(format: 1
+analysis: {dimension: 2, plane: strain}
+materials: [{name: m, E: 100.0, nu: 0.25}]
+bodies:
+  - name: block
+    material: m
+    geometry: {file: four_squares.xml}
+    refine: {elevate: [1, 1], spans: [3, 2]}
+    surfaces: {bottom: [p2.v0, p3.v0], top: [p0.v1, p1.v1], left: [p1.u0, p2.u0]}
+  - name: floor
+    rigid: {plane: {point: [0.0, 0.0], normal: [0.0, 1.0]}}
+constraints:
+  - {body: block, side: top, displacement: [~, -0.01]}
+  - {body: block, side: left, fix: [x]}
+contact:
+  - {name: c, between: [block.bottom, floor], penalty: 1.0e5}
+)");
+    const auto file = dir / "four_squares.h5";
+    const analysis::RunOutcome outcome = run_deck((dir / "deck.yaml").string(), {}, file);
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+
+    const double E_plane = 100.0 / (1.0 - 0.25 * 0.25), delta = 0.01, eps = 1.0e5, H = 1.0;
+    const double p_exact = E_plane * delta / H / (1.0 + E_plane / (eps * H));
+    constexpr double exact = 1e-6;  // the issue's bound; the discrete solution is exact to round-off
+    const Results r(file);
+    const std::string side = "results/contact/c/block.bottom/gauss_points/";
+    const RowMatrix p = r.matrix(side + "pressure");
+    const RowMatrix X = r.matrix(side + "reference_coordinates");
+    ASSERT_GT(p.rows(), 0);
+    int left = 0, right = 0;
+    for (Index g = 0; g < p.rows(); ++g) {
+        EXPECT_TRUE(near_rel(p(g, 0), p_exact, exact)) << "Gauss point at x = " << X(g, 0);
+        (X(g, 0) < 0.5 ? left : right) += 1;
+    }
+    EXPECT_GT(left, 0) << "Gauss points on p2";
+    EXPECT_GT(right, 0) << "Gauss points on p3";
+}
+
+}  // namespace
+}  // namespace iga::test
