@@ -1,6 +1,7 @@
 #include "commands.hpp"
 
 #include "analysis/run.hpp"
+#include "analysis/contact_penalty.hpp"
 #include "analysis/describe.hpp"
 #include "analysis/scene.hpp"
 #include "analysis/size_estimate.hpp"
@@ -183,6 +184,11 @@ int check_command(int argc, char** argv)
         if (pair.obstacle >= 0)
             std::cout << fmt::format("# contact force on the obstacle {} reported for pair {}\n",
                                      pair.label[static_cast<std::size_t>(pair.obstacle)], pair.name);
+    for (const analysis::PairModel& pair : scene.pairs)
+        if (pair.penalty_auto)
+            std::cout << fmt::format("# contact pair {}: penalty auto = {:.4g} ({:g} E'/h, E' = {:.4g}, h = {:.4g})\n",
+                                     pair.name, pair.initial_penalty, analysis::auto_penalty_factor,
+                                     pair.contact_modulus, pair.element_size);
     std::cout.flush();  // the listing before the verdict, also when both streams go to one pipe
     std::cerr << deck_path << ": ok\n";
     return exit_ok;

@@ -187,6 +187,17 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
         result.attributes["max_penetration"] = state.max_penetration;
         result.attributes["candidates"] = static_cast<double>(state.candidates);
         result.attributes["projections"] = static_cast<double>(state.projections);
+        // The penalty in effect (the augmented Lagrangian's safeguard may have raised it) and where it came from.
+        result.attributes["penalty"] = model.pair.settings().penalty;
+        result.attributes["penalty_initial"] = model.initial_penalty;
+        result.text_attributes["penalty_rule"] = model.penalty_auto ? "auto" : "value";
+        result.text_attributes["enforcement"] = model.augmented ? "augmented_lagrangian" : "penalty";
+        if (model.augmented)
+            result.attributes["gap_tolerance"] = model.gap_tolerance_used;
+        if (model.penalty_auto) {  // the inputs of the rule eps = c E'/h
+            result.attributes["penalty_modulus"] = model.contact_modulus;
+            result.attributes["penalty_element_size"] = model.element_size;
+        }
         if (model.obstacle >= 0) {
             // The body's contact force is -r_c; the obstacle feels the opposite, +r_c.
             const int d = scene.dim;
@@ -208,6 +219,8 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
             r.gauss_points.gap = carrier.gap;
             r.gauss_points.pressure = carrier.pressure;
             r.gauss_points.weight = carrier.weight;
+            if (model.augmented)
+                r.gauss_points.multiplier = carrier.multiplier;
             r.postprocessed.control_point_pressure = recovered.control_point_pressure;
             r.postprocessed.coordinates = recovered.coordinates;
             r.postprocessed.reference_coordinates = recovered.reference_coordinates;

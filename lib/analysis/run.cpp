@@ -1,10 +1,12 @@
 #include "analysis/run.hpp"
 
+#include "analysis/contact_penalty.hpp"
 #include "analysis/fields.hpp"
 #include "analysis/output.hpp"
 #include "analysis/scene.hpp"
 #include "analysis/system.hpp"
 #include "analysis/tessellation.hpp"
+#include "analysis/uzawa.hpp"
 #include "analysis/warnings.hpp"
 #include "assembly/threads.hpp"
 #include "io/locate.hpp"
@@ -42,6 +44,7 @@ io::HistoryRow history_row(const io::StepData& step)
 {
     io::HistoryRow row;
     row.load_factor = step.load_factor;
+    row.uzawa_updates = step.uzawa_updates;
     row.reactions = step.reactions;
     for (const io::ContactPairResult& pair : step.contact)
         for (const io::ContactSideResult& side : pair.sides) {
@@ -180,17 +183,33 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     };
     warn(overclosure_warnings(scene, system));
 
+    for (const PairModel& p : scene.pairs)
+        if (p.penalty_auto)
+            context.log(Verbosity::normal,
+                        fmt::format("contact pair '{}': penalty auto = {:.4g} = {:g} E'/h with E' = {:.4g} (softer "
+                                    "body), h = {:.4g} (smallest contact-side element)",
+                                    p.name, p.initial_penalty, auto_penalty_factor, p.contact_modulus,
+                                    p.element_size));
+
     std::optional<io::StepData> last_step;
     std::vector<std::array<double, 4>> convergence;
+    UzawaLoop uzawa(scene, system, context);
+    long long total_uzawa_updates = 0;  // of the converged increments
     solver::SteppingCallbacks callbacks;
     callbacks.commit = [&] {
         for (PairModel& p : scene.pairs)
             p.pair.commit();
+        uzawa.begin_attempt();
     };
     callbacks.rollback = [&] {
         for (PairModel& p : scene.pairs)
             p.pair.rollback();
+        uzawa.begin_attempt();
     };
+    if (uzawa.active())
+        callbacks.outer = [&](const Vector& state, double load_factor) {
+            return uzawa.after_solve(state, load_factor);
+        };
     callbacks.stop_requested = options.stop_requested;
     callbacks.converged = [&](const solver::IncrementRecord& record, const Vector& state) {
         ScopedTimer t(&context, "output");
@@ -200,6 +219,9 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         step.residual_norm = record.report.residual_norm;
         step.cutbacks = record.cutbacks;
         step.wall_s = record.wall_s;
+        if (scene.has_contact())
+            step.uzawa_updates = record.outer_updates;
+        total_uzawa_updates += record.outer_updates;
         for (std::size_t k = 0; k < record.report.residual_history.size(); ++k)
             convergence.push_back({static_cast<double>(record.index), static_cast<double>(k),
                                    record.report.residual_history[k], record.load_factor});
@@ -223,6 +245,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
                                            record.report.iterations);
             if (record.cutbacks > 0)
                 line += fmt::format(", {} cutback(s)", record.cutbacks);
+            if (record.outer_updates > 0)
+                line += fmt::format(", {} Uzawa update(s)", record.outer_updates);
             if (scene.has_contact())
                 line += fmt::format(", {} active Gauss points", system.last_active());
             options.progress(line);
@@ -244,6 +268,7 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
             xdmf_steps.push_back(xdmf_step(*last_step));
     }
 
+    warn(uzawa.notes());
     RunOutcome outcome;
     if (last_step) {
         warn(contact_warnings(deck, scene, *last_step));
@@ -265,12 +290,13 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
                            "flip-flop, Gauss points entering and leaving contact (or switching the segment they "
                            "project onto) on alternate iterations. Use smaller increments (a larger steps.count) "
                            "or a smaller penalty (about 1e2-1e3 E/h is plenty)";
-    } else if (!result.completed && scene.has_contact()) {
+    } else if (!result.completed && scene.has_contact() &&
+               result.last_failure.status != solver::NewtonStatus::converged) {  // not an outer-loop rejection
         double E_min = std::numeric_limits<double>::infinity(), penalty_max = 0.0;
         for (const BodyModel& b : scene.bodies)
             E_min = std::min(E_min, b.material.E);
-        for (const io::ContactPair& c : deck.contact)
-            penalty_max = std::max(penalty_max, c.penalty);
+        for (const PairModel& p : scene.pairs)
+            penalty_max = std::max(penalty_max, p.pair.settings().penalty);
         const double floor = std::numeric_limits<double>::epsilon() * penalty_max / E_min;
         if (floor > 0.01 * deck.newton.tolerance)
             outcome.message += fmt::format(
@@ -315,6 +341,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     summary.counters["increments"] = outcome.increments;
     summary.counters["cutbacks"] = outcome.cutbacks;
     summary.counters["total_newton_iterations"] = outcome.newton_iterations;
+    if (uzawa.active())
+        summary.counters["uzawa_updates"] = total_uzawa_updates;
     long long gauss_points = 0;
     for (const PairModel& p : scene.pairs)
         for (int c = 0; c < p.pair.n_carriers(); ++c)
@@ -338,6 +366,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     outcome.numbers["dofs"] = scene.dofs->n_full();
     outcome.numbers["threads"] = system.n_threads();
     outcome.numbers["contact_gauss_points"] = static_cast<double>(gauss_points);
+    if (uzawa.active())
+        outcome.numbers["uzawa_updates"] = static_cast<double>(total_uzawa_updates);
     return outcome;
 }
 

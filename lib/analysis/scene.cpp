@@ -1,4 +1,6 @@
 #include "analysis/scene.hpp"
+
+#include "analysis/contact_penalty.hpp"
 #include "analysis/size_estimate.hpp"
 
 #include "analysis/constraints.hpp"
@@ -321,10 +323,21 @@ Scene build_scene(const io::Deck& deck, int refine_levels)
             }
             return contact::DeformableSide::make(parents, which, nodes, parent[k]);
         };
+        AutoPenalty rule;  // E', h and the auto penalty of the pair's deformable sides
         auto pair = [&]() {
             try {
                 contact::Surface first = make_surface(c.first, 0);
                 contact::Surface second = make_surface(c.second, 1);
+                std::vector<const contact::DeformableSide*> sides;
+                std::vector<const mechanics::Material*> materials;
+                for (int k = 0; k < 2; ++k)
+                    if (const auto* side = std::get_if<contact::DeformableSide>(k == 0 ? &first : &second)) {
+                        sides.push_back(side);
+                        materials.push_back(&scene.bodies[static_cast<std::size_t>(body[k])].material);
+                    }
+                rule = auto_penalty(sides, materials);
+                if (c.penalty_auto)
+                    settings.penalty = rule.penalty;
                 return contact::ContactPair(settings, std::move(first), std::move(second));
             } catch (const Error& e) {
                 std::string reason = e.what();
@@ -335,6 +348,13 @@ Scene build_scene(const io::Deck& deck, int refine_levels)
             }
         }();
         PairModel model{c.name, std::move(pair), body, parent, label, {}, {}, -1, settings.formulation};
+        model.penalty_auto = c.penalty_auto;
+        model.initial_penalty = settings.penalty;
+        model.augmented = c.enforcement == io::Enforcement::augmented_lagrangian;
+        model.gap_tolerance = c.augmented_lagrangian.gap_tolerance;
+        model.max_updates = c.augmented_lagrangian.max_updates;
+        model.contact_modulus = rule.modulus;
+        model.element_size = rule.element_size;
         for (int k = 0; k < 2; ++k)
             if (body[k] < 0)
                 model.obstacle = k;

@@ -92,6 +92,14 @@ struct PairModel {
     std::map<contact::Coupling, int> blocks;         ///< registered coupling -> pattern block
     int obstacle = -1;                               ///< surface index (0/1) of a rigid obstacle, -1 if none
     contact::Formulation formulation = contact::Formulation::two_half_pass;
+    bool penalty_auto = false;     ///< the deck says `penalty: auto` (analysis/contact_penalty.hpp)
+    double initial_penalty = 0.0;  ///< eps from the deck or the auto rule (the pair's may be raised later)
+    bool augmented = false;        ///< enforcement: augmented_lagrangian (analysis/uzawa.hpp)
+    double gap_tolerance = 0.0;    ///< augmented: the deck's gap_tolerance; 0 = automatic (contact_penalty.hpp)
+    int max_updates = 0;           ///< augmented: Uzawa updates per increment
+    double contact_modulus = 0.0;  ///< E' of the softer deformable body (contact_penalty.hpp)
+    double element_size = 0.0;     ///< h, the smallest element of the deformable sides
+    double gap_tolerance_used = 0.0;  ///< augmented: the tolerance of the last Uzawa check (for output)
 };
 
 struct Scene {

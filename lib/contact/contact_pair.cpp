@@ -296,9 +296,32 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
         }
     }
     trial_xi_.resize(carriers_.size());
-    for (std::size_t c = 0; c < carriers_.size(); ++c)
+    multiplier_.resize(carriers_.size());
+    for (std::size_t c = 0; c < carriers_.size(); ++c) {
         trial_xi_[c].assign(carriers_[c].points.size(), Foot{});
+        multiplier_[c] = Vector::Zero(static_cast<Index>(carriers_[c].points.size()));
+    }
     committed_xi_ = trial_xi_;
+    committed_multiplier_ = multiplier_;
+}
+
+void ContactPair::update_multipliers(const PairEvaluation& state)
+{
+    IGA_CHECK(state.ok && state.carriers.size() == carriers_.size(),
+              "contact: multipliers are updated from a complete evaluation of the same pair");
+    for (std::size_t c = 0; c < carriers_.size(); ++c) {
+        const CarrierResult& cr = state.carriers[c];
+        IGA_CHECK(cr.pressure.size() == multiplier_[c].size(),
+                  "contact: the evaluation has another number of Gauss points than the pair");
+        // p = <lambda + eps g_N> where the point is ok, 0 elsewhere: the Uzawa step.
+        multiplier_[c] = cr.pressure;
+    }
+}
+
+void ContactPair::set_penalty(double penalty)
+{
+    IGA_CHECK(std::isfinite(penalty) && penalty > 0.0, "contact: penalty must be > 0");
+    settings_.penalty = penalty;
 }
 
 int ContactPair::n_control_points(int i) const
@@ -403,6 +426,7 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
         cr.coordinates.resize(n_g, d);
         cr.gap = Vector::Constant(n_g, -search_distance_);
         cr.pressure = Vector::Zero(n_g);
+        cr.multiplier = multiplier_[ci];
         cr.weight.resize(n_g);
         cr.state.assign(n_g, PointState::far);
         for (int g = 0; g < n_g; ++g) {
@@ -480,8 +504,10 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
                 }
                 cr.gap(g) = foot.gap;
                 cr.state[g] = PointState::ok;
+                KernelSettings point_settings = kernel_base;
+                point_settings.multiplier = cr.multiplier(g);
                 const KernelResult kr = gpts_rigid_kernel(c.points[g].N, c.points[g].weight, foot.normal, foot.gap,
-                                                          kernel_base, foot.radius);
+                                                          point_settings, foot.radius);
                 cr.pressure(g) = kr.pressure;
                 if (kr.pressure > 0.0) {
                     ++ev.n_active;
@@ -589,7 +615,9 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
                 continue;
             }
             cr.state[g] = PointState::ok;
-            if (!(proj.gap > 0.0))
+            // Active when <lambda + eps g_N> > 0: with a multiplier, also at a small open gap.
+            kernel_settings.multiplier = cr.multiplier(g);
+            if (!(kernel_settings.multiplier + kernel_settings.penalty * proj.gap > 0.0))
                 continue;
             const KernelResult kr = gpts_kernel(gp.N, gp.weight, proj, kernel_settings);
             if (!kr.ok) {

@@ -49,6 +49,15 @@
 // trial state; commit() keeps the trial state (call it after a converged
 // increment), rollback() returns to the last committed one (after a cutback).
 // Because of this cache, evaluate() is const but not thread-safe on one pair.
+//
+// Augmented Lagrangian (docs/theory.md "Augmented Lagrangian"): every Gauss point
+// carries a multiplier lambda >= 0 (pressure units, 0 at the start) and its
+// pressure is p = <lambda + eps g_N>; with all multipliers 0 this is the penalty
+// law. update_multipliers() is the Uzawa step lambda <- <lambda + eps g_N>, i.e.
+// lambda <- p of an evaluation at a converged state. The multipliers are state
+// like the foot points: commit() keeps them, rollback() restores the committed
+// ones. set_penalty() changes eps (the safeguard that raises it); it is not rolled back.
+//
 // Both surfaces live in the same dimension d (2 or 3), else the constructor throws
 // iga::Error.
 
@@ -129,7 +138,8 @@ struct CarrierResult {
     RowMatrix reference_coordinates;    ///< n_g x d
     RowMatrix coordinates;              ///< n_g x d, current configuration
     Vector gap;                         ///< n_g, g_N (positive = penetration); far: -search distance, a bound
-    Vector pressure;                    ///< n_g, eps <g_N> (0 unless state ok)
+    Vector pressure;                    ///< n_g, <lambda + eps g_N> (0 unless state ok)
+    Vector multiplier;                  ///< n_g, the multipliers lambda of this evaluation (0: penalty)
     Vector weight;                      ///< n_g, W = w_g * reference area element
     std::vector<PointState> state;      ///< n_g
 };
@@ -190,8 +200,25 @@ public:
     PairEvaluation evaluate(const RowMatrix& disp_first, const RowMatrix& disp_second, bool need_tangent,
                             RunContext* ctx = nullptr, double load_factor = 0.0) const;
 
-    void commit() { committed_xi_ = trial_xi_; }
-    void rollback() { trial_xi_ = committed_xi_; }
+    void commit()
+    {
+        committed_xi_ = trial_xi_;
+        committed_multiplier_ = multiplier_;
+    }
+    void rollback()
+    {
+        trial_xi_ = committed_xi_;
+        multiplier_ = committed_multiplier_;
+    }
+
+    /// Uzawa update lambda_g <- <lambda_g + eps g_N,g> = p_g for every Gauss point,
+    /// from `state`, an evaluation of this pair (all carriers, in order) at a
+    /// converged state. Points that are not `ok` (far, off an end, at a kink) get 0.
+    void update_multipliers(const PairEvaluation& state);
+    /// The multipliers of carrier c, n_gauss_points(c).
+    const Vector& multipliers(int carrier) const { return multiplier_[static_cast<std::size_t>(carrier)]; }
+    /// Replaces eps_N (> 0, finite); the multipliers are kept.
+    void set_penalty(double penalty);
 
 private:
     struct GaussPoint {
@@ -225,6 +252,8 @@ private:
     };
     mutable std::vector<std::vector<Foot>> trial_xi_;
     std::vector<std::vector<Foot>> committed_xi_;
+    std::vector<Vector> multiplier_;            ///< per carrier, n_g: lambda >= 0 in use
+    std::vector<Vector> committed_multiplier_;  ///< per carrier: at the last commit()
 };
 
 }  // namespace iga::contact

@@ -8,6 +8,16 @@
 
 namespace iga::contact {
 
+namespace {
+
+/// lambda + eps g_N: the pressure law's argument, p = <lambda + eps g_N>.
+double contact_pressure_argument(const KernelSettings& settings, double g_N)
+{
+    return settings.multiplier + settings.penalty * g_N;
+}
+
+}  // namespace
+
 KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, const KernelSettings& settings)
 {
     const Index d = master.normal.size();
@@ -29,8 +39,9 @@ KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, co
     if (settings.need_tangent)
         out.tangent = Matrix::Zero(n_dofs, n_dofs);
     const double g_N = master.gap;
-    out.pressure = settings.penalty * macaulay(g_N);
-    if (heaviside(g_N) == 0.0)
+    const double trial = contact_pressure_argument(settings, g_N);
+    out.pressure = macaulay(trial);
+    if (heaviside(trial) == 0.0)
         return out;
 
     // A = m + g_N b: the Hessian of the distance at the foot point; positive
@@ -114,8 +125,9 @@ KernelResult gpts_rigid_kernel(const Vector& N, double W, const VecN& normal, do
     out.residual = Vector::Zero(n_dofs);
     if (settings.need_tangent)
         out.tangent = Matrix::Zero(n_dofs, n_dofs);
-    out.pressure = settings.penalty * macaulay(gap);
-    if (heaviside(gap) == 0.0)
+    const double trial = contact_pressure_argument(settings, gap);
+    out.pressure = macaulay(trial);
+    if (heaviside(trial) == 0.0)
         return out;
     Vector Nn(n_dofs);
     for (Index a = 0; a < N.size(); ++a)

@@ -5,9 +5,11 @@
 //
 // Reference: Kopacka et al. eqs. (1), (3), (5), (7); the linearization is derived
 // in docs/theory.md ("GPTS tangent"), with the gap sign of gap.hpp: g_N > 0 is
-// penetration, p = eps <g_N>, H = H(g_N).
+// penetration, p = <lambda + eps g_N>, H = H(lambda + eps g_N), where lambda >= 0
+// is the Gauss point's augmented-Lagrangian multiplier (0 for plain penalty, which
+// gives p = eps <g_N>; docs/theory.md "Augmented Lagrangian").
 //
-//   Pi_c = 1/2 eps W <g_N>^2,   r = dPi_c/du = p W dg_N/du,   K = dr/du,
+//   Pi_c = 1/(2 eps) W <lambda + eps g_N>^2,   r = dPi_c/du = p W dg_N/du,   K = dr/du,
 //   W = Gauss weight * reference area element of the slave (held fixed).
 //   slave rows  a: r_a = -p W N_a n      (the force +p W N_a n pushes the slave out)
 //   master rows b: r_b = +p W R_b(xibar) n
@@ -37,13 +39,14 @@ namespace iga::contact {
 
 struct KernelSettings {
     double penalty = 0.0;       ///< eps_N > 0
+    double multiplier = 0.0;    ///< lambda >= 0 of this Gauss point (augmented Lagrangian); 0: penalty
     bool master_rows = false;   ///< true: single pass (slave and master rows); false: half pass
     bool need_tangent = true;   ///< false: residual only
 };
 
 struct KernelResult {
     bool ok = true;         ///< false: the foot point is not a distance minimum (c <= 0)
-    double pressure = 0.0;  ///< p = eps <g_N>
+    double pressure = 0.0;  ///< p = <lambda + eps g_N>
     Vector residual;        ///< (n_s + n_m) d
     Matrix tangent;         ///< (n_s + n_m) d square; empty when need_tangent is false
 };

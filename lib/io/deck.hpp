@@ -23,6 +23,7 @@ enum class PlaneMode { strain, stress };
 enum class Kinematics { small, finite };
 enum class MaterialModel { linear_elastic, saint_venant_kirchhoff, neo_hookean };
 enum class Formulation { two_half_pass, single_pass };
+enum class Enforcement { penalty, augmented_lagrangian };
 enum class ShapeType { half_disc, quarter_disc, rectangle, sphere_octant, box };
 enum class LoadKind { traction, force, pressure, gravity };
 enum class ReferenceType { hertz_cylinder_plane, hertz_two_cylinders, hertz_sphere_plane, hertz_two_spheres };
@@ -219,11 +220,24 @@ struct ContactSurface {
     bool operator==(const ContactSurface&) const = default;
 };
 
+/// contact.<pair>.augmented_lagrangian (only with enforcement: augmented_lagrangian).
+struct AugmentedLagrangian {
+    /// Largest penetration accepted (length units, > 0); 0 = automatic: 1e-3 h p_max / E'
+    /// (h the smallest contact-side element, p_max the largest pressure; docs/deck.md).
+    double gap_tolerance = 0.0;
+    int max_updates = 30;  ///< Uzawa updates per increment before the attempt is cut back, >= 1
+
+    bool operator==(const AugmentedLagrangian&) const = default;
+};
+
 struct ContactPair {
     std::string name;
     ContactSurface first, second;
     Formulation formulation = Formulation::two_half_pass;
-    double penalty = 0.0;  ///< required, > 0
+    Enforcement enforcement = Enforcement::penalty;
+    double penalty = 0.0;       ///< required: > 0, or `auto` (then 0 here and penalty_auto)
+    bool penalty_auto = false;  ///< `penalty: auto`: chosen from the materials and element size (docs/deck.md)
+    AugmentedLagrangian augmented_lagrangian;
     int quadrature = 0;    ///< Gauss points per knot span; 0 means degree + 2 of the side
 
     bool operator==(const ContactPair&) const = default;

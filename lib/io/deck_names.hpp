@@ -49,6 +49,12 @@ struct DeckNames<Formulation> {
 };
 
 template <>
+struct DeckNames<Enforcement> {
+    static constexpr std::array<EnumName<Enforcement>, 2> all{
+        {{"penalty", Enforcement::penalty}, {"augmented_lagrangian", Enforcement::augmented_lagrangian}}};
+};
+
+template <>
 struct DeckNames<ShapeType> {
     static constexpr std::array<EnumName<ShapeType>, 5> all{{{"half_disc", ShapeType::half_disc},
                                                              {"quarter_disc", ShapeType::quarter_disc},

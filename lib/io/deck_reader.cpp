@@ -304,6 +304,49 @@ std::optional<ContactSurface> read_surface(const Cursor& c, const KnownNames& kn
     return s;
 }
 
+/// contact.<pair>.penalty: a number > 0, or `auto`.
+void read_penalty(const Cursor& c, ContactPair& p)
+{
+    const Cursor penalty = c.child("penalty");
+    if (!penalty.exists()) {
+        c.fail_missing("penalty");
+        return;
+    }
+    // A scalar that is not a number: `auto`, or a word we reject here with the choices.
+    if (!penalty.is_list() && !penalty.is_map() && !parse_number(penalty.value_text())) {
+        if (penalty.value_text() == "auto")
+            p.penalty_auto = true;
+        else
+            penalty.fail("expected a number > 0 or auto");
+        return;
+    }
+    if (const auto value = penalty.to<double>()) {
+        if (*value > 0)
+            p.penalty = *value;
+        else
+            penalty.fail("must be > 0");
+    }
+}
+
+/// contact.<pair>.augmented_lagrangian: {gap_tolerance, max_updates}, with enforcement
+/// augmented_lagrangian only.
+void read_augmented_lagrangian(const Cursor& c, ContactPair& p)
+{
+    const Cursor al = c.child("augmented_lagrangian");
+    if (!al.exists())
+        return;
+    if (p.enforcement != Enforcement::augmented_lagrangian) {
+        al.fail_here("applies with enforcement: augmented_lagrangian only (the pair's enforcement is " +
+                     std::string(deck_name(p.enforcement)) + ")");
+        return;
+    }
+    if (!al.expect_map() || !al.allow_only({"gap_tolerance", "max_updates"}))
+        return;
+    if (al.has("gap_tolerance"))
+        p.augmented_lagrangian.gap_tolerance = al.positive_or("gap_tolerance", p.augmented_lagrangian.gap_tolerance);
+    p.augmented_lagrangian.max_updates = al.integer_at_least("max_updates", p.augmented_lagrangian.max_updates, 1);
+}
+
 std::vector<ContactPair> read_contact(const Cursor& root, KnownNames& known)
 {
     std::vector<ContactPair> out;
@@ -312,7 +355,8 @@ std::vector<ContactPair> read_contact(const Cursor& root, KnownNames& known)
         return out;
     NameRegistry names("contact pair");
     for (const Cursor& c : list.items()) {
-        if (!c.allow_only({"name", "between", "formulation", "penalty", "quadrature"}))
+        if (!c.allow_only({"name", "between", "formulation", "enforcement", "penalty", "augmented_lagrangian",
+                           "quadrature"}))
             continue;
         ContactPair p;
         if (const auto name = read_name(c)) {
@@ -338,12 +382,9 @@ std::vector<ContactPair> read_contact(const Cursor& root, KnownNames& known)
             }
         }
         p.formulation = c.get_or("formulation", p.formulation);
-        if (const auto penalty = c.get<double>("penalty")) {
-            if (*penalty > 0)
-                p.penalty = *penalty;
-            else
-                c.child("penalty").fail("must be > 0");
-        }
+        p.enforcement = c.get_or("enforcement", p.enforcement);
+        read_penalty(c, p);
+        read_augmented_lagrangian(c, p);
         p.quadrature = c.integer_at_least("quadrature", p.quadrature, 1);
         out.push_back(p);
     }

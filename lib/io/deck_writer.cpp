@@ -237,7 +237,18 @@ void write_contact(YAML::Emitter& out, const ContactPair& p)
     out << YAML::Key << "between" << YAML::Value << YAML::Flow << YAML::BeginSeq << surface(p.first)
         << surface(p.second) << YAML::EndSeq;
     out << YAML::Key << "formulation" << YAML::Value << word(p.formulation);
-    out << YAML::Key << "penalty" << YAML::Value << format_number(p.penalty);
+    out << YAML::Key << "enforcement" << YAML::Value << word(p.enforcement);
+    if (p.penalty_auto)
+        out << YAML::Key << "penalty" << YAML::Value << "auto";
+    else
+        out << YAML::Key << "penalty" << YAML::Value << format_number(p.penalty);
+    if (p.enforcement == Enforcement::augmented_lagrangian) {
+        out << YAML::Key << "augmented_lagrangian" << YAML::Value << YAML::Flow << YAML::BeginMap;
+        if (p.augmented_lagrangian.gap_tolerance > 0.0)  // 0: automatic, left out as quadrature 0 is
+            out << YAML::Key << "gap_tolerance" << YAML::Value << format_number(p.augmented_lagrangian.gap_tolerance);
+        out << YAML::Key << "max_updates" << YAML::Value << std::to_string(p.augmented_lagrangian.max_updates);
+        out << YAML::EndMap;
+    }
     if (p.quadrature > 0)
         out << YAML::Key << "quadrature" << YAML::Value << std::to_string(p.quadrature);
     out << YAML::EndMap;

@@ -46,8 +46,9 @@ struct GaussPointData {
     RowMatrix reference_coordinates;  ///< n_g x d, reference configuration
     RowMatrix parameter;              ///< n_g x (d-1); written as a 1-D dataset of length n_g when d-1 == 1
     Vector gap;                       ///< n_g, normal gap g_N (positive = penetration)
-    Vector pressure;                  ///< n_g, penalty pressure eps_N <g_N>
+    Vector pressure;                  ///< n_g, contact pressure <lambda + eps_N g_N> (lambda = 0: penalty)
     Vector weight;                    ///< n_g, quadrature weight times Jacobian (extra; written when non-empty)
+    Vector multiplier;                ///< n_g, augmented-Lagrangian multipliers lambda (written when non-empty)
 };
 
 /// Recovered pressure of one side (Sauer's weighted averages): .../postprocessed/.
@@ -74,7 +75,8 @@ struct ContactSideResult {
 struct ContactPairResult {
     std::string name;
     std::vector<ContactSideResult> sides;
-    std::map<std::string, double> attributes;  ///< extra numbers (candidates, projections, ...)
+    std::map<std::string, double> attributes;  ///< extra numbers (candidates, projections, penalty, ...)
+    std::map<std::string, std::string> text_attributes;  ///< extra words (enforcement, penalty_rule)
     /// d-vector, pairs with a rigid obstacle: the force the body's contact pressure exerts
     /// ON the obstacle (attribute obstacle_force); empty for two deformable sides.
     std::vector<double> obstacle_force;
@@ -111,6 +113,7 @@ struct StepData {
     double residual_norm = 0.0;
     int cutbacks = 0;
     double wall_s = 0.0;
+    int uzawa_updates = -1;  ///< augmented-Lagrangian updates of the increment; written when >= 0 (contact)
     std::vector<std::pair<std::string, RowMatrix>> displacement;  ///< (body, n_cp x d) per single-patch body
     /// Multi-patch bodies: (body, [(patch, n_cp of the patch x d)]) -> displacement/<body>/<patch>.
     std::vector<std::pair<std::string, std::vector<std::pair<std::string, RowMatrix>>>> patch_displacement;
@@ -125,6 +128,7 @@ struct StepData {
 /// last increment is stored under /steps).
 struct HistoryRow {
     double load_factor = 0.0;
+    int uzawa_updates = -1;  ///< history/uzawa_updates (n), written when the first row has it (>= 0)
     std::vector<Reaction> reactions;  ///< history/reactions/<name>: n x d
     struct ContactSide {
         std::string pair;               ///< history/contact/<pair>/<side>/...

@@ -20,6 +20,7 @@ namespace {
 struct HistoryColumns {
     std::size_t n_rows = 0;
     std::vector<double> load_factor;
+    std::vector<int> uzawa_updates;              ///< empty unless the first row had them
     std::vector<std::string> reaction_names;
     std::size_t dimension = 0;                   ///< entries of each reaction vector
     std::vector<std::vector<double>> reactions;  ///< per name, n_rows x dimension, row-major
@@ -122,6 +123,8 @@ void write_side(hid_t pair, const ContactSideResult& side)
     h5::write_dataset(gauss.id(), "pressure", gp.pressure);
     if (gp.weight.size() > 0)
         h5::write_dataset(gauss.id(), "weight", gp.weight);
+    if (gp.multiplier.size() > 0)
+        h5::write_dataset(gauss.id(), "multiplier", gp.multiplier);
 
     const PostProcessedData& pp = side.postprocessed;
     h5::Handle post = h5::create_group(group.id(), "postprocessed");
@@ -197,6 +200,8 @@ void write_history(hid_t file, const HistoryColumns& h)
     const auto n = static_cast<hsize_t>(h.n_rows);
     h5::Handle group = h5::create_group(file, "history");
     h5::write_dataset(group.id(), "load_factor", std::span<const double>(h.load_factor), {n});
+    if (h.uzawa_updates.size() == h.n_rows && h.n_rows > 0)
+        h5::write_dataset(group.id(), "uzawa_updates", std::span<const int>(h.uzawa_updates), {n});
     if (!h.reaction_names.empty()) {
         h5::Handle reactions = h5::create_group(group.id(), "reactions");
         for (std::size_t k = 0; k < h.reaction_names.size(); ++k)
@@ -328,6 +333,8 @@ void ResultsWriter::write_step(const StepData& step)
         h5::write_attribute(group.id(), "residual_norm", step.residual_norm);
         h5::write_attribute(group.id(), "cutbacks", step.cutbacks);
         h5::write_attribute(group.id(), "wall_s", step.wall_s);
+        if (step.uzawa_updates >= 0)
+            h5::write_attribute(group.id(), "uzawa_updates", step.uzawa_updates);
 
         h5::Handle displacement = h5::create_group(group.id(), "displacement");
         for (const auto& [body, values] : step.displacement)
@@ -343,6 +350,8 @@ void ResultsWriter::write_step(const StepData& step)
             h5::Handle pair_group = h5::create_group(contact.id(), pair.name);
             for (const auto& [attribute, value] : pair.attributes)
                 h5::write_attribute(pair_group.id(), attribute, value);
+            for (const auto& [attribute, text] : pair.text_attributes)
+                h5::write_attribute(pair_group.id(), attribute, text);
             if (!pair.obstacle_force.empty())
                 h5::write_attribute(pair_group.id(), "obstacle_force", std::span<const double>(pair.obstacle_force));
             for (const ContactSideResult& side : pair.sides)
@@ -400,6 +409,10 @@ void ResultsWriter::append_history(const HistoryRow& row)
         h.normal_force[k].push_back(row.contact[k].normal_force);
         h.max_penetration[k].push_back(row.contact[k].max_penetration);
     }
+    IGA_CHECK((row.uzawa_updates >= 0) == (h.n_rows == 0 ? row.uzawa_updates >= 0 : !h.uzawa_updates.empty()),
+              "every /history row has uzawa_updates, or none has");
+    if (row.uzawa_updates >= 0)
+        h.uzawa_updates.push_back(row.uzawa_updates);
     h.load_factor.push_back(row.load_factor);
     ++h.n_rows;
 }

@@ -68,6 +68,8 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
         int cutbacks = 0;
         double target = lambda;
         NewtonReport report;
+        int first_solve_iterations = 0;  // of the converged attempt's first solve: sizes the next increment
+        int outer_updates = 0;
         while (true) {
             target = lambda + increment > 1.0 - end_snap ? 1.0 : lambda + increment;
             if (!(target > lambda)) {
@@ -87,32 +89,52 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
             }
             report = solve_newton(system, target, u, newton, solver, context);
             result.total_iterations += report.iterations;
-            if (report.status == NewtonStatus::converged)
+            first_solve_iterations = report.iterations;
+            outer_updates = 0;
+            // The outer loop: solve again while it asks for it (each solve from the last converged state).
+            OuterDecision decision;
+            while (report.status == NewtonStatus::converged && callbacks.outer) {
+                decision = callbacks.outer(u, target);
+                if (decision.action != OuterDecision::Action::resolve)
+                    break;
+                ++outer_updates;
+                NewtonReport again = solve_newton(system, target, u, newton, solver, context);
+                result.total_iterations += again.iterations;
+                again.iterations += report.iterations;
+                again.residual_history.insert(again.residual_history.begin(), report.residual_history.begin(),
+                                              report.residual_history.end());
+                report = std::move(again);
+            }
+            const bool rejected =
+                report.status == NewtonStatus::converged && decision.action == OuterDecision::Action::reject;
+            if (report.status == NewtonStatus::converged && !rejected)
                 break;
             result.last_failure = report;
 
             u = u_converged;
             if (callbacks.rollback)
                 callbacks.rollback();
-            const std::string why = std::string(" (") + status_name(report.status) + "): " + report.message;
-            if (system.linear) {
+            const std::string why = rejected ? ": " + decision.message
+                                             : std::string(" (") + status_name(report.status) + "): " + report.message;
+            const std::string what = rejected ? "the outer loop rejected the solution" : "Newton did not converge";
+            if (system.linear && !rejected) {
                 result.message = increment_text(index, lambda, target) + ": the linear solve failed" + why;
                 return result;
             }
             if (!stepping.adaptive) {
-                result.message = increment_text(index, lambda, target) +
-                                 ": Newton did not converge (adaptive stepping is off)" + why;
+                result.message = increment_text(index, lambda, target) + ": " + what + " (adaptive stepping is off)" +
+                                 why;
                 return result;
             }
             if (cutbacks == stepping.max_cutbacks) {
-                result.message = increment_text(index, lambda, target) + ": Newton did not converge after " +
+                result.message = increment_text(index, lambda, target) + ": " + what + " after " +
                                  std::to_string(cutbacks) + " cutbacks" + why;
                 return result;
             }
             if (increment * 0.5 < min_increment) {
-                result.message = increment_text(index, lambda, target) +
-                                 ": Newton did not converge and the increment cannot be cut below " +
-                                 format_g(min_increment, 6) + " (1/count / 2^max_cutbacks)" + why;
+                result.message = increment_text(index, lambda, target) + ": " + what +
+                                 " and the increment cannot be cut below " + format_g(min_increment, 6) +
+                                 " (1/count / 2^max_cutbacks)" + why;
                 return result;
             }
             ++cutbacks;
@@ -120,8 +142,8 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
             increment *= 0.5;
             if (context)
                 context->log(Verbosity::verbose, increment_text(index, lambda, target) + ": " +
-                                                     status_name(report.status) + ", cutting back to " +
-                                                     format_g(increment, 6));
+                                                     (rejected ? decision.message : status_name(report.status)) +
+                                                     ", cutting back to " + format_g(increment, 6));
         }
 
         u_previous = std::move(u_converged);
@@ -135,6 +157,7 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
         record.load_factor = lambda;
         record.report = report;
         record.cutbacks = cutbacks;
+        record.outer_updates = outer_updates;
         record.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         result.increments.push_back(record);
         if (context)
@@ -142,14 +165,17 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
                          "increment " + std::to_string(index) + ": load factor " + format_g(lambda, 6) + ", " +
                              std::to_string(report.iterations) + " iterations, relative residual " +
                              format_g(report.residual_norm) +
-                             (cutbacks > 0 ? ", " + std::to_string(cutbacks) + " cutbacks" : std::string()));
+                             (cutbacks > 0 ? ", " + std::to_string(cutbacks) + " cutbacks" : std::string()) +
+                             (outer_updates > 0 ? ", " + std::to_string(outer_updates) +
+                                                      (outer_updates == 1 ? " Uzawa update" : " Uzawa updates")
+                                                : std::string()));
         if (callbacks.converged)
             callbacks.converged(result.increments.back(), u);
 
         if (stepping.adaptive) {
             const double factor =
-                report.iterations > 0
-                    ? std::clamp(static_cast<double>(stepping.target_iterations) / report.iterations,
+                first_solve_iterations > 0
+                    ? std::clamp(static_cast<double>(stepping.target_iterations) / first_solve_iterations,
                                  stepping.max_shrink, stepping.max_growth)
                     : stepping.max_growth;
             increment = std::clamp(increment * factor, min_increment, initial_increment);

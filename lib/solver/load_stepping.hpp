@@ -23,6 +23,15 @@
 // starts Newton from the predicted state instead of the last converged one.
 // Force-driven systems (no prescribed_motion) start from the converged state.
 //
+// Outer loop (callbacks.outer; the augmented Lagrangian's Uzawa updates): after
+// each converged Newton solve of an attempt the callback decides to accept the
+// increment, to solve it again from the converged state (it changed the system,
+// e.g. updated multipliers; the step is not predicted again), or to reject the
+// attempt, which then counts as failed: rolled back and cut back like a Newton
+// failure, its message naming the outer loop's reason. Newton iterations of all
+// solves of the converged attempt are summed in its report (residual histories
+// appended in order); the next increment is sized by the first solve's iterations.
+//
 // A final increment that would fall within 1e-12 of lambda = 1 is merged into
 // the previous one, so the run ends at exactly 1. Linear systems never cut back
 // (a smaller increment cannot cure a failed linear solve). Non-adaptive stepping
@@ -54,11 +63,19 @@ struct SteppingSettings {
     Predictor predictor = Predictor::linearized;
 };
 
+/// What the outer loop decides after a converged Newton solve (see the header paragraph).
+struct OuterDecision {
+    enum class Action { accept, resolve, reject };
+    Action action = Action::accept;
+    std::string message;  ///< reject: why, in words
+};
+
 struct IncrementRecord {
     int index = 0;           ///< 1-based, counts converged increments
     double load_factor = 0;  ///< lambda at the end of the increment
-    NewtonReport report;     ///< of the attempt that converged
+    NewtonReport report;     ///< of the attempt that converged (iterations of all its solves)
     int cutbacks = 0;        ///< failed attempts before the one that converged
+    int outer_updates = 0;   ///< resolve decisions of the converged attempt (Uzawa updates)
     double wall_s = 0;       ///< wall time of the increment, failed attempts included
 };
 
@@ -69,6 +86,8 @@ struct SteppingCallbacks {
     std::function<void()> commit;
     /// After a failed attempt, once u is back at the last converged state; may be empty.
     std::function<void()> rollback;
+    /// After each converged Newton solve, with the state and the load factor; may be empty (accept).
+    std::function<OuterDecision(const Vector& u, double load_factor)> outer;
     /// Checked before each increment; true stops the run cleanly (e.g. on SIGINT); may be empty.
     std::function<bool()> stop_requested;
 };

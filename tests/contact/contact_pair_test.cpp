@@ -303,3 +303,89 @@ TEST(ContactPair, TangentBlocksArePerCouplingAndCandidatesCoverThem)
 
 }  // namespace
 }  // namespace iga::contact
+
+namespace iga::contact {
+namespace {
+
+// The Uzawa step at a FIXED state is a closed form: with every point's gap g fixed,
+// update k gives lambda_k = <lambda_{k-1} + eps g> = k eps g on the penetrating
+// points (0 elsewhere), and the residual then carries p = (k + 1) eps g: exactly
+// k + 1 times the penalty residual. Sums of a few O(p W) terms: round-off.
+TEST(ContactPair, MultiplierUpdateAtAFixedStateIsExact)
+{
+    const Scene s = make_scene();
+    for (const Formulation f : {Formulation::two_half_pass, Formulation::single_pass}) {
+        SCOPED_TRACE(f == Formulation::two_half_pass ? "two_half_pass" : "single_pass");
+        ContactPair pair({.formulation = f, .penalty = 1e3}, s.disc, s.block);
+        const auto [u1, u2] = overlap_state(pair, 11);
+        const PairEvaluation penalty = pair.evaluate(u1, u2, false);
+        ASSERT_TRUE(penalty.ok);
+        ASSERT_GE(penalty.n_active, 4);
+        for (int c = 0; c < pair.n_carriers(); ++c)
+            EXPECT_EQ(pair.multipliers(c).norm(), 0.0) << "multipliers start at 0: the penalty law";
+
+        PairEvaluation state = penalty;
+        for (int k = 1; k <= 3; ++k) {
+            pair.update_multipliers(state);
+            for (int c = 0; c < pair.n_carriers(); ++c) {
+                const CarrierResult& cr = penalty.carriers[static_cast<std::size_t>(c)];
+                for (Index g = 0; g < cr.gap.size(); ++g) {
+                    const double expected = cr.pressure(g) > 0.0 ? k * 1e3 * cr.gap(g) : 0.0;
+                    EXPECT_TRUE(test::near(pair.multipliers(c)(g), expected, round_off * (1.0 + expected)))
+                        << "update " << k << ", carrier " << c << ", point " << g;
+                }
+            }
+            state = pair.evaluate(u1, u2, false);
+            ASSERT_TRUE(state.ok);
+            EXPECT_EQ(state.n_active, penalty.n_active);
+            EXPECT_TRUE(test::at_most((state.residual - (k + 1.0) * penalty.residual).norm(),
+                                      round_off * (k + 1.0) * penalty.residual.norm()))
+                << "update " << k;
+        }
+    }
+}
+
+// Multipliers are state like the warm-start foot points: rollback() returns to
+// those of the last commit(), so a cut-back increment restarts from them.
+TEST(ContactPair, RollbackRestoresTheCommittedMultipliers)
+{
+    const Scene s = make_scene();
+    ContactPair pair({.formulation = Formulation::two_half_pass, .penalty = 1e3}, s.disc, s.block);
+    const auto [u1, u2] = overlap_state(pair, 12);
+    pair.update_multipliers(pair.evaluate(u1, u2, false));
+    pair.commit();
+    std::vector<Vector> committed;
+    for (int c = 0; c < pair.n_carriers(); ++c)
+        committed.push_back(pair.multipliers(c));
+    const Vector committed_residual = pair.evaluate(u1, u2, false).residual;
+
+    pair.update_multipliers(pair.evaluate(u1, u2, false));  // an attempt's updates...
+    pair.update_multipliers(pair.evaluate(u1, u2, false));
+    EXPECT_GT((pair.multipliers(0) - committed[0]).norm(), 0.0);
+    pair.rollback();  // ...undone by a cutback
+    for (int c = 0; c < pair.n_carriers(); ++c)
+        EXPECT_EQ((pair.multipliers(c) - committed[static_cast<std::size_t>(c)]).norm(), 0.0) << "carrier " << c;
+    EXPECT_EQ((pair.evaluate(u1, u2, false).residual - committed_residual).norm(), 0.0);
+}
+
+// With multipliers from one state, evaluated at a state lifted a little (some
+// points open but still active through lambda), the pair tangent is still the
+// derivative of its residual; a raised penalty (set_penalty) keeps it so.
+TEST(ContactPair, TangentWithMultipliersIsDerivative)
+{
+    const Scene s = make_scene();
+    for (const Formulation f : {Formulation::two_half_pass, Formulation::single_pass}) {
+        ContactPair pair({.formulation = f, .penalty = 1e3}, s.disc, s.block);
+        const auto [u1, u2] = overlap_state(pair, 13);
+        pair.update_multipliers(pair.evaluate(u1, u2, false));
+        RowMatrix lifted = u1;
+        lifted.col(1).array() += 0.01;
+        expect_tangent_is_derivative(pair, lifted, u2, "multipliers");
+        pair.set_penalty(1e4);
+        EXPECT_EQ(pair.settings().penalty, 1e4);
+        expect_tangent_is_derivative(pair, lifted, u2, "multipliers, raised penalty");
+    }
+}
+
+}  // namespace
+}  // namespace iga::contact

@@ -294,3 +294,58 @@ TEST(RigidPlane, GapSign)
 
 }  // namespace
 }  // namespace iga::contact
+
+namespace iga::contact {
+namespace {
+
+// Augmented Lagrangian: with a multiplier lambda the pressure is <lambda + eps g_N>,
+// so a point stays active at a small OPEN gap while lambda + eps g_N > 0; the
+// tangent keeps the penalty form with that pressure (K = eps H W Nn Nn^T + p W (...)),
+// which must still be the derivative of the residual.
+TEST(Kernel, MultiplierKeepsAnOpenPointActiveWithTheAugmentedPressure)
+{
+    const Slave slave = quadratic_slave();
+    const nurbs::Patch master = test::rational_arch();
+    const Index n = 2 * (slave.curve.n_control_points() + master.n_control_points());
+    Vector u = Vector::Zero(n);
+    for (Index a = 0; a < slave.curve.n_control_points(); ++a)
+        u(2 * a + 1) = 0.1;  // lift the slave just above the arch: a small open gap
+    Projection p;
+    const KernelResult penalty_only =
+        evaluate_kernel(slave, master, u, {.penalty = 1e3, .master_rows = true, .need_tangent = true}, &p);
+    ASSERT_TRUE(p.gap < -1e-3 && p.gap > -0.05) << "a small open gap, g_N = " << p.gap;
+    EXPECT_EQ(penalty_only.pressure, 0.0) << "penalty alone: an open gap carries nothing";
+
+    const double eps = 1e3, lambda = 60.0;  // lambda + eps g_N > 0 at g_N > -0.06
+    const KernelSettings settings{.penalty = eps, .multiplier = lambda, .master_rows = true, .need_tangent = true};
+    const KernelResult k = evaluate_kernel(slave, master, u, settings);
+    ASSERT_TRUE(k.ok);
+    EXPECT_TRUE(test::near_rel(k.pressure, lambda + eps * p.gap, round_off)) << "p = <lambda + eps g_N>";
+    const Matrix K_fd = test::central_difference_jacobian(
+        [&](const Vector& v) { return evaluate_kernel(slave, master, v, settings).residual; }, u, fd_step);
+    EXPECT_TRUE(test::at_most(relative_error(k.tangent, K_fd), fd_tolerance));
+
+    // Far enough above, lambda + eps g_N < 0: nothing again.
+    for (Index a = 0; a < slave.curve.n_control_points(); ++a)
+        u(2 * a + 1) = 0.5;
+    const KernelResult open = evaluate_kernel(slave, master, u, settings);
+    EXPECT_EQ(open.pressure, 0.0);
+    EXPECT_EQ(open.residual.norm(), 0.0);
+}
+
+TEST(Kernel, RigidKernelUsesTheAugmentedPressure)
+{
+    const Slave slave = quadratic_slave();
+    const Vector N = slave_basis(slave);
+    VecN normal(2);
+    normal << 0.0, 1.0;
+    const double eps = 5e2, lambda = 3.0, gap = -2e-3;  // open, yet lambda + eps g = 2 > 0
+    const KernelResult k =
+        gpts_rigid_kernel(N, slave.W, normal, gap, {.penalty = eps, .multiplier = lambda, .need_tangent = true});
+    EXPECT_TRUE(test::near_rel(k.pressure, lambda + eps * gap, round_off));
+    EXPECT_TRUE(test::near_rel(k.residual.norm(), k.pressure * slave.W * N.norm(), round_off));
+    EXPECT_TRUE(test::near_rel(k.tangent.norm(), eps * slave.W * N.squaredNorm(), round_off));
+}
+
+}  // namespace
+}  // namespace iga::contact

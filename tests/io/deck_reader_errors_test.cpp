@@ -456,6 +456,27 @@ TEST(DeckReaderErrors, ContactStepsNewtonOutput)
               "hertz.yaml:22:16: error: output.file: must not be empty");
 }
 
+TEST(DeckReaderErrors, EnforcementAndAutoPenalty)
+{
+    EXPECT_EQ(issue_of(replaced(minimal_deck, "penalty: 1.0e4", "penalty: fast")),
+              "hertz.yaml:21:14: error: contact.block_floor.penalty = fast: expected a number > 0 or auto");
+    EXPECT_EQ(issue_of(replaced(minimal_deck, "penalty: 1.0e4", "penalty: 1.0e4\n    enforcement: lagrange")),
+              "hertz.yaml:22:18: error: contact.block_floor.enforcement = lagrange: expected one of penalty, "
+              "augmented_lagrangian");
+    const std::string augmented = "penalty: 1.0e4\n    enforcement: augmented_lagrangian\n    augmented_lagrangian: ";
+    EXPECT_EQ(issue_of(replaced(minimal_deck, "penalty: 1.0e4", augmented + "{gap_tolerance: -1.0e-9}")),
+              "hertz.yaml:23:43: error: contact.block_floor.augmented_lagrangian.gap_tolerance = -1.0e-9: must be > 0");
+    EXPECT_EQ(issue_of(replaced(minimal_deck, "penalty: 1.0e4", augmented + "{max_updates: 0}")),
+              "hertz.yaml:23:41: error: contact.block_floor.augmented_lagrangian.max_updates = 0: must be >= 1");
+    EXPECT_EQ(issue_of(replaced(minimal_deck, "penalty: 1.0e4", augmented + "{gap_tol: 1.0e-9}")),
+              "hertz.yaml:23:28: error: contact.block_floor.augmented_lagrangian: unknown key 'gap_tol' (known "
+              "keys: gap_tolerance, max_updates)");
+    EXPECT_EQ(issue_of(replaced(minimal_deck, "penalty: 1.0e4",
+                                "penalty: 1.0e4\n    augmented_lagrangian: {max_updates: 5}")),
+              "hertz.yaml:22:27: error: contact.block_floor.augmented_lagrangian: applies with enforcement: "
+              "augmented_lagrangian only (the pair's enforcement is penalty)");
+}
+
 TEST(DeckReaderErrors, OutputReference)
 {
     const auto reference = [](const std::string& text) {

@@ -192,6 +192,36 @@ TEST(DeckReader, OmittedOptionalSectionsTakeTheDocumentedDefaults)
     EXPECT_EQ(e, d);
 }
 
+TEST(DeckReader, ReadsEnforcementAndAutoPenalty)
+{
+    const Deck d = read(minimal_deck);
+    // deck.md: enforcement penalty; augmented_lagrangian {gap_tolerance automatic, max_updates 30}.
+    EXPECT_EQ(d.contact[0].enforcement, Enforcement::penalty);
+    EXPECT_FALSE(d.contact[0].penalty_auto);
+    EXPECT_EQ(d.contact[0].augmented_lagrangian.gap_tolerance, 0.0);  // 0 = automatic
+    EXPECT_EQ(d.contact[0].augmented_lagrangian.max_updates, 30);
+    EXPECT_EQ(d.contact[0].augmented_lagrangian, AugmentedLagrangian{});
+
+    const Deck a = read(replaced(minimal_deck, "penalty: 1.0e4",
+                                       "penalty: auto\n    enforcement: augmented_lagrangian\n"
+                                       "    augmented_lagrangian: {gap_tolerance: 1.0e-9, max_updates: 12}"));
+    EXPECT_TRUE(a.contact[0].penalty_auto);
+    EXPECT_EQ(a.contact[0].enforcement, Enforcement::augmented_lagrangian);
+    EXPECT_EQ(a.contact[0].augmented_lagrangian.gap_tolerance, 1e-9);
+    EXPECT_EQ(a.contact[0].augmented_lagrangian.max_updates, 12);
+    // Without the map, the defaults.
+    const Deck b = read(replaced(minimal_deck, "penalty: 1.0e4",
+                                       "penalty: 2.0e4\n    enforcement: augmented_lagrangian"));
+    EXPECT_EQ(b.contact[0].penalty, 2e4);
+    EXPECT_EQ(b.contact[0].augmented_lagrangian, AugmentedLagrangian{});
+    // --set may switch both on.
+    const Deck c = read(minimal_deck, {"contact.block_floor.penalty=auto",
+                                       "contact.block_floor.enforcement=augmented_lagrangian",
+                                       "contact.block_floor.augmented_lagrangian.max_updates=7"});
+    EXPECT_TRUE(c.contact[0].penalty_auto);
+    EXPECT_EQ(c.contact[0].augmented_lagrangian.max_updates, 7);
+}
+
 TEST(DeckReader, ReadsADeckFileAndResolvesPathsAgainstItsFolder)
 {
     namespace fs = std::filesystem;
@@ -232,6 +262,19 @@ TEST(ResolvedDeck, RoundTripGivesAnEqualDeck)
     expect_round_trip(two_cylinders_deck);
     expect_round_trip(minimal_deck);
     expect_round_trip(shapes_deck_3d);
+}
+
+TEST(ResolvedDeck, RoundTripKeepsEnforcementAndAutoPenalty)
+{
+    expect_round_trip(replaced(minimal_deck, "penalty: 1.0e4",
+                                     "penalty: auto\n    enforcement: augmented_lagrangian\n"
+                                     "    augmented_lagrangian: {gap_tolerance: 1.0e-9, max_updates: 12}"));
+    expect_round_trip(replaced(minimal_deck, "penalty: 1.0e4",
+                                     "penalty: 3.0e5\n    enforcement: augmented_lagrangian"));
+    const std::string yaml =
+        read(replaced(minimal_deck, "penalty: 1.0e4", "penalty: auto")).resolved_yaml;
+    EXPECT_NE(yaml.find("\n    penalty: auto\n"), std::string::npos) << yaml;
+    EXPECT_NE(yaml.find("\n    enforcement: penalty\n"), std::string::npos) << yaml;
 }
 
 TEST(ResolvedDeck, MakesDefaultsExplicit)

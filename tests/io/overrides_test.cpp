@@ -117,7 +117,7 @@ TEST(OverridesErrors, BadValuesAreReportedAtTheCommandLine)
     EXPECT_EQ(issue_of(minimal_deck, {"materials.steel.nu=0.6"}),
               "<command line>: error: materials.steel.nu = 0.6: must lie in (-1, 0.5)");
     EXPECT_EQ(issue_of(minimal_deck, {"contact.block_floor.penalty=abc"}),
-              "<command line>: error: contact.block_floor.penalty = abc: expected a number");
+              "<command line>: error: contact.block_floor.penalty = abc: expected a number > 0 or auto");
     // Inside a value or a map that --set created.
     EXPECT_EQ(issue_of(minimal_deck, {"bodies.block.refine.spans=[0,16]"}),
               "<command line>: error: bodies.block.refine.spans.0 = 0: must be >= 1");

@@ -512,3 +512,118 @@ TEST(LoadStepping, LogsOneLinePerConvergedIncrement)
 
 }  // namespace
 }  // namespace iga::solver
+
+namespace iga::solver {
+namespace {
+
+// One spring against a wall, augmented Lagrangian by hand: dof u = penetration,
+// spring stiffness k, load lambda F pushing into the wall, contact pressure
+// p = <m + eps u> with the multiplier m held here:
+//   r(u) = k u - lambda F + p(u).
+// The outer callback is the Uzawa step m <- <m + eps u>; at lambda = 1 the solve
+// gives u_n = (F - m_n)/(k + eps), so m_n = F (1 - rho^n), rho = k/(k + eps).
+struct OneSpring {
+    double k = 1.0, F = 2.0, eps = 3.0;  // rho = 1/4
+    double m = 0.0, committed = 0.0;
+    double tolerance = 1e-3;  // accept when u <= tolerance
+    int max_updates = 100;
+    int updates = 0;
+
+    NonlinearSystem system()
+    {
+        NonlinearSystem s;
+        s.evaluate = [this](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+            const double trial = m + eps * u(0);
+            out.residual = Vector::Constant(1, k * u(0) - lambda * F + std::max(trial, 0.0));
+            out.force_scale = F;
+            if (need_tangent)
+                out.tangent = scalar_matrix(k + (trial > 0.0 ? eps : 0.0));
+        };
+        return s;
+    }
+    SteppingCallbacks callbacks()
+    {
+        SteppingCallbacks c;
+        c.commit = [this] { committed = m; updates = 0; };
+        c.rollback = [this] { m = committed; updates = 0; };
+        c.outer = [this](const Vector& u, double) {
+            OuterDecision d;
+            if (u(0) <= tolerance)
+                return d;
+            if (updates == max_updates) {
+                d.action = OuterDecision::Action::reject;
+                d.message = "penetration above tolerance";
+                return d;
+            }
+            m = std::max(m + eps * u(0), 0.0);
+            ++updates;
+            d.action = OuterDecision::Action::resolve;
+            return d;
+        };
+        return c;
+    }
+};
+
+TEST(LoadStepping, OuterUpdatesFollowTheOneSpringClosedForm)
+{
+    OneSpring spring;
+    // u_n = F rho^n / (k + eps) = 0.5 / 4^n: 0.5, 0.125, 0.031, 0.0078, 0.00195, 0.00049:
+    // the first u_n <= 1e-3 is n = 5.
+    constexpr int expected_updates = 5;
+    const double rho = spring.k / (spring.k + spring.eps);
+    SteppingSettings stepping;
+    LinearSolver solver(LinearSolver::Kind::lu);
+    SteppingCallbacks callbacks = spring.callbacks();
+    Vector u = Vector::Zero(1);
+    const SteppingResult result = run_load_steps(spring.system(), u, stepping, NewtonSettings{}, solver, callbacks,
+                                                 nullptr);
+    ASSERT_TRUE(result.completed) << result.message;
+    ASSERT_EQ(result.increments.size(), 1u);
+    EXPECT_EQ(result.increments[0].outer_updates, expected_updates);
+    EXPECT_EQ(result.increments[0].cutbacks, 0);
+    // Newton stops at 1e-10 relative residual, so u and m carry ~1e-10 F.
+    constexpr double closed_form_tolerance = 1e-9;
+    EXPECT_TRUE(test::near(spring.committed, spring.F * (1.0 - std::pow(rho, expected_updates)),
+                           closed_form_tolerance * spring.F))
+        << "m after 5 updates";
+    EXPECT_TRUE(test::near(u(0), spring.F * std::pow(rho, expected_updates) / (spring.k + spring.eps),
+                           closed_form_tolerance))
+        << "u after 5 updates";
+    // The increment's report sums every solve: one residual history entry per iteration.
+    EXPECT_EQ(result.increments[0].report.iterations, result.total_iterations);
+    EXPECT_EQ(static_cast<int>(result.increments[0].report.residual_history.size()),
+              result.increments[0].report.iterations + expected_updates + 1);
+}
+
+// A rejection counts as a failed attempt: the multiplier is rolled back to the
+// committed value and the increment is cut back; with the rejection persisting
+// the run ends with the callback's reason in the message.
+TEST(LoadStepping, RejectedOuterLoopIsCutBackAndRolledBack)
+{
+    OneSpring spring;
+    spring.max_updates = 1;  // never enough for u <= 1e-3 from m = 0 at any load factor >= 1/256
+    SteppingSettings stepping;
+    stepping.max_cutbacks = 2;
+    LinearSolver solver(LinearSolver::Kind::lu);
+    SteppingCallbacks callbacks = spring.callbacks();
+    int rollbacks = 0;
+    auto rollback = callbacks.rollback;
+    callbacks.rollback = [&] {
+        rollback();
+        ++rollbacks;
+        EXPECT_EQ(spring.m, 0.0) << "rolled back to the committed multiplier";
+    };
+    Vector u = Vector::Zero(1);
+    const SteppingResult result = run_load_steps(spring.system(), u, stepping, NewtonSettings{}, solver, callbacks,
+                                                 nullptr);
+    EXPECT_FALSE(result.completed);
+    EXPECT_EQ(rollbacks, 3);
+    EXPECT_EQ(result.total_cutbacks, 2);
+    EXPECT_NE(result.message.find("the outer loop rejected the solution after 2 cutbacks"), std::string::npos)
+        << result.message;
+    EXPECT_NE(result.message.find("penetration above tolerance"), std::string::npos) << result.message;
+    EXPECT_EQ(u(0), 0.0) << "the last converged state (the start)";
+}
+
+}  // namespace
+}  // namespace iga::solver

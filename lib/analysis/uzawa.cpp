@@ -1,0 +1,99 @@
+#include "analysis/uzawa.hpp"
+
+#include "analysis/contact_penalty.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace iga::analysis {
+
+UzawaLoop::UzawaLoop(Scene& scene, SceneSystem& system, RunContext& context)
+    : scene_(scene), system_(system), context_(context)
+{
+    for (const PairModel& p : scene_.pairs)
+        active_ = active_ || p.augmented;
+    last_penetration_.assign(scene_.pairs.size(), -1.0);
+}
+
+void UzawaLoop::begin_attempt()
+{
+    updates_ = 0;
+    std::fill(last_penetration_.begin(), last_penetration_.end(), -1.0);
+}
+
+solver::OuterDecision UzawaLoop::after_solve(const Vector& u_free, double load_factor)
+{
+    solver::OuterDecision decision;
+    if (!active_)
+        return decision;
+    const std::vector<contact::PairEvaluation> states = system_.contact_state(u_free, load_factor);
+
+    // Which pairs still penetrate more than their tolerance.
+    std::string over;  // the first such pair, in words
+    int max_updates = 0;
+    for (std::size_t p = 0; p < scene_.pairs.size(); ++p) {
+        PairModel& model = scene_.pairs[p];
+        if (!model.augmented)
+            continue;
+        if (!states[p].ok) {  // cannot happen at a converged state; reject rather than update from it
+            decision.action = solver::OuterDecision::Action::reject;
+            decision.message = fmt::format("contact pair '{}': {}", model.name, states[p].message);
+            return decision;
+        }
+        const double penetration = states[p].max_penetration;
+        double max_pressure = 0.0;
+        for (const contact::CarrierResult& carrier : states[p].carriers)
+            if (carrier.pressure.size() > 0)
+                max_pressure = std::max(max_pressure, carrier.pressure.maxCoeff());
+        const double tolerance =
+            model.gap_tolerance > 0.0 ? model.gap_tolerance
+                                      : auto_gap_tolerance(model.element_size, model.contact_modulus, max_pressure);
+        model.gap_tolerance_used = tolerance;
+        if (penetration > tolerance) {
+            if (over.empty())
+                over = fmt::format("contact pair '{}': max penetration {:.3g} above gap_tolerance {:.3g}",
+                                   model.name, penetration, tolerance);
+            max_updates = std::max(max_updates, model.max_updates);
+        }
+    }
+    if (over.empty())
+        return decision;  // accept
+    if (updates_ >= max_updates) {
+        decision.action = solver::OuterDecision::Action::reject;
+        decision.message = fmt::format("{} after {} Uzawa updates (augmented_lagrangian.max_updates); allow more "
+                                       "updates or a larger gap_tolerance",
+                                       over, updates_);
+        return decision;
+    }
+
+    for (std::size_t p = 0; p < scene_.pairs.size(); ++p) {
+        PairModel& model = scene_.pairs[p];
+        if (!model.augmented)
+            continue;
+        model.pair.update_multipliers(states[p]);
+        const double penetration = states[p].max_penetration;
+        const double last = last_penetration_[p];
+        last_penetration_[p] = penetration;
+        if (!(last > 0.0) || !(penetration > model.gap_tolerance_used) || penetration <= uzawa_stall_ratio * last)
+            continue;
+        const double penalty = model.pair.settings().penalty;
+        if (penalty * uzawa_raise_factor > uzawa_max_raise * model.initial_penalty * (1.0 + 1e-12))
+            continue;  // at the bound: Uzawa goes on at this penalty
+        model.pair.set_penalty(penalty * uzawa_raise_factor);
+        const std::string note = fmt::format(
+            "contact pair '{}': the augmented Lagrangian raised the penalty to {:.3g} ({:.3g} x the initial {:.3g}): "
+            "the penetration stalled ({:.3g} -> {:.3g} at load factor {:.4g})",
+            model.name, model.pair.settings().penalty, model.pair.settings().penalty / model.initial_penalty,
+            model.initial_penalty, last, penetration, load_factor);
+        context_.log(Verbosity::normal, note);
+        notes_.push_back(note);
+    }
+    ++updates_;
+    context_.log(Verbosity::verbose, fmt::format("  Uzawa update {} at load factor {:.4g}: {}", updates_,
+                                                 load_factor, over));
+    decision.action = solver::OuterDecision::Action::resolve;
+    return decision;
+}
+
+}  // namespace iga::analysis

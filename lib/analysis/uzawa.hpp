@@ -1,0 +1,64 @@
+#pragma once
+// The Uzawa outer loop of the augmented-Lagrangian contact pairs (enforcement:
+// augmented_lagrangian; docs/theory.md "Augmented Lagrangian"), called by the load
+// stepper after every converged Newton solve (solver::SteppingCallbacks::outer).
+//
+// At the converged state of a solve it measures each augmented pair's largest
+// penetration g_max (over its Gauss points, both half passes):
+//  - every pair has g_max <= gap_tolerance: accept the increment;
+//  - else, if max_updates updates were already made in this attempt: reject it (the
+//    load stepper cuts the increment back; multipliers are rolled back with it);
+//  - else update the multipliers of every augmented pair, lambda <- <lambda + eps g_N>
+//    (contact::ContactPair::update_multipliers), and solve again.
+// Safeguard: when a pair's g_max falls by less than stall_ratio from one solve to the
+// next, its penalty is raised by raise_factor (the multipliers are kept), at most to
+// max_raise times its initial value; each raise is logged (normal verbosity) and
+// kept in notes() for the run's warnings. Raised penalties stay for the rest of the run.
+//
+// One UzawaLoop per run; attempt state (updates, last g_max) is reset by
+// begin_attempt(), which the driver calls on commit and on rollback.
+
+#include "analysis/scene.hpp"
+#include "analysis/system.hpp"
+#include "core/run_context.hpp"
+#include "solver/load_stepping.hpp"
+
+#include <string>
+#include <vector>
+
+namespace iga::analysis {
+
+/// A successive-penetration ratio above this is a stall: Uzawa converges like
+/// k/(k + eps) per update for a contact stiffness k, so 0.25 means eps < 3 k.
+constexpr double uzawa_stall_ratio = 0.25;
+/// Factor of one penalty raise.
+constexpr double uzawa_raise_factor = 10.0;
+/// Bound on the total raise of a pair's penalty over its initial value.
+constexpr double uzawa_max_raise = 1e3;
+
+class UzawaLoop {
+public:
+    UzawaLoop(Scene& scene, SceneSystem& system, RunContext& context);
+
+    /// Some pair uses the augmented Lagrangian.
+    bool active() const { return active_; }
+    /// The decision after a converged solve at (u_free, load_factor); see the header.
+    solver::OuterDecision after_solve(const Vector& u_free, double load_factor);
+    /// A new attempt (after a commit or a rollback): no updates yet.
+    void begin_attempt();
+    /// Updates made in the current attempt.
+    int updates() const { return updates_; }
+    /// One line per penalty raise so far (for the run's warnings).
+    const std::vector<std::string>& notes() const { return notes_; }
+
+private:
+    Scene& scene_;
+    SceneSystem& system_;
+    RunContext& context_;
+    bool active_ = false;
+    int updates_ = 0;
+    std::vector<double> last_penetration_;  ///< per pair, g_max of the previous solve; < 0: none yet
+    std::vector<std::string> notes_;
+};
+
+}  // namespace iga::analysis
