@@ -142,6 +142,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     const solver::NonlinearSystem nonlinear = system.nonlinear_system();
     solver::LinearSolver linear(nonlinear.symmetric ? solver::LinearSolver::Kind::cholesky
                                                     : solver::LinearSolver::Kind::lu);
+    if (scene.dim == 3)
+        linear.set_ordering(solver::LinearSolver::Ordering::nested_dissection);
     Vector u = Vector::Zero(scene.dofs->n_free());
     // Small kinematics with contact: only the contact sides' rows and columns of the
     // tangent change, so condensing onto them (solver/condensation.hpp) factorizes the

@@ -75,6 +75,17 @@ const std::vector<int>& LinearSolver::condensed_dofs() const
     return condensation_ ? condensation_->condensed_dofs() : none;
 }
 
+void LinearSolver::set_ordering(Ordering ordering)
+{
+    Backend& b = *backend_;
+    const bool nested = ordering == Ordering::nested_dissection;
+    b.llt.cholmod().nmethods = 1;
+    b.llt.cholmod().method[0].ordering = nested ? CHOLMOD_METIS : CHOLMOD_AMD;
+    b.lu.umfpackControl()(UMFPACK_ORDERING) = nested ? UMFPACK_ORDERING_METIS : UMFPACK_ORDERING_AMD;
+    analysed_lu_ = analysed_llt_ = false;  // the next factorization orders again
+    factorized_ = false;
+}
+
 void LinearSolver::set_kind(Kind kind)
 {
     if (kind != kind_) {
@@ -146,9 +157,12 @@ LinearStatus LinearSolver::factorize(const SparseMatrix& K)
         return status;
     }
     ++n_fallbacks_;
+    const LinearStatus lu_status = factorize_with(Kind::lu);
+    if (lu_status == LinearStatus::singular)
+        return lu_status;  // singular, not indefinite: the caller's shifted K + mu D is worth a Cholesky at once
     cholesky_skips_ = cholesky_backoff_;
     cholesky_backoff_ = std::min(2 * cholesky_backoff_, max_cholesky_backoff);
-    return factorize_with(Kind::lu);
+    return lu_status;
 }
 
 LinearStatus LinearSolver::factorize_with(Kind kind)

@@ -5,11 +5,14 @@
 // tangent known to be symmetric positive definite).
 //
 // Kind::cholesky means "expected symmetric positive definite": a matrix CHOLMOD
-// refuses (a rigid-body mode before first touch, an indefinite finite-strain
-// tangent) is factorized by UMFPACK instead, and Cholesky is tried again only after
-// 1, 2, 4, ... (at most 32) further factorizations, so a run whose tangent becomes
-// definite (contact closes) returns to the factorization that costs a fraction of
-// an LU, while a tangent that stays indefinite wastes few Cholesky attempts.
+// refuses (an indefinite finite-strain tangent, a rigid-body mode before first
+// touch) is factorized by UMFPACK instead. If UMFPACK finds it indefinite but
+// regular, Cholesky is tried again only after 1, 2, 4, ... (at most 32) further
+// factorizations, so a run whose tangent becomes definite (contact closes) returns
+// to the factorization that costs a fraction of an LU, while a tangent that stays
+// indefinite wastes few Cholesky attempts. If UMFPACK finds it singular, the next
+// factorization (the caller's Levenberg-Marquardt shift K + mu D, definite when K
+// was semi-definite) tries Cholesky at once.
 //
 // Invariants: the symbolic analysis (fill-reducing ordering, elimination tree) of
 // each backend is done again only when the sparsity pattern (the outer and inner
@@ -70,6 +73,13 @@ public:
     bool condensed() const { return condensation_ != nullptr; }
     /// The condensed dofs (sorted), empty when not condensing.
     const std::vector<int>& condensed_dofs() const;
+
+    /// Fill-reducing ordering of the symbolic analyses: approximate minimum degree
+    /// (the backends' default) or METIS nested dissection, which fills far less in
+    /// 3D (measured on the 3D Hertz sphere, 32k dofs: Cholesky 1.6x faster; on 2D
+    /// decks AMD is ~7 % faster).
+    enum class Ordering { minimum_degree, nested_dissection };
+    void set_ordering(Ordering ordering);
 
     /// Switches the backend (each keeps its own symbolic analysis).
     void set_kind(Kind kind);

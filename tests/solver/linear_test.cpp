@@ -106,6 +106,10 @@ TEST(LinearSolver, SingularMatrixIsReportedNotSolved)
     LinearSolver cholesky(LinearSolver::Kind::cholesky);
     EXPECT_EQ(cholesky.factorize(K), LinearStatus::singular);
     EXPECT_EQ(cholesky.n_cholesky_fallbacks(), 1);
+    // Singular, not indefinite: the shifted matrix a caller tries next gets Cholesky at once.
+    const SparseMatrix shifted = SparseMatrix(K + SparseMatrix(Matrix::Identity(3, 3).sparseView()));
+    ASSERT_EQ(cholesky.factorize(shifted), LinearStatus::ok);
+    EXPECT_EQ(cholesky.factorized_kind(), LinearSolver::Kind::cholesky);
 
     // A structurally zero column.
     Matrix zero_column = Matrix::Identity(3, 3);
@@ -264,6 +268,32 @@ TEST(LinearSolver, CallerMayChangeTheMatrixBetweenFactorizeAndSolve)
     Vector x;
     ASSERT_EQ(solver.solve(Vector::Ones(2), x), LinearStatus::ok);
     EXPECT_TRUE(test::at_most((x - dense.partialPivLu().solve(Vector::Ones(2))).norm(), solve_tolerance));
+}
+
+}  // namespace
+}  // namespace iga::solver
+
+namespace iga::solver {
+namespace {
+
+TEST(LinearSolver, NestedDissectionOrderingSolvesTheSameSystems)
+{
+    std::mt19937 rng(seed);
+    const SparseMatrix K_spd = dominant_matrix(60, true, rng);
+    const SparseMatrix K_general = dominant_matrix(60, false, rng);
+    const Vector b = random_vector(60, rng);
+    for (auto kind : {LinearSolver::Kind::cholesky, LinearSolver::Kind::lu}) {
+        const SparseMatrix& K = kind == LinearSolver::Kind::cholesky ? K_spd : K_general;
+        LinearSolver solver(kind);
+        ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+        solver.set_ordering(LinearSolver::Ordering::nested_dissection);
+        ASSERT_EQ(solver.factorize(K), LinearStatus::ok) << "a new ordering is a new analysis, not a stale factor";
+        EXPECT_EQ(solver.n_symbolic(), 2);
+        Vector x;
+        ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+        EXPECT_TRUE(test::at_most(relative_error(x, Matrix(K).partialPivLu().solve(b)), solve_tolerance))
+            << kind_name(kind);
+    }
 }
 
 }  // namespace
