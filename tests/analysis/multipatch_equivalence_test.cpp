@@ -11,6 +11,7 @@
 // get the rest of the refinement partly through the interface (the conforming
 // propagation of nurbs/topology.hpp), so the test also checks that propagation.
 
+#include "multipatch_decks.hpp"
 #include "run_support.hpp"
 #include "support/tolerance.hpp"
 
@@ -18,62 +19,13 @@
 
 #include <fmt/format.h>
 
-#include <fstream>
-#include <map>
 
 namespace iga::test {
 namespace {
 
-void write_text(const std::filesystem::path& path, const std::string& text)
-{
-    std::ofstream out(path);
-    out << text;
-}
-
 // Same space, same unknowns, a different summation order: round-off of the solve
 // (condition number ~1e6 of the penalty system times 1e-16, with a margin).
 constexpr double round_off = 1e-9;
-
-// ---------------------------------------------------------------------------
-// 3D: block [0, 2] x [0, 1] x [0, 1] (z up), degree (2, 2, 1), rational in u,
-// bottom z = 0.05 (x - 1)^2 + 0.01 (y - 0.5)^2 at the control polygon (lowest
-// near x = 1, on the cut), top pushed down by 0.01 onto the plane z = 0.
-const double xs[5] = {0.0, 0.5, 1.0, 1.5, 2.0};
-const double ys[3] = {0.0, 0.5, 1.0};
-const double ws[5] = {1.0, 0.9, 1.0, 0.8, 1.0};
-
-std::string points_3d(int first, int last, const std::string& indent)
-{
-    std::string out;
-    for (int l = 0; l < 2; ++l)
-        for (int j = 0; j < 3; ++j)
-            for (int i = first; i <= last; ++i) {
-                const double z = l == 1 ? 1.0 : 0.05 * (xs[i] - 1.0) * (xs[i] - 1.0) + 0.01 * (ys[j] - 0.5) * (ys[j] - 0.5);
-                out += fmt::format("{}- [{}, {}, {}, {}]\n", indent, xs[i], ys[j], z, ws[i]);
-            }
-    return out;
-}
-
-std::string deck_3d(const std::string& body, const std::string& bottom, const std::string& top)
-{
-    return fmt::format(R"(format: 1
-analysis: {{dimension: 3, kinematics: small}}
-materials:
-  - {{name: m, model: linear_elastic, E: 1000.0, nu: 0.3}}
-bodies:
-  - name: block
-    material: m
-{}
-  - name: floor
-    rigid: {{plane: {{point: [0.0, 0.0, 0.0], normal: [0.0, 0.0, 1.0]}}}}
-constraints:
-  - {{body: block, side: {}, displacement: [0.0, 0.0, -0.01]}}
-contact:
-  - {{name: touch, between: [{}, floor], penalty: 1.0e5}}
-output: {{samples_per_span: 3}}
-)",
-                       body, top, bottom);
-}
 
 /// Rows of `b` matched to rows of `a` by their coordinates (a row of b that has
 /// no row of a within `tol` maps to -1).
@@ -92,27 +44,8 @@ std::vector<Index> match_rows(const RowMatrix& a, const RowMatrix& b, double tol
 TEST(MultiPatchEquivalence, TwoPatchesEqualTheUncutPatchToRoundOff3D)
 {
     const auto dir = scratch_dir("multipatch_split_3d");
-    const std::string single = "    nurbs:\n      degrees: [2, 2, 1]\n"
-                               "      knots: [[0, 0, 0, 0.5, 0.5, 1, 1, 1], [0, 0, 0, 1, 1, 1], [0, 0, 1, 1]]\n"
-                               "      control_points:\n" +
-                               points_3d(0, 4, "        ") + "    refine: {spans: [4, 2, 2]}\n";
-    // Each half gets its u knot from its own spans; the left half is refined in
-    // v only, the right one in w only: each gets the other's knots through the
-    // interface.
-    const std::string split = "    patches:\n"
-                              "      - name: left\n        nurbs:\n          degrees: [2, 2, 1]\n"
-                              "          knots: [[0, 0, 0, 0.5, 0.5, 0.5], [0, 0, 0, 1, 1, 1], [0, 0, 1, 1]]\n"
-                              "          control_points:\n" +
-                              points_3d(0, 2, "            ") +
-                              "        refine: {spans: [2, 2, 1]}\n"
-                              "      - name: right\n        nurbs:\n          degrees: [2, 2, 1]\n"
-                              "          knots: [[0.5, 0.5, 0.5, 1, 1, 1], [0, 0, 0, 1, 1, 1], [0, 0, 1, 1]]\n"
-                              "          control_points:\n" +
-                              points_3d(2, 4, "            ") +
-                              "        refine: {spans: [2, 1, 2]}\n"
-                              "    surfaces: {bottom: [left.w0, right.w0], top: [left.w1, right.w1]}\n";
-    write_text(dir / "single.yaml", deck_3d(single, "block.w0", "w1"));
-    write_text(dir / "split.yaml", deck_3d(split, "block.bottom", "top"));
+    write_text(dir / "single.yaml", block_deck_3d(block_3d_single(), "block.w0", "w1"));
+    write_text(dir / "split.yaml", block_deck_3d(block_3d_split(), "block.bottom", "top"));
 
     const analysis::RunOutcome one = run_deck((dir / "single.yaml").string(), {}, dir / "single.h5");
     ASSERT_EQ(one.status, "completed") << one.message;
@@ -190,7 +123,6 @@ TEST(MultiPatchEquivalence, TwoPatchesEqualTheUncutPatchToRoundOff3D)
 }
 
 
-// ---------------------------------------------------------------------------
 // 2D, finite kinematics: block [0, 2] x [0, 1] with a domed top
 // y = 1 - 0.1 (x - 1)^2 at the control polygon, rational in u, neo-Hookean,
 // clamped at the bottom, a follower pressure of 80 (8 % of E: strains of several
@@ -200,8 +132,8 @@ std::string points_2d(int first, int last, const std::string& indent)
     std::string out;
     for (int j = 0; j < 3; ++j)
         for (int i = first; i <= last; ++i) {
-            const double y = j == 2 ? 1.0 - 0.1 * (xs[i] - 1.0) * (xs[i] - 1.0) : 0.5 * j;
-            out += fmt::format("{}- [{}, {}, {}]\n", indent, xs[i], y, ws[i]);
+            const double y = j == 2 ? 1.0 - 0.1 * (block_xs[i] - 1.0) * (block_xs[i] - 1.0) : 0.5 * j;
+            out += fmt::format("{}- [{}, {}, {}]\n", indent, block_xs[i], y, block_ws[i]);
         }
     return out;
 }
