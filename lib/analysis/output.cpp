@@ -225,8 +225,15 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
             r.postprocessed.coordinates = recovered.coordinates;
             r.postprocessed.reference_coordinates = recovered.reference_coordinates;
             r.postprocessed.pressure = recovered.pressure;
-            if (recovered.parameter.cols() == 2)
+            if (side->pieces.size() > 1) {
+                // One grid per patch side, samples patch side after patch side.
+                r.patch_sides = model.piece_label[static_cast<std::size_t>(carrier.surface)];
+                r.gauss_points.patch = carrier.piece;
+                for (const std::array<Index, 2>& grid : recovered.grids)
+                    r.postprocessed.patch_grids.push_back({grid[1], grid[0]});  // [n_v, n_u]; a curve [1, n]
+            } else if (recovered.parameter.cols() == 2) {
                 r.postprocessed.grid = {recovered.grid[1], recovered.grid[0]};  // [n_v, n_u]
+            }
             r.normal_force = recovered.normal_force;
             int active = 0;
             double penetration = 0.0, contact_measure = 0.0;

@@ -75,14 +75,26 @@ std::vector<int> contact_free_dofs(const Scene& scene)
     return out;
 }
 
-/// output.fields of every body at a converged state; points that could not be
-/// evaluated are reported in the log (they hold zeros).
+/// Every deformable body's n_nodes x d displacements (body node numbering, which
+/// the tessellations use; a multi-patch body's interface nodes once) at a state.
+std::vector<RowMatrix> node_displacements(const Scene& scene, const SceneSystem& system, const Vector& u_free,
+                                          double load_factor)
+{
+    const Vector u_full = scene.dofs->expand(u_free, load_factor);
+    std::vector<RowMatrix> out;
+    for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+        out.push_back(system.body_displacement(u_full, static_cast<int>(b)));
+    return out;
+}
+
+/// output.fields of every body at a converged state (`u`: node_displacements);
+/// points that could not be evaluated are reported in the log (they hold zeros).
 std::vector<io::BodyFields> stress_fields(const Scene& scene, const std::vector<TessellatedBody>& tessellations,
-                                          const io::StepData& step, RunContext& context)
+                                          const std::vector<RowMatrix>& u, RunContext& context)
 {
     std::vector<io::BodyFields> out;
     for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
-        FieldsResult r = body_fields(scene.bodies[b], tessellations[b], scene.kinematics, step.displacement[b].second);
+        FieldsResult r = body_fields(scene.bodies[b], tessellations[b], scene.kinematics, u[b]);
         if (r.n_unevaluated > 0)
             context.log(Verbosity::normal,
                         fmt::format("warning: body '{}': stress not evaluable at {} tessellation point(s) "
@@ -135,7 +147,7 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
                                        side.side_name,
                                    pair.name + " " + side.side_name, side.gauss_points.coordinates.rows(),
                                    side.postprocessed.coordinates.rows(), scene.dim, side.postprocessed.grid[1],
-                                   side.postprocessed.grid[0]});
+                                   side.postprocessed.grid[0], side.postprocessed.patch_grids, side.patch_sides});
         return x;
     };
 
@@ -228,12 +240,17 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
             convergence.push_back({static_cast<double>(record.index), static_cast<double>(k),
                                    record.report.residual_history[k], record.load_factor});
         writer->append_history(history_row(step));
+        // Tessellation and fields work in body nodes: step.displacement lists only
+        // the single-patch bodies (multi-patch ones are stored per patch).
+        const std::vector<RowMatrix> u_nodes =
+            deck.output.paraview || deck.output.fields ? node_displacements(scene, system, state, record.load_factor)
+                                                       : std::vector<RowMatrix>{};
         if (deck.output.paraview)
             for (std::size_t b = 0; b < tessellations.size(); ++b)
-                step.tessellation_displacement.emplace_back(
-                    scene.bodies[b].name, tessellation_displacement(tessellations[b], step.displacement[b].second));
+                step.tessellation_displacement.emplace_back(scene.bodies[b].name,
+                                                            tessellation_displacement(tessellations[b], u_nodes[b]));
         if (deck.output.fields)
-            step.fields = stress_fields(scene, tessellations, step, context);
+            step.fields = stress_fields(scene, tessellations, u_nodes, context);
         if (deck.output.every_step) {
             writer->write_step(step);
             if (deck.output.paraview)

@@ -291,6 +291,7 @@ Scene build_scene(const io::Deck& deck, int refine_levels)
         std::array<int, 2> body{-1, -1};
         std::array<std::string, 2> label;
         std::array<std::vector<int>, 2> parent;
+        std::array<std::vector<std::string>, 2> piece_label;
         auto make_surface = [&](const io::ContactSurface& s, int k) -> contact::Surface {
             const io::Body* deck_body = deck.find_body(s.body);
             IGA_CHECK(deck_body != nullptr, "the deck reader let an unknown contact body through");
@@ -303,6 +304,8 @@ Scene build_scene(const io::Deck& deck, int refine_levels)
             const BodyModel& model = scene.bodies[static_cast<std::size_t>(body[k])];
             const std::vector<BodySide> sides = sides_of(deck, scene, s.body, s.patch, s.side.value_or(Side::u0), s.surface);
             check_not_interface(deck, model, sides, "contact." + c.name + ".between");
+            for (const BodySide& bs : sides)
+                piece_label[k].push_back(body_side_text(model.patch_names(), bs));
             if (sides.size() == 1) {
                 // One patch side: the side's own numbering (the single-patch layout).
                 const PatchModel& patch = model.patches[static_cast<std::size_t>(sides.front().patch)];
@@ -347,7 +350,7 @@ Scene build_scene(const io::Deck& deck, int refine_levels)
                                            "cannot use this pair: " + reason));
             }
         }();
-        PairModel model{c.name, std::move(pair), body, parent, label, {}, {}, -1, settings.formulation};
+        PairModel model{c.name, std::move(pair), body, parent, label, piece_label, {}, {}, -1, settings.formulation};
         model.penalty_auto = c.penalty_auto;
         model.initial_penalty = settings.penalty;
         model.augmented = c.enforcement == io::Enforcement::augmented_lagrangian;

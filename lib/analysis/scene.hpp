@@ -88,6 +88,9 @@ struct PairModel {
     std::array<int, 2> body{-1, -1};                 ///< deformable body index of each surface, -1 rigid
     std::array<std::vector<int>, 2> parent_index;    ///< surface control point -> body node
     std::array<std::string, 2> label;                ///< "cylinder.v0", "cyl.arc" or the rigid body's name
+    /// Per surface: its patch sides in the surface's order ("left.v0", ...; "v0" on a
+    /// single-patch body), i.e. the pieces of its DeformableSide; empty for a rigid one.
+    std::array<std::vector<std::string>, 2> piece_label;
     std::vector<int> local_to_full;                  ///< pair-local dof -> full dof
     std::map<contact::Coupling, int> blocks;         ///< registered coupling -> pattern block
     int obstacle = -1;                               ///< surface index (0/1) of a rigid obstacle, -1 if none

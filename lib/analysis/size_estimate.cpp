@@ -24,12 +24,30 @@ struct Direction {
     double control_points() const { return degree + 1 + interior_knots; }
 };
 
-std::vector<Direction> base_directions(const io::Body& body)
+/// `dirs` after one refine block (elevate, spans, insert, in this order).
+void apply_refine(const io::Refine& r, std::vector<Direction>& out)
+{
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        Direction& dir = out[i];
+        if (i < r.elevate.size() && r.elevate[i] > 0) {
+            dir.degree += r.elevate[i];
+            dir.interior_knots += r.elevate[i] * dir.interior_breakpoints;
+        }
+        if (i < r.spans.size() && r.spans[i] > 1) {
+            dir.interior_knots += r.spans[i] - 1.0;
+            dir.interior_breakpoints += r.spans[i] - 1.0;
+        }
+        if (i < r.insert.size()) {
+            dir.interior_knots += static_cast<double>(r.insert[i].size());
+            dir.interior_breakpoints += static_cast<double>(r.insert[i].size());
+        }
+    }
+}
+
+/// The directions of one patch as given (before any refinement).
+std::vector<Direction> raw_directions(const io::NurbsData* nurbs, const io::Body& body)
 {
     std::vector<Direction> out;
-    // A multi-patch body is estimated from its first patch times the patch count
-    // (multi_patch_factor): the estimate guards against absurd refinements only.
-    const io::NurbsData* nurbs = body.nurbs ? &*body.nurbs : body.multi_patch() ? &body.patches.front().nurbs : nullptr;
     if (nurbs) {
         for (std::size_t i = 0; i < nurbs->degrees.size() && i < nurbs->knots.size(); ++i) {
             const std::vector<double>& knots = nurbs->knots[i];
@@ -46,21 +64,23 @@ std::vector<Direction> base_directions(const io::Body& body)
         for (int degree : io::shape_degrees(*body.shape))
             out.push_back(Direction{static_cast<double>(degree), 0, 0});
     }
-    const io::Refine& r = body.refine;
-    for (std::size_t i = 0; i < out.size(); ++i) {
-        Direction& dir = out[i];
-        if (i < r.elevate.size() && r.elevate[i] > 0) {
-            dir.degree += r.elevate[i];
-            dir.interior_knots += r.elevate[i] * dir.interior_breakpoints;
-        }
-        if (i < r.spans.size() && r.spans[i] > 1) {
-            dir.interior_knots += r.spans[i] - 1.0;
-            dir.interior_breakpoints += r.spans[i] - 1.0;
-        }
-        if (i < r.insert.size()) {
-            dir.interior_knots += static_cast<double>(r.insert[i].size());
-            dir.interior_breakpoints += static_cast<double>(r.insert[i].size());
-        }
+    return out;
+}
+
+/// The directions of every patch of a body after refinement: the body's refine,
+/// then the patch's own (analysis/multipatch.hpp). A single-patch body is one patch.
+std::vector<std::vector<Direction>> patch_directions(const io::Body& body)
+{
+    std::vector<std::vector<Direction>> out;
+    if (!body.multi_patch()) {
+        out.push_back(raw_directions(body.nurbs ? &*body.nurbs : nullptr, body));
+        apply_refine(body.refine, out.back());
+        return out;
+    }
+    for (const io::PatchData& patch : body.patches) {
+        out.push_back(raw_directions(&patch.nurbs, body));
+        apply_refine(body.refine, out.back());
+        apply_refine(patch.refine, out.back());
     }
     return out;
 }
@@ -80,19 +100,42 @@ struct SideSize {
     double spans = 0, control_points = 0, max_degree = 0;
 };
 
+/// A contact surface of a deformable body: its patch sides together (a named
+/// surface, `patch.side` or a side), the largest degree along any of them.
 std::optional<SideSize> side_size(const io::Deck& deck, const io::ContactSurface& surface)
 {
     const io::Body* body = deck.find_body(surface.body);
-    if (body == nullptr || body->rigid || !surface.side)
+    if (body == nullptr || body->rigid || !surface.deformable())
         return std::nullopt;
-    const std::vector<Direction> dirs = base_directions(*body);
-    const int fixed = side_direction(*surface.side);
+    const std::vector<std::vector<Direction>> patches = patch_directions(*body);
+    auto patch_index = [&](const std::string& name) -> std::optional<std::size_t> {
+        if (!body->multi_patch())
+            return 0;
+        for (std::size_t p = 0; p < body->patches.size(); ++p)
+            if (body->patches[p].name == name)
+                return p;
+        return std::nullopt;
+    };
+    std::vector<io::PatchSideRef> sides;
+    if (!surface.surface.empty()) {
+        if (const io::NamedSurface* named = body->find_surface(surface.surface))
+            sides = named->sides;
+    } else {
+        sides.push_back(io::PatchSideRef{surface.patch, *surface.side});
+    }
     SideSize s;
-    s.spans = product(dirs, [](const Direction& d) { return d.spans(); }, fixed);
-    s.control_points = product(dirs, [](const Direction& d) { return d.control_points(); }, fixed);
-    for (std::size_t i = 0; i < dirs.size(); ++i)
-        if (static_cast<int>(i) != fixed)
-            s.max_degree = std::max(s.max_degree, dirs[i].degree);
+    for (const io::PatchSideRef& side : sides) {
+        const std::optional<std::size_t> p = patch_index(side.patch);
+        if (!p)
+            continue;
+        const std::vector<Direction>& dirs = patches[*p];
+        const int fixed = side_direction(side.side);
+        s.spans += product(dirs, [](const Direction& d) { return d.spans(); }, fixed);
+        s.control_points += product(dirs, [](const Direction& d) { return d.control_points(); }, fixed);
+        for (std::size_t i = 0; i < dirs.size(); ++i)
+            if (static_cast<int>(i) != fixed)
+                s.max_degree = std::max(s.max_degree, dirs[i].degree);
+    }
     return s;
 }
 
@@ -143,6 +186,26 @@ std::vector<Candidate> candidates(const io::Deck& deck)
                 counts.push_back(static_cast<int>(knots.size()));
             add("insert", fmt::format("{} knots", format_list(counts)), [](io::Refine& r) { r.insert.clear(); });
         }
+        for (std::size_t p = 0; p < body.patches.size(); ++p) {
+            const io::Refine& r = body.patches[p].refine;
+            const std::string patch_prefix = "bodies." + body.name + ".patches." + body.patches[p].name + ".refine.";
+            auto add_patch = [&](const std::string& key, const std::string& value,
+                                 const std::function<void(io::Refine&)>& clear) {
+                Candidate c{patch_prefix + key, value, deck};
+                clear(c.without.bodies[b].patches[p].refine);
+                out.push_back(std::move(c));
+            };
+            if (!r.elevate.empty())
+                add_patch("elevate", format_list(r.elevate), [](io::Refine& x) { x.elevate.clear(); });
+            if (!r.spans.empty())
+                add_patch("spans", format_list(r.spans), [](io::Refine& x) { x.spans.clear(); });
+            if (!r.insert.empty()) {
+                std::vector<int> counts;
+                for (const auto& knots : r.insert)
+                    counts.push_back(static_cast<int>(knots.size()));
+                add_patch("insert", fmt::format("{} knots", format_list(counts)), [](io::Refine& x) { x.insert.clear(); });
+            }
+        }
     }
     for (std::size_t p = 0; p < deck.contact.size(); ++p)
         if (deck.contact[p].quadrature > 0) {
@@ -182,25 +245,43 @@ SizeEstimate estimate_size(const io::Deck& deck)
     for (const io::Body& body : deck.bodies) {
         if (body.rigid)
             continue;
-        const std::vector<Direction> dirs = base_directions(body);
         BodySize b;
         b.name = body.name;
-        for (const Direction& dir : dirs) {
-            b.degrees.push_back(dir.degree);
-            b.spans.push_back(dir.spans());
-            b.control_points.push_back(dir.control_points());
+        const std::vector<std::vector<Direction>> patches = patch_directions(body);
+        for (std::size_t p = 0; p < patches.size(); ++p) {
+            const std::vector<Direction>& dirs = patches[p];
+            PatchSize s;
+            s.name = body.multi_patch() ? body.patches[p].name : "";
+            for (const Direction& dir : dirs) {
+                s.degrees.push_back(dir.degree);
+                s.spans.push_back(dir.spans());
+                s.control_points.push_back(dir.control_points());
+            }
+            const double n_local = product(dirs, [](const Direction& x) { return x.degree + 1; });
+            const double gauss_per_element = n_local;  // (p+1) points per direction
+            s.elements = product(dirs, [](const Direction& x) { return x.spans(); });
+            s.dofs = d * product(dirs, [](const Direction& x) { return x.control_points(); });
+            const double nonzeros = s.dofs * d * product(dirs, [](const Direction& x) { return 2 * x.degree + 1; });
+            b.dofs += s.dofs;
+            b.elements += s.elements;
+            b.nonzeros += nonzeros;
+            e.element_gauss_points += s.elements * gauss_per_element;
+            e.bytes += s.elements * gauss_per_element * (n_local * (d + 1) + 1) * 8;  // element geometry
+            e.bytes += s.elements * 4 * (d * n_local) * (d * n_local);             // assembly positions
+            for (std::size_t i = 0; i < dirs.size(); ++i) {  // the largest over the patches
+                if (b.degrees.size() <= i) {
+                    b.degrees.push_back(0);
+                    b.spans.push_back(0);
+                    b.control_points.push_back(0);
+                }
+                b.degrees[i] = std::max(b.degrees[i], s.degrees[i]);
+                b.spans[i] = std::max(b.spans[i], s.spans[i]);
+                b.control_points[i] = std::max(b.control_points[i], s.control_points[i]);
+            }
+            b.patches.push_back(std::move(s));
         }
-        const double n_local = product(dirs, [](const Direction& x) { return x.degree + 1; });
-        const double gauss_per_element = n_local;  // (p+1) points per direction
-        const double multi_patch_factor = body.multi_patch() ? static_cast<double>(body.patches.size()) : 1.0;
-        b.elements = multi_patch_factor * product(dirs, [](const Direction& x) { return x.spans(); });
-        b.dofs = multi_patch_factor * d * product(dirs, [](const Direction& x) { return x.control_points(); });
-        b.nonzeros = b.dofs * d * product(dirs, [](const Direction& x) { return 2 * x.degree + 1; });
         e.dofs += b.dofs;
         e.nonzeros += b.nonzeros;
-        e.element_gauss_points += b.elements * gauss_per_element;
-        e.bytes += b.elements * gauss_per_element * (n_local * (d + 1) + 1) * 8;  // element geometry
-        e.bytes += b.elements * 4 * (d * n_local) * (d * n_local);             // assembly positions
         e.bodies.push_back(std::move(b));
     }
     e.bytes += 2 * 12 * e.nonzeros;  // tangent and (at least as large) factor
@@ -229,17 +310,34 @@ void check_size(const io::Deck& deck, const SizeLimits& limits)
     for (const io::Body& body : deck.bodies) {
         if (body.rigid)
             continue;
-        const std::vector<Direction> dirs = base_directions(body);
-        for (std::size_t i = 0; i < dirs.size(); ++i)
-            if (dirs[i].degree > limits.max_degree) {
-                const bool elevated = i < body.refine.elevate.size() && body.refine.elevate[i] > 0;
-                const std::string path = "bodies." + body.name + (elevated ? ".refine.elevate" : ".nurbs.degrees");
-                const std::string value =
-                    elevated ? format_list(body.refine.elevate) : (body.nurbs ? format_list(body.nurbs->degrees) : "");
+        const std::vector<std::vector<Direction>> patches = patch_directions(body);
+        for (std::size_t p = 0; p < patches.size(); ++p) {
+            const std::vector<Direction>& dirs = patches[p];
+            const io::PatchData* patch = body.multi_patch() ? &body.patches[p] : nullptr;
+            for (std::size_t i = 0; i < dirs.size(); ++i) {
+                if (dirs[i].degree <= limits.max_degree)
+                    continue;
+                // The key to blame: the patch's elevate, the body's, or the degrees as given.
+                auto elevates = [i](const io::Refine& r) { return i < r.elevate.size() && r.elevate[i] > 0; };
+                const std::string body_path = "bodies." + body.name;
+                const std::string patch_path = patch ? body_path + ".patches." + patch->name : body_path;
+                std::string path, value;
+                if (patch && elevates(patch->refine)) {
+                    path = patch_path + ".refine.elevate";
+                    value = format_list(patch->refine.elevate);
+                } else if (elevates(body.refine)) {
+                    path = body_path + ".refine.elevate";
+                    value = format_list(body.refine.elevate);
+                } else {
+                    path = patch_path + ".nurbs.degrees";
+                    const io::NurbsData* nurbs = patch ? &patch->nurbs : body.nurbs ? &*body.nurbs : nullptr;
+                    value = nurbs ? format_list(nurbs->degrees) : "";
+                }
                 refuse(deck, path, value,
                        fmt::format("gives degree {} in direction {}, above the limit of {} (docs/deck.md)",
                                    dirs[i].degree, "uvw"[i], limits.max_degree));
             }
+        }
     }
     for (const io::ContactPair& pair : deck.contact)
         if (pair.quadrature > limits.max_quadrature)

@@ -10,6 +10,13 @@
 //   spans n:    at most n - 1 new knots and spans (refine_uniform);
 //   insert k:   k more knots and at most k more spans.
 // n_cp,i = p_i + 1 + (interior knots); dofs = d prod n_cp,i; elements = prod spans_i.
+// A multi-patch body: the same per patch, after the body's refine and then the
+// patch's own (analysis/multipatch.hpp), summed over the patches. Two things are
+// left out: the knots and degrees that gluing propagates across interfaces
+// (they need the geometry), and the sharing of interface control points (counted
+// once per patch); the first can make a patch bigger than estimated, the second
+// makes the sum bigger than the body, so neither is a bound in general.
+// A contact surface of several patch sides counts each side's spans and control points.
 // Memory (bytes, a lower bound of what the run holds at once; all counts in double
 // precision, so no estimate overflows):
 //   element geometry   elements * prod(p_i+1) Gauss points * (prod(p_i+1) (d+1) + 1) * 8
@@ -23,6 +30,7 @@
 //
 // check_size throws DeckError located at the key that makes the model too big
 // (bodies.<name>.refine.spans, ...elevate, ...insert, bodies.<name>.nurbs.degrees,
+// bodies.<name>.patches.<patch>.refine.spans, ..., bodies.<name>.patches.<patch>.nurbs.degrees,
 // contact.<pair>.quadrature, output.samples_per_span), with the estimated memory and
 // the machine's. The culprit among several keys is the one whose removal shrinks the
 // estimate most. Nothing here allocates per planned increment (steps.count).
@@ -47,13 +55,24 @@ double machine_memory_bytes();
 /// The limits for this machine: its memory and the hard limits above.
 SizeLimits machine_limits();
 
-struct BodySize {
-    std::string name;
+/// One patch after the body's and its own refinement.
+struct PatchSize {
+    std::string name;                    ///< "" for a single-patch body
     std::vector<double> degrees;         ///< after elevation
     std::vector<double> spans;           ///< per direction (upper bound)
     std::vector<double> control_points;  ///< per direction
     double dofs = 0.0;
     double elements = 0.0;
+};
+
+struct BodySize {
+    std::string name;
+    std::vector<PatchSize> patches;      ///< one per patch (one for a single-patch body)
+    std::vector<double> degrees;         ///< per direction, the largest over the patches
+    std::vector<double> spans;           ///< per direction, the largest over the patches
+    std::vector<double> control_points;  ///< per direction, the largest over the patches
+    double dofs = 0.0;                   ///< sum over the patches
+    double elements = 0.0;               ///< sum over the patches
     double nonzeros = 0.0;
 };
 

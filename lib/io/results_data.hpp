@@ -49,6 +49,9 @@ struct GaussPointData {
     Vector pressure;                  ///< n_g, contact pressure <lambda + eps_N g_N> (lambda = 0: penalty)
     Vector weight;                    ///< n_g, quadrature weight times Jacobian (extra; written when non-empty)
     Vector multiplier;                ///< n_g, augmented-Lagrangian multipliers lambda (written when non-empty)
+    /// Surfaces of several patch sides: n_g, the index into ContactSideResult::patch_sides
+    /// of each Gauss point's patch side (gauss_points/patch, int); empty otherwise.
+    std::vector<int> patch;
 };
 
 /// Recovered pressure of one side (Sauer's weighted averages): .../postprocessed/.
@@ -60,11 +63,18 @@ struct PostProcessedData {
     /// Surface sides (3D): the samples form an n_v x n_u grid (u fastest), written as
     /// the attribute grid_shape = [n_v, n_u] of postprocessed/; {0, 0} on curves.
     std::array<long long, 2> grid{0, 0};
+    /// Surfaces of several patch sides: the samples are stored patch side after patch
+    /// side, each its own grid [n_v, n_u] (a curve: [1, n]), written as the int dataset
+    /// patch_grid_shape (n_patches x 2) of postprocessed/ (and no grid_shape); empty otherwise.
+    std::vector<std::array<long long, 2>> patch_grids;
 };
 
 /// One side of a contact pair that carries Gauss points: contact/<pair>/<body.side>/.
 struct ContactSideResult {
     std::string side_name;  ///< "body.side", e.g. "cylinder.v0"
+    /// Surfaces of several patch sides: their names in the surface's order ("left.v0",
+    /// ...), written as the string dataset patch_sides; empty for one side.
+    std::vector<std::string> patch_sides;
     GaussPointData gauss_points;
     PostProcessedData postprocessed;
     double normal_force = 0.0;                ///< resultant of the contact pressure on this side

@@ -125,6 +125,12 @@ void write_side(hid_t pair, const ContactSideResult& side)
         h5::write_dataset(gauss.id(), "weight", gp.weight);
     if (gp.multiplier.size() > 0)
         h5::write_dataset(gauss.id(), "multiplier", gp.multiplier);
+    if (!side.patch_sides.empty()) {
+        IGA_CHECK(gp.patch.size() == static_cast<std::size_t>(gp.gap.size()),
+                  "contact side " + side.side_name + ": one patch index per Gauss point");
+        h5::write_string_dataset(group.id(), "patch_sides", side.patch_sides, {side.patch_sides.size()});
+        h5::write_dataset(gauss.id(), "patch", std::span<const int>(gp.patch));
+    }
 
     const PostProcessedData& pp = side.postprocessed;
     h5::Handle post = h5::create_group(group.id(), "postprocessed");
@@ -132,7 +138,19 @@ void write_side(hid_t pair, const ContactSideResult& side)
     h5::write_dataset(post.id(), "coordinates", pp.coordinates);
     h5::write_dataset(post.id(), "reference_coordinates", pp.reference_coordinates);
     h5::write_dataset(post.id(), "pressure", pp.pressure);
-    if (pp.grid[0] > 0 && pp.grid[1] > 0) {
+    if (!pp.patch_grids.empty()) {
+        IGA_CHECK(pp.patch_grids.size() == side.patch_sides.size(),
+                  "contact side " + side.side_name + ": one sample grid per patch side");
+        std::vector<int> shape;
+        long long n_s = 0;
+        for (const auto& grid : pp.patch_grids) {
+            shape.push_back(static_cast<int>(grid[0]));
+            shape.push_back(static_cast<int>(grid[1]));
+            n_s += grid[0] * grid[1];
+        }
+        IGA_CHECK(n_s == pp.pressure.size(), "contact side " + side.side_name + ": the patch grids hold every sample");
+        h5::write_dataset(post.id(), "patch_grid_shape", std::span<const int>(shape), {pp.patch_grids.size(), 2});
+    } else if (pp.grid[0] > 0 && pp.grid[1] > 0) {
         const std::array<double, 2> shape{static_cast<double>(pp.grid[0]), static_cast<double>(pp.grid[1])};
         h5::write_attribute(post.id(), "grid_shape", std::span<const double>(shape));
     }

@@ -29,6 +29,32 @@ std::string column(const std::string& h5, const std::string& path, long long n_r
                        n_rows, k, item(h5, path, fmt::format("{} {}", n_rows, n_cols), false));
 }
 
+/// Rows [first, first + count) of an n_rows x n_cols float dataset (n_cols = 0: a
+/// 1-D dataset of length n_rows), as an XDMF HyperSlab.
+std::string rows(const std::string& h5, const std::string& path, long long n_rows, int n_cols, long long first,
+                 long long count)
+{
+    if (n_cols == 0)
+        return fmt::format("<DataItem ItemType=\"HyperSlab\" Dimensions=\"{0}\" Type=\"HyperSlab\">\n"
+                           "       <DataItem Dimensions=\"3 1\" NumberType=\"Int\" Format=\"XML\">{1} 1 {0}</DataItem>\n"
+                           "       {2}\n      </DataItem>",
+                           count, first, item(h5, path, std::to_string(n_rows), false));
+    return fmt::format("<DataItem ItemType=\"HyperSlab\" Dimensions=\"{0} {3}\" Type=\"HyperSlab\">\n"
+                       "       <DataItem Dimensions=\"3 2\" NumberType=\"Int\" Format=\"XML\">{1} 0 1 1 {0} {3}</DataItem>\n"
+                       "       {2}\n      </DataItem>",
+                       count, first, item(h5, path, fmt::format("{} {}", n_rows, n_cols), false), n_cols);
+}
+
+/// The topology of a sample grid of n_v x n_u points: a structured surface, or a
+/// polyline when n_v == 1 (a curve).
+std::string sample_topology(long long n_v, long long n_u)
+{
+    if (n_v > 1 && n_u > 1)
+        return fmt::format("     <Topology TopologyType=\"2DSMesh\" Dimensions=\"{} {}\"/>\n", n_v, n_u);
+    return fmt::format("     <Topology TopologyType=\"Polyline\" NumberOfElements=\"1\" NodesPerElement=\"{}\"/>\n",
+                       n_u * n_v);
+}
+
 /// Column order of fields/<body>/stress (results.md).
 constexpr std::array<const char*, 6> stress_components = {"xx", "yy", "zz", "xy", "yz", "xz"};
 
@@ -100,6 +126,24 @@ std::string xdmf_text(const std::string& h5_name, const std::vector<XdmfMesh>& m
                                    "     </Attribute>\n",
                                    name, item(h5, g + "/gauss_points/" + name, std::to_string(side.n_gauss), false));
             out += "    </Grid>\n";
+            if (!side.patch_grids.empty()) {  // one sample grid per patch side, rows in storage order
+                long long first = 0;
+                for (std::size_t k = 0; k < side.patch_grids.size(); ++k) {
+                    const auto [n_v, n_u] = side.patch_grids[k];
+                    const std::string name = k < side.patch_sides.size() ? side.patch_sides[k] : std::to_string(k);
+                    out += fmt::format("    <Grid Name=\"{} post-processed {}\" GridType=\"Uniform\">\n",
+                                       escape(side.label), escape(name));
+                    out += sample_topology(n_v, n_u);
+                    out += fmt::format("     <Geometry GeometryType=\"{}\">\n      {}\n     </Geometry>\n", geometry,
+                                       rows(h5, g + "/postprocessed/coordinates", side.n_samples, side.dim, first,
+                                            n_v * n_u));
+                    out += fmt::format("     <Attribute Name=\"pressure\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+                                       "      {}\n     </Attribute>\n    </Grid>\n",
+                                       rows(h5, g + "/postprocessed/pressure", side.n_samples, 0, first, n_v * n_u));
+                    first += n_v * n_u;
+                }
+                continue;
+            }
             out += fmt::format("    <Grid Name=\"{} post-processed\" GridType=\"Uniform\">\n", escape(side.label));
             if (side.n_u > 0 && side.n_v > 0 && side.n_u * side.n_v == side.n_samples)  // a face: structured surface
                 out += fmt::format("     <Topology TopologyType=\"2DSMesh\" Dimensions=\"{} {}\"/>\n", side.n_v,

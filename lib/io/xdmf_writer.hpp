@@ -17,8 +17,13 @@
 //   - each contact side carrying Gauss points: the Gauss points (a
 //     polyvertex at gauss_points/coordinates, current configuration) with
 //     "pressure" and "gap", and the post-processed curve (a polyline at
-//     postprocessed/coordinates) with "pressure".
+//     postprocessed/coordinates) or face sample grid (a 2DSMesh) with "pressure".
+//     A surface of several patch sides (results.md: samples stored patch side
+//     after patch side, postprocessed/patch_grid_shape) gets one post-processed
+//     grid per patch side, named after it, each a HyperSlab of the rows of its
+//     samples in postprocessed/coordinates and postprocessed/pressure.
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -40,6 +45,10 @@ struct XdmfContactSide {
     int dim = 2;        ///< columns of the coordinate datasets
     long long n_u = 0;  ///< surface sides: samples form an n_v x n_u grid (0: a curve)
     long long n_v = 0;
+    /// Surfaces of several patch sides: [n_v, n_u] samples of each (a curve: [1, n]),
+    /// in storage order, and their names ("left.v0"); empty for one side.
+    std::vector<std::array<long long, 2>> patch_grids;
+    std::vector<std::string> patch_sides;
 };
 
 struct XdmfStep {

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -134,6 +135,98 @@ TEST(SizeEstimate, MachineMemoryIsKnown)
     const double bytes = machine_memory_bytes();
     EXPECT_GT(bytes, plausible_min);
     EXPECT_LT(bytes, plausible_max);
+}
+
+
+// Two bilinear unit squares side by side, glued along x = 1, refined differently
+// per patch (no knot crosses the interface: the v spans agree), with a contact
+// surface of both bottoms on a rigid floor.
+std::string two_patch_deck()
+{
+    return R"(format: 1
+analysis: {dimension: 2, plane: strain}
+materials: [{name: m, E: 100.0, nu: 0.3}]
+bodies:
+  - name: block
+    material: m
+    patches:
+      - name: left
+        nurbs: {degrees: [1, 1], knots: [[0, 0, 1, 1], [0, 0, 1, 1]],
+                control_points: [[0, 0, 1], [1, 0, 1], [0, 1, 1], [1, 1, 1]]}
+        refine: {spans: [6, 2]}
+      - name: right
+        nurbs: {degrees: [1, 1], knots: [[0, 0, 1, 1], [0, 0, 1, 1]],
+                control_points: [[1, 0, 1], [2, 0, 1], [1, 1, 1], [2, 1, 1]]}
+        refine: {spans: [2, 2]}
+    refine: {elevate: [1, 1]}
+    surfaces: {bottom: [left.v0, right.v0], top: [left.v1, right.v1]}
+  - name: floor
+    rigid: {plane: {point: [0.0, 0.0], normal: [0.0, 1.0]}}
+constraints:
+  - {body: block, side: top, displacement: [0.0, -0.01]}
+contact:
+  - {name: touch, between: [block.bottom, floor], penalty: 1.0e4}
+)";
+}
+
+TEST(SizeEstimate, MultiPatchBodiesAreEstimatedPatchByPatch)
+{
+    const auto dir = test::scratch_dir("size_estimate_multipatch");
+    {
+        std::ofstream out(dir / "deck.yaml");
+        out << two_patch_deck();
+    }
+    const io::Deck deck = io::read_deck((dir / "deck.yaml").string());
+    const SizeEstimate e = estimate_size(deck);
+    ASSERT_EQ(e.bodies.size(), 1u);
+    const BodySize& body = e.bodies.front();
+    ASSERT_EQ(body.patches.size(), 2u);
+    // Each patch after the body's elevate [1, 1] and its own spans: exact here.
+    EXPECT_EQ(body.patches[0].name, "left");
+    EXPECT_EQ(body.patches[0].degrees, (std::vector<double>{2, 2}));
+    EXPECT_EQ(body.patches[0].spans, (std::vector<double>{6, 2}));
+    EXPECT_EQ(body.patches[0].control_points, (std::vector<double>{8, 4}));
+    EXPECT_EQ(body.patches[1].spans, (std::vector<double>{2, 2}));
+    EXPECT_EQ(body.patches[1].control_points, (std::vector<double>{4, 4}));
+
+    // Against the built body: the patches' control points, and the dofs with the
+    // interface column (4 control points) counted once per patch.
+    const Scene scene = build_scene(deck);
+    ASSERT_EQ(scene.bodies.size(), 1u);
+    double patch_dofs = 0;
+    for (const PatchModel& patch : scene.bodies.front().patches)
+        patch_dofs += 2.0 * patch.patch.n_control_points();
+    EXPECT_EQ(body.dofs, patch_dofs);
+    EXPECT_EQ(body.dofs, static_cast<double>(scene.dofs->n_full()) + 2 * 4);
+    EXPECT_EQ(body.elements, 6 * 2 + 2 * 2);
+    // The contact surface spans both bottoms: (degree + 2) Gauss points on each of 6 + 2 spans.
+    ASSERT_EQ(scene.pairs.size(), 1u);
+    EXPECT_EQ(e.contact_gauss_points, static_cast<double>(scene.pairs.front().pair.n_gauss_points(0)));
+    EXPECT_EQ(e.contact_gauss_points, 4.0 * (6 + 2));
+}
+
+TEST(SizeEstimate, AbsurdPatchRefinementIsRefusedByItsPatchKey)
+{
+    const auto dir = test::scratch_dir("size_estimate_multipatch_refusal");
+    {
+        std::ofstream out(dir / "deck.yaml");
+        out << two_patch_deck();
+    }
+    const std::string deck_file = (dir / "deck.yaml").string();
+    struct Case {
+        std::string set, key;
+    };
+    const std::vector<Case> cases = {
+        // Only the second patch is refined absurdly: an estimate from the first patch would miss it.
+        {"bodies.block.patches.right.refine.spans=[1e5, 1e5]", "bodies.block.patches.right.refine.spans = [100000, 100000]: "},
+        {"bodies.block.patches.right.refine.elevate=[30, 0]", "bodies.block.patches.right.refine.elevate = [30, 0]: "},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.set);
+        const std::string message = refusal(io::read_deck(deck_file, {c.set}));
+        EXPECT_NE(message.find("deck.yaml:"), std::string::npos) << message;
+        EXPECT_NE(message.find(c.key), std::string::npos) << message;
+    }
 }
 
 }  // namespace

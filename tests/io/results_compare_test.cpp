@@ -72,11 +72,12 @@ SampleRun sample_run()
         side.gauss_points = GaussPointData{.coordinates = ramp(4, 2, 0.0), .reference_coordinates = ramp(4, 2, 0.1),
                                            .parameter = ramp(4, 1, 0.0), .gap = Vector::LinSpaced(4, -1e-3, 1e-3),
                                            .pressure = Vector::LinSpaced(4, 0.0, 1e3),
-                                           .weight = Vector::Constant(4, 0.25)};
+                                           .weight = Vector::Constant(4, 0.25), .patch = {}};
         side.postprocessed = PostProcessedData{.control_point_pressure = Vector::LinSpaced(3, 1.0, 3.0),
                                                .coordinates = ramp(5, 2, 2.0),
                                                .reference_coordinates = ramp(5, 2, 2.5),
-                                               .pressure = Vector::LinSpaced(5, 0.0, 4.0)};
+                                               .pressure = Vector::LinSpaced(5, 0.0, 4.0),
+                                               .grid = {0, 0}, .patch_grids = {}};
         ContactPairResult pair;
         pair.name = "cyl_floor";
         pair.sides = {side};

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <regex>
 #include <string>
 #include <vector>
@@ -74,6 +76,36 @@ TEST(XdmfWriter, WithoutFieldsNothingUnderFieldsIsReferenced)
         EXPECT_EQ(a.path.find("/fields/"), std::string::npos) << a.path;
     EXPECT_EQ(xdmf.find("stress"), std::string::npos);
     EXPECT_EQ(hdf_items(xdmf).size(), 2u * 3u);  // cells, points, displacement per step
+}
+
+
+// A curve of two patch sides (2D): one polyline per patch side, named after it,
+// each selecting its own rows of the samples stored patch side after patch side.
+TEST(XdmfWriter, CurveOfTwoPatchSidesIsOnePolylinePerPatchSide)
+{
+    XdmfContactSide side{"/steps/0001/contact/c/block.bottom", "c block.bottom", 24, 16, 2, 0, 0,
+                         {{1, 9}, {1, 7}}, {"p2.v0", "p3.v0"}};
+    const std::string xdmf = xdmf_text("results.h5", {}, {{1, 1.0, {side}}});
+    EXPECT_EQ(xdmf.find("<Grid Name=\"c block.bottom post-processed\""), std::string::npos)
+        << "no polyline through both patch sides";
+    const std::vector<std::pair<std::string, std::pair<long long, long long>>> expected = {
+        {"p2.v0", {0, 9}}, {"p3.v0", {9, 7}}};
+    for (const auto& [name, rows] : expected) {
+        SCOPED_TRACE(name);
+        const std::size_t at = xdmf.find("<Grid Name=\"c block.bottom post-processed " + name + "\"");
+        ASSERT_NE(at, std::string::npos);
+        const std::string grid = xdmf.substr(at, xdmf.find("</Grid>", at) - at);
+        const auto [first, count] = rows;
+        EXPECT_NE(grid.find(fmt::format("TopologyType=\"Polyline\" NumberOfElements=\"1\" NodesPerElement=\"{}\"", count)),
+                  std::string::npos)
+            << grid;
+        // coordinates (16 x 2): start (first, 0), stride (1, 1), count (count, 2)
+        EXPECT_NE(grid.find(fmt::format(">{} 0 1 1 {} 2<", first, count)), std::string::npos) << grid;
+        // pressure (16): start first, stride 1, count
+        EXPECT_NE(grid.find(fmt::format(">{} 1 {}<", first, count)), std::string::npos) << grid;
+        EXPECT_NE(grid.find("results.h5:/steps/0001/contact/c/block.bottom/postprocessed/coordinates"), std::string::npos);
+        EXPECT_NE(grid.find("results.h5:/steps/0001/contact/c/block.bottom/postprocessed/pressure"), std::string::npos);
+    }
 }
 
 }  // namespace
