@@ -28,7 +28,7 @@
 // Line search: the full step is taken when ||r(u + du)|| <= (1 - 1e-4) ||r(u)||.
 // Otherwise, first the directional search of Crisfield (Non-linear FE Analysis
 // of Solids and Structures, vol. 1, §9.3): the root of s(alpha) = du . r(u + alpha du)
-// by Illinois regula falsi, accepted at |s| <= 0.5 |s(0)| — for a potential
+// by Illinois regula falsi, accepted at |s| <= 0.1 |s(0)| — for a potential
 // problem the energy minimum along du, and for penalty contact the step length
 // at which the contact forces balance the load (a full step that dives deep into
 // the obstacle is cut back to the right depth in a few evaluations). If du is
