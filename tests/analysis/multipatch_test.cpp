@@ -333,6 +333,21 @@ contact:
     }
     EXPECT_GT(left, 0) << "Gauss points on p2";
     EXPECT_GT(right, 0) << "Gauss points on p3";
+
+    // The uniform-strain patch test through the vertex where the four patches meet:
+    // the displacement is linear, u_y = -(g + (delta - g) y / H), u_x = -nu / (1 - nu)
+    // eps_yy x with eps_yy = -(delta - g) / H, g = p / eps; a linear field's control
+    // values are the field at the control points (linear precision of NURBS).
+    const double g = p_exact / eps, eps_yy = -(delta - g) / H, nu = 0.25;
+    for (const char* patch : {"p0", "p1", "p2", "p3"}) {
+        const RowMatrix cp = r.matrix(std::string("bodies/block/patches/") + patch + "/control_points");
+        const RowMatrix u = r.matrix(std::string("results/displacement/block/") + patch);  // the last increment
+        ASSERT_EQ(u.rows(), cp.rows()) << patch;
+        for (Index a = 0; a < cp.rows(); ++a) {
+            EXPECT_TRUE(near(u(a, 1), -g + eps_yy * cp(a, 1), exact * delta)) << patch << " cp " << a;
+            EXPECT_TRUE(near(u(a, 0), -nu / (1.0 - nu) * eps_yy * cp(a, 0), exact * delta)) << patch << " cp " << a;
+        }
+    }
 }
 
 }  // namespace
