@@ -212,8 +212,9 @@ const char* status_name(NewtonStatus status)
 /// step needs: at first touch or when many Gauss points enter contact, the full
 /// step overshoots into a deep penetration whose residual norm is huge, and
 /// halving alpha on ||r|| crawls; the root of s is where the contact forces
-/// balance the load along du. Regula falsi with the Illinois modification, within
-/// settings.max_backtracks evaluations; accepts |s(alpha)| <= 0.1 |s(0)|.
+/// balance the load along du. Regula falsi with the Illinois modification and a
+/// bisection safeguard, within settings.max_backtracks evaluations; accepts
+/// |s(alpha)| <= 0.1 |s(0)|.
 /// Returns false (caller falls back to backtracking on ||r||) when du is not a
 /// descent direction (s(0) >= 0) or s(1) is not finite. On success `alpha` is set
 /// and, when alpha != 1, `probe` holds the evaluation at u + alpha du.
@@ -237,8 +238,15 @@ static bool directional_search(const NonlinearSystem& system, const Vector& u, c
     constexpr double slope_reduction = 0.1;
     double a = 0.0, sa = s0, b = 1.0, sb = s1;
     int retained = 0;  // which end was kept last: -1 left, +1 right
+    std::vector<double> width{b - a};  // the bracket's width after each step
     for (int k = 0; k < settings.max_backtracks; ++k) {
-        const double c = b - sb * (b - a) / (sb - sa);
+        double c = b - sb * (b - a) / (sb - sa);
+        // Regula falsi creeps from one end when s is strongly curved (a penalty that
+        // stiffens by orders of magnitude along the step: s(0) = -1e-2, s(1) = +1e2).
+        // When the bracket has not halved in two steps, bisect -- geometrically when
+        // it spans decades, as the root of a first touch may lie anywhere in 1e-4..1.
+        if (width.size() >= 3 && b - a > 0.5 * width[width.size() - 3])
+            c = (a > 0.0 && b > 4.0 * a) ? std::sqrt(a * b) : 0.5 * (a + b);
         ++report.line_search_cuts;
         evaluate(system, u + c * du, load_factor, false, probe, context);
         if (!probe.ok || !probe.residual.allFinite()) {
@@ -263,6 +271,7 @@ static bool directional_search(const NonlinearSystem& system, const Vector& u, c
                 sb *= 0.5;
             retained = +1;
         }
+        width.push_back(b - a);
     }
     return false;
 }

@@ -320,6 +320,39 @@ TEST(Newton, FirstTouchWithZeroTangentConvergesViaRegularization)
     EXPECT_TRUE(test::near(u(0), gap + f / k, solution_tolerance));
 }
 
+// A soft spring k pushed by f onto a stiff Hertz-like contact C <u - g>^(3/2) at
+// a small gap g (the force of a growing contact zone, as for a sphere): the Newton
+// step of the contact-free start, du = f / k, overshoots the root of the
+// directional residual s(alpha) = du r(alpha du) nearly a thousandfold, and s
+// climbs from -1 to +1e6 along the step. Regula falsi (even Illinois) creeps from
+// the left end and runs out of its 12 evaluations; with the bisection safeguard the
+// first step lands where the forces balance along du (|s| <= 0.1 |s(0)|, the
+// search's acceptance) instead of backtracking on ||r||.
+TEST(Newton, DirectionalSearchFindsTheRootOfAStronglyCurvedSlope)
+{
+    const double k = 1.0, f = 1.0, g = 1e-3, C = 1e6;
+    NonlinearSystem system;
+    system.evaluate = [&](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+        const double penetration = std::max(u(0) - g, 0.0);
+        const double contact = C * penetration * std::sqrt(penetration);
+        out.residual = Vector::Constant(1, k * u(0) + contact - lambda * f);
+        out.force_scale = lambda * f + contact;
+        if (need_tangent)
+            out.tangent = sparse(Matrix::Constant(1, 1, k + 1.5 * C * std::sqrt(penetration)));
+    };
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    Vector u = Vector::Zero(1);
+    const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
+    ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
+    ASSERT_GE(report.residual_history.size(), 2u);
+    constexpr double acceptance = 0.1;  // the search accepts |s(alpha)| <= 0.1 |s(0)| (one dof: s = du r)
+    EXPECT_TRUE(test::at_most(report.residual_history[1], acceptance * report.residual_history[0]))
+        << "first step: relative residual " << report.residual_history[1];
+    // The contact-free tangent is exact up to the gap: u solves k u + C (u - g)^1.5 = f.
+    const double pen = u(0) - g;
+    EXPECT_TRUE(test::near(k * u(0) + C * pen * std::sqrt(pen), f, solution_tolerance));
+}
+
 TEST(Newton, FloatingBodyHeldOnlyByContactConverges)
 {
     // Two nodes joined by a spring kb, pushed by f toward a wall at distance gap
