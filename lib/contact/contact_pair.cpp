@@ -70,17 +70,6 @@ RowMatrix piece_points(const SidePiece& piece, const RowMatrix& surface_points)
     return out;
 }
 
-/// Nearer wins; at (numerically) equal distance an orthogonal foot beats a
-/// clamped one (the rule of project_to_surface between regions of one patch).
-bool nearer_foot(const Projection& a, const Projection& b, double surface_size)
-{
-    constexpr double relative_tie = 1e-14;  // a few ulps of the coordinates
-    const double tie = relative_tie * (surface_size + b.distance);
-    if (a.distance < b.distance - tie)
-        return true;
-    return std::abs(a.distance - b.distance) <= tie && a.status == Projection::Status::ok &&
-           b.status != Projection::Status::ok;
-}
 
 class Stopwatch {
 public:
@@ -575,7 +564,8 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
                     failed = true;
                     break;
                 }
-                if (!best || nearer_foot(proj, *best, master_size)) {
+                if (!best || nearer_foot(proj.distance, proj.status == Projection::Status::ok, best->distance,
+                                         best->status == Projection::Status::ok, master_size)) {
                     best = std::move(proj);
                     best_piece = k;
                 }

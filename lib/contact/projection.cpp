@@ -546,15 +546,9 @@ VecN nearest_sample(const nurbs::Patch& surface, const Layout& layout, int regio
     return best_xi;
 }
 
-/// Nearer wins; at (numerically) equal distance an orthogonal foot beats a
-/// clamped one, so a geometrically smooth C0 knot is not called a kink.
 bool is_better(const RegionResult& a, const RegionResult& b, double surface_size)
 {
-    constexpr double relative_tie = 1e-14;  // a few ulps of the coordinates
-    const double tie = relative_tie * (surface_size + b.distance);
-    if (a.distance < b.distance - tie)
-        return true;
-    return std::abs(a.distance - b.distance) <= tie && a.converged && !b.converged;
+    return nearer_foot(a.distance, a.converged, b.distance, b.converged, surface_size);
 }
 
 Projection failed_projection(int d, int iterations, int candidates)
@@ -573,6 +567,15 @@ Projection failed_projection(int d, int iterations, int candidates)
 }
 
 }  // namespace
+
+bool nearer_foot(double distance_a, bool orthogonal_a, double distance_b, bool orthogonal_b, double surface_size)
+{
+    constexpr double relative_tie = 1e-14;  // a few ulps of the coordinates
+    const double tie = relative_tie * (surface_size + distance_b);
+    if (distance_a < distance_b - tie)
+        return true;
+    return std::abs(distance_a - distance_b) <= tie && orthogonal_a && !orthogonal_b;
+}
 
 VecN side_normal(const Matrix& tangents, const Matrix& second, int sign, const std::array<bool, 2>& near_lower)
 {

@@ -109,6 +109,12 @@ struct Projection {
 Projection project_to_surface(const nurbs::Patch& surface, int outward_sign, const VecN& x,
                               const ProjectionOptions& options = {});
 
+/// The choice between two candidate feet of one point: the nearer wins; at
+/// (numerically) equal distance an orthogonal foot beats a clamped one, so a
+/// geometrically smooth C0 knot or patch interface is not called a kink. Used
+/// between the regions of a patch and between the patches of a surface.
+bool nearer_foot(double distance_a, bool orthogonal_a, double distance_b, bool orthogonal_b, double surface_size);
+
 /// Unit outward normal of a side at a point with tangents `tangents` (d x (d-1))
 /// and second derivatives `second` (packed), orientation sign s. In 3D a tangent
 /// that vanishes (below sqrt(eps) of the other: a collapsed edge) is replaced by

@@ -120,6 +120,29 @@ private:
     io::h5::Handle file_;
 };
 
+/// Newton's relative residuals e_0, e_1, ... of one increment, from /convergence.
+inline std::vector<double> newton_residuals(const Results& results, int increment = 1)
+{
+    const RowMatrix table = results.matrix("convergence");
+    EXPECT_EQ(table.cols(), 4);
+    std::vector<double> e;
+    for (Index k = 0; k < table.rows(); ++k)
+        if (table(k, 0) == static_cast<double>(increment))
+            e.push_back(table(k, 2));
+    return e;
+}
+
+/// The last Newton step e_k -> e_{k+1} that ends above `roundoff_floor` (where an
+/// order can still be read): k, or e.size() when there is none.
+inline std::size_t last_step_above(const std::vector<double>& e, double roundoff_floor)
+{
+    std::size_t k = e.size();
+    for (std::size_t i = 0; i + 1 < e.size(); ++i)
+        if (e[i + 1] > roundoff_floor)
+            k = i;
+    return k;
+}
+
 /// Gauss-Legendre points and weights on [0, 1], computed here (Newton on P_n)
 /// so that the error integrals do not use the quadrature under test.
 inline void gauss_legendre_01(int n, std::vector<double>& points, std::vector<double>& weights)

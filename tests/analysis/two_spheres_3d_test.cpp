@@ -37,21 +37,14 @@ TEST(TwoSpheres3d, NewtonConvergesQuadraticallyOnACurvedDeformableMaster)
     const analysis::RunOutcome outcome = run_deck(source_path("inputs/hertz_two_spheres_3d.yaml"), coarse_mesh(), file);
     ASSERT_EQ(outcome.status, "completed") << outcome.message;
     const Results results(file);
-    const RowMatrix table = results.matrix("convergence");
-    std::vector<double> e;
-    for (Index k = 0; k < table.rows(); ++k)
-        if (table(k, 0) == 1.0)
-            e.push_back(table(k, 2));
+    const std::vector<double> e = newton_residuals(results);
     std::ostringstream history;
     for (double v : e)
         history << v << " ";
     SCOPED_TRACE("relative residuals: " + history.str());
 
     constexpr double roundoff_floor = 1e-9;  // a hundred times the floor seen here
-    std::size_t k = e.size();
-    for (std::size_t i = 0; i + 1 < e.size(); ++i)
-        if (e[i + 1] > roundoff_floor)
-            k = i;
+    const std::size_t k = last_step_above(e, roundoff_floor);
     ASSERT_LT(k + 1, e.size()) << "no step ends above the round-off floor";
     const double e_k = e[k], e_next = e[k + 1];
     constexpr double quadratic_constant_bound = 10.0;  // C = O(1) for relative residuals (measured 0.03)
