@@ -156,6 +156,20 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
                                                     : solver::LinearSolver::Kind::lu);
     if (scene.dim == 3)
         linear.set_ordering(solver::LinearSolver::Ordering::nested_dissection);
+    // Small-strain elasticity plus penalty contact against rigid planes (eps N N^T
+    // (x) n n^T per Gauss point) is positive semi-definite: a tangent Cholesky refuses
+    // is singular (a body held by contact alone before it touches), and the LU that
+    // would only find that out again (several Cholesky costs in 3D) is skipped.
+    // Curved obstacles (the turning normal adds -p/r (I - n n)) and finite strain
+    // can be indefinite and keep the LU fallback.
+    const bool only_planes = std::all_of(scene.pairs.begin(), scene.pairs.end(), [](const PairModel& p) {
+        if (p.obstacle < 0)
+            return false;
+        const auto& obstacle = std::get<contact::RigidObstacle>(p.pair.surface(p.obstacle));
+        return std::holds_alternative<contact::RigidPlane>(obstacle.shape);
+    });
+    linear.set_semidefinite(nonlinear.symmetric && scene.kinematics == mechanics::Kinematics::small &&
+                            scene.followers.empty() && only_planes);
     Vector u = Vector::Zero(scene.dofs->n_free());
     // Small kinematics with contact: only the contact sides' rows and columns of the
     // tangent change, so condensing onto them (solver/condensation.hpp) factorizes the

@@ -156,6 +156,8 @@ LinearStatus LinearSolver::factorize(const SparseMatrix& K)
         cholesky_backoff_ = 1;
         return status;
     }
+    if (semidefinite_)
+        return LinearStatus::singular;  // semi-definite and refused: singular, LU would only say so again
     ++n_fallbacks_;
     const LinearStatus lu_status = factorize_with(Kind::lu);
     if (lu_status == LinearStatus::singular)

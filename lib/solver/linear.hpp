@@ -81,6 +81,12 @@ public:
     enum class Ordering { minimum_degree, nested_dissection };
     void set_ordering(Ordering ordering);
 
+    /// Declares every matrix positive semi-definite (e.g. small-strain elasticity
+    /// with penalty contact against rigid planes): a matrix Cholesky refuses is then
+    /// singular, reported as `singular` without the LU attempt (the caller's
+    /// Levenberg-Marquardt shift makes it definite). Only with Kind::cholesky.
+    void set_semidefinite(bool semidefinite) { semidefinite_ = semidefinite; }
+
     /// Switches the backend (each keeps its own symbolic analysis).
     void set_kind(Kind kind);
 
@@ -107,6 +113,7 @@ private:
     bool analysed_lu_ = false;    // UMFPACK's symbolic analysis matches K_'s pattern
     bool analysed_llt_ = false;   // CHOLMOD's symbolic analysis matches K_'s pattern
     bool factorized_ = false;     // the last numeric factorization succeeded
+    bool semidefinite_ = false;   // set_semidefinite()
     int cholesky_skips_ = 0;      // factorizations left before Cholesky is tried again
     int cholesky_backoff_ = 1;    // skips after the next refusal (doubles, at most 32)
     int n_fallbacks_ = 0;

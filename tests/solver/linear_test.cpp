@@ -298,3 +298,25 @@ TEST(LinearSolver, NestedDissectionOrderingSolvesTheSameSystems)
 
 }  // namespace
 }  // namespace iga::solver
+
+namespace iga::solver {
+namespace {
+
+TEST(LinearSolver, SemidefiniteMatrixThatCholeskyRefusesIsSingularWithoutLu)
+{
+    // The floating two-node spring: positive semi-definite, rigid translation [1, 1, 0].
+    Matrix dense(3, 3);
+    dense << 1, -1, 0, -1, 1, 0, 0, 0, 2;
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    solver.set_semidefinite(true);
+    EXPECT_EQ(solver.factorize(dense.sparseView()), LinearStatus::singular);
+    EXPECT_EQ(solver.n_cholesky_fallbacks(), 0) << "no LU attempt";
+    EXPECT_EQ(solver.n_symbolic(), 1) << "CHOLMOD's analysis only";
+    // The shifted matrix the caller tries next is definite: Cholesky.
+    const SparseMatrix shifted = SparseMatrix((dense + 1e-8 * Matrix::Identity(3, 3)).sparseView());
+    ASSERT_EQ(solver.factorize(shifted), LinearStatus::ok);
+    EXPECT_EQ(solver.factorized_kind(), LinearSolver::Kind::cholesky);
+}
+
+}  // namespace
+}  // namespace iga::solver
