@@ -27,8 +27,6 @@ namespace iga::analysis {
 
 namespace {
 
-/// Condensation onto the contact dofs only up to this many of them (see run()).
-constexpr int max_condensed_dofs = 1500;
 
 solver::NewtonSettings newton_settings(const io::Newton& n)
 {
@@ -62,17 +60,6 @@ solver::SteppingSettings stepping_settings(const io::Steps& steps)
     s.adaptive = steps.adaptive;
     s.max_cutbacks = steps.max_cutbacks;
     return s;
-}
-
-/// Free dofs of all deformable contact sides.
-std::vector<int> contact_free_dofs(const Scene& scene)
-{
-    std::vector<int> out;
-    for (const PairModel& p : scene.pairs)
-        for (int full : p.local_to_full)
-            if (const int f = scene.dofs->free_index(full); f >= 0)
-                out.push_back(f);
-    return out;
 }
 
 /// Every deformable body's n_nodes x d displacements (body node numbering, which
@@ -171,35 +158,13 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     linear.set_semidefinite(nonlinear.symmetric && scene.kinematics == mechanics::Kinematics::small &&
                             scene.followers.empty() && only_planes);
     Vector u = Vector::Zero(scene.dofs->n_free());
-    // Small kinematics with contact: only the contact sides' rows and columns of the
-    // tangent change, so condensing onto them (solver/condensation.hpp) factorizes the
-    // elastic interior once per run and then only a dense n_C x n_C Schur complement
-    // per iteration. It pays only while n_C is small: the dense LU costs (2/3) n_C^3
-    // and W, S hold 2 n_C^2 doubles per cached interior, whereas one sparse LU of the
-    // whole tangent grows far slower. Measured (scripts/bench_contact_cost.py and
-    // the decks in inputs/; README "Contact cost"), linear_solve seconds, condensed
-    // vs one sparse LU per iteration: n_C = 99 (punch, 1.7k dofs) 0.10 vs 0.80;
-    // 153 (hertz, 3.1k) 0.45 vs 0.53; 306 (two cylinders, 6.0k) 1.08 vs 2.68;
-    // 652 (squeeze, 26k) 10.8 vs 32.9; 2012 (squeeze refined, 81k) 371 vs more than
-    // 600 s (stopped at half the load); 1.2 GB for the condensed run. The dense
-    // S and W (2 n_C^2 doubles each per cached interior) bound n_C by memory first. Rule: condense under small
-    // kinematics, without follower pressures, when n_C <= max_condensed_dofs.
-    {
-        std::vector<int> condensed = contact_free_dofs(scene);
-        std::sort(condensed.begin(), condensed.end());
-        condensed.erase(std::unique(condensed.begin(), condensed.end()), condensed.end());
-        const int n_condensed = static_cast<int>(condensed.size());
-        const bool condense = scene.kinematics == mechanics::Kinematics::small && scene.has_contact() &&
-                              scene.followers.empty() && n_condensed <= max_condensed_dofs;
-        if (condense)
-            linear.set_condensed_dofs(std::move(condensed));
-        if (scene.has_contact())
-            context.log(Verbosity::verbose,
-                        fmt::format("  linear solver: {} ({} contact dofs)",
-                                    condense ? "condensed"
-                                             : (nonlinear.symmetric ? "sparse Cholesky" : "sparse LU"),
-                                    n_condensed));
-    }
+    // Small kinematics with contact: the tangent is the constant elastic stiffness
+    // plus the contact stiffness of the active Gauss points, so one factorization
+    // serves the following iterations and increments as a reference, and each new
+    // tangent is a Woodbury update on the active contact dofs (solver/woodbury.hpp)
+    // as long as that costs fewer flops than a factorization (the solver decides).
+    if (scene.kinematics == mechanics::Kinematics::small && scene.has_contact())
+        linear.set_updates(true);
 
     std::vector<std::string> warnings;
     auto warn = [&](const std::vector<std::string>& lines) {
@@ -293,6 +258,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
 
     context.add_count("symbolic_factorizations", linear.n_symbolic());
     context.add_count("numeric_factorizations", linear.n_numeric());
+    if (linear.n_updates() > 0)
+        context.add_count("woodbury_updates", linear.n_updates());
 
     if (!deck.output.every_step && last_step) {
         ScopedTimer t(&context, "output");

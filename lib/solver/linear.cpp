@@ -1,6 +1,6 @@
 #include "solver/linear.hpp"
 
-#include "solver/condensation.hpp"
+#include "solver/woodbury.hpp"
 
 #include "core/error.hpp"
 
@@ -17,6 +17,23 @@ namespace {
 // also refines iteratively. 1e-6 ||b|| is far above that for any K we can use,
 // yet catches the garbage a near-singular K that escaped the pivot test gives.
 constexpr double backward_error_tolerance = 1e-6;
+// An updated solve (solver/woodbury.hpp) above this backward error is refined
+// against K, up to max_refinement_steps steps while each at least halves the
+// residual: a direct solve lands near eps ||K|| ||x||, the update's extra rounding
+// (cancellation between K_ref^-1 b and the correction under a stiff penalty) can
+// leave it orders above that. UMFPACK's own refinement would refine towards
+// K_ref, so it is off for updates and for the columns of K_ref^-1.
+constexpr double refinement_threshold = 1e-14;
+constexpr int max_refinement_steps = 4;
+constexpr int umfpack_refinement_steps = 2;  // UMFPACK's default, for solves with the factorized K itself
+
+// Woodbury updates: the columns of K_ref^-1 they need are paid in solves of the
+// reference at this many flops per flop of a factorization (a blocked supernodal
+// solve streams the factor once per block of columns, a factorization works at
+// matrix-matrix speed; measured on the 3D Hertz sphere, README "Contact cost"),
+// and they may hold at most this many doubles per entry of the factors.
+constexpr double column_flop_cost = 1.0;
+constexpr double column_memory_per_factor_entry = 1.0;
 
 bool all_finite(const SparseMatrix& K)
 {
@@ -24,10 +41,91 @@ bool all_finite(const SparseMatrix& K)
     return std::all_of(values, values + K.nonZeros(), [](double v) { return std::isfinite(v); });
 }
 
+// Same compressed pattern (a and b compressed).
+bool same_sparsity(const SparseMatrix& a, const SparseMatrix& b)
+{
+    if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros())
+        return false;
+    const int n_outer = static_cast<int>(a.outerSize()) + 1;
+    return std::equal(a.outerIndexPtr(), a.outerIndexPtr() + n_outer, b.outerIndexPtr()) &&
+           std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), b.innerIndexPtr());
+}
+
+// Copies K into `into` (compressed), in place when the pattern is the same.
+void copy_compressed(const SparseMatrix& K, SparseMatrix& into)
+{
+    if (K.isCompressed() && same_sparsity(K, into)) {
+        std::copy(K.valuePtr(), K.valuePtr() + K.nonZeros(), into.valuePtr());
+        return;
+    }
+    into = K;
+    into.makeCompressed();
+}
+
+// The entries where K and R (n x n, R compressed) differ: K - R = P^T D P on the
+// sorted dofs A of their rows and columns. false when A would exceed max_dofs.
+bool difference_support(const SparseMatrix& K, const SparseMatrix& R, Index max_dofs, std::vector<int>& dofs,
+                        Matrix& D)
+{
+    const Index n = R.rows();
+    std::vector<char> in_support(static_cast<std::size_t>(n), 0);
+    std::vector<Triplet> entries;
+    Index n_dofs = 0;
+    auto mark = [&](Index k) {
+        if (!in_support[static_cast<std::size_t>(k)]) {
+            in_support[static_cast<std::size_t>(k)] = 1;
+            ++n_dofs;
+        }
+    };
+    for (Index j = 0; j < n; ++j) {
+        // Merge the two sorted columns; a row present in one only differs by its value.
+        SparseMatrix::InnerIterator a(K, j), b(R, j);
+        while (a || b) {
+            double delta = 0;
+            Index i = 0;
+            if (a && (!b || a.row() < b.row())) {
+                i = a.row(), delta = a.value();
+                ++a;
+            } else if (b && (!a || b.row() < a.row())) {
+                i = b.row(), delta = -b.value();
+                ++b;
+            } else {
+                i = a.row(), delta = a.value() - b.value();
+                ++a, ++b;
+            }
+            if (delta != 0) {
+                entries.emplace_back(static_cast<int>(i), static_cast<int>(j), delta);
+                mark(i);
+                mark(j);
+                if (n_dofs > max_dofs)
+                    return false;
+            }
+        }
+    }
+    dofs.clear();
+    std::vector<int> position(static_cast<std::size_t>(n), -1);
+    for (Index k = 0; k < n; ++k)
+        if (in_support[static_cast<std::size_t>(k)]) {
+            position[static_cast<std::size_t>(k)] = static_cast<int>(dofs.size());
+            dofs.push_back(static_cast<int>(k));
+        }
+    D = Matrix::Zero(n_dofs, n_dofs);
+    for (const Triplet& t : entries)
+        D(position[static_cast<std::size_t>(t.row())], position[static_cast<std::size_t>(t.col())]) += t.value();
+    return true;
+}
+
 }  // namespace
 
+// UMFPACK's statistics of the last factorization (flops, entries of L and U),
+// which Eigen keeps but does not expose.
+class UmfPackWithInfo : public Eigen::UmfPackLU<SparseMatrix> {
+public:
+    double statistic(int entry) const { return m_umfpackInfo(entry); }
+};
+
 struct LinearSolver::Backend {
-    Eigen::UmfPackLU<SparseMatrix> lu;
+    UmfPackWithInfo lu;
     Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt;
 
     Backend()
@@ -62,17 +160,10 @@ LinearSolver::~LinearSolver() = default;
 LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
 LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
 
-void LinearSolver::set_condensed_dofs(std::vector<int> dofs)
+void LinearSolver::set_updates(bool on)
 {
-    condensation_ = dofs.empty() ? nullptr : std::make_unique<Condensation>(std::move(dofs));
-    analysed_ = analysed_lu_ = analysed_llt_ = false;  // the backends and the condensation keep separate analyses
-    factorized_ = false;
-}
-
-const std::vector<int>& LinearSolver::condensed_dofs() const
-{
-    static const std::vector<int> none;
-    return condensation_ ? condensation_->condensed_dofs() : none;
+    update_ = on ? std::make_unique<WoodburyUpdate>() : nullptr;
+    factorized_ = updated_ = false;  // the next factorization is a reference
 }
 
 void LinearSolver::set_ordering(Ordering ordering)
@@ -98,53 +189,40 @@ void LinearSolver::set_kind(Kind kind)
 
 bool LinearSolver::same_pattern(const SparseMatrix& K) const
 {
-    if (K.rows() != K_.rows() || K.cols() != K_.cols() || K.nonZeros() != K_.nonZeros())
-        return false;
-    const int n_outer = static_cast<int>(K.outerSize()) + 1;
-    return std::equal(K.outerIndexPtr(), K.outerIndexPtr() + n_outer, K_.outerIndexPtr()) &&
-           std::equal(K.innerIndexPtr(), K.innerIndexPtr() + K.nonZeros(), K_.innerIndexPtr());
+    return same_sparsity(K, reference_);
 }
 
 LinearStatus LinearSolver::factorize(const SparseMatrix& K)
 {
     IGA_CHECK(K.rows() == K.cols(), "LinearSolver::factorize: the matrix must be square");
+    if (factorized_ && update_ && try_update(K))
+        return LinearStatus::ok;
+    updated_ = false;
     // The same matrix again (a linear scene's next increment): keep the factorization.
     if (factorized_ && K.isCompressed() && same_pattern(K) &&
-        std::equal(K.valuePtr(), K.valuePtr() + K.nonZeros(), K_.valuePtr()))
+        std::equal(K.valuePtr(), K.valuePtr() + K.nonZeros(), reference_.valuePtr()))
         return LinearStatus::ok;
     factorized_ = false;
 
-    if (analysed_ && K.isCompressed() && same_pattern(K)) {
-        // Same pattern: copy the values in place, so nothing is reallocated.
-        std::copy(K.valuePtr(), K.valuePtr() + K.nonZeros(), K_.valuePtr());
-    } else {
+    if (!(analysed_ && K.isCompressed() && same_pattern(K))) {
         SparseMatrix copy = K;
         copy.makeCompressed();
-        if (!(analysed_ && same_pattern(copy)))
+        if (!(analysed_ && same_sparsity(copy, reference_)))
             analysed_ = analysed_lu_ = analysed_llt_ = false;
-        K_ = std::move(copy);
+        reference_ = std::move(copy);
+    } else {
+        copy_compressed(K, reference_);  // same pattern: the values in place, nothing reallocated
     }
-    if (!all_finite(K_))
+    if (!all_finite(reference_))
         return LinearStatus::failed;
-    if (K_.rows() == 0) {  // no unknowns: nothing to factorize, solve() returns an empty x
+    if (reference_.rows() == 0) {  // no unknowns: nothing to factorize, solve() returns an empty x
         factorized_ = true;
         return LinearStatus::ok;
     }
-    if (K_.nonZeros() == 0)  // the backends reject an empty pattern (CHOLMOD would crash)
+    if (reference_.nonZeros() == 0)  // the backends reject an empty pattern (CHOLMOD would crash)
         return LinearStatus::singular;
 
-    if (condensation_) {
-        if (!analysed_) {  // a new pattern (e.g. a contact coupling extended it): new block maps
-            condensation_->new_pattern();  // (not counted in n_symbolic(): the backend's analyses only)
-            analysed_ = true;
-        }
-        ++n_numeric_;
-        const LinearStatus status = condensation_->factorize(K_);
-        factorized_ = status == LinearStatus::ok;
-        return status;
-    }
-
-    analysed_ = true;  // the backends' analyses below are made for K_'s pattern
+    analysed_ = true;  // the backends' analyses below are made for reference_'s pattern
     if (kind_ == Kind::lu)
         return factorize_with(Kind::lu);
     if (cholesky_skips_ > 0) {
@@ -167,6 +245,45 @@ LinearStatus LinearSolver::factorize(const SparseMatrix& K)
     return lu_status;
 }
 
+bool LinearSolver::try_update(const SparseMatrix& K)
+{
+    const Index n = reference_.rows();
+    if (K.rows() != n || n == 0 || !all_finite(K))
+        return false;
+    // Memory: the columns held and the new ones within the factor's size.
+    const auto max_columns = static_cast<Index>(column_memory_per_factor_entry * factor_entries_ / static_cast<double>(n));
+    const Index room = max_columns - update_->stored_columns();
+    std::vector<int> dofs;
+    Matrix D;
+    if (room <= 0 || !difference_support(K, reference_, max_columns, dofs, D))
+        return false;
+    // Time: the new columns and the dense capacitance against a factorization.
+    const auto m = static_cast<double>(dofs.size());
+    const Index missing = update_->missing_columns(dofs);
+    const double update_flops = static_cast<double>(missing) * column_flops_ * column_flop_cost + 2.0 / 3.0 * m * m * m;
+    if (missing > room || update_flops >= factor_flops_)
+        return false;
+    if (!update_->set_up(dofs, std::move(D), [this](const Matrix& B) { return solve_reference(B); }))
+        return false;
+    if (dofs.empty()) {  // K is the reference itself
+        updated_ = false;
+        return true;
+    }
+    copy_compressed(K, K_);
+    updated_ = true;
+    ++n_updates_;
+    return true;
+}
+
+Matrix LinearSolver::solve_reference(const Matrix& B) const
+{
+    if (factorized_kind_ == Kind::lu) {
+        backend_->lu.umfpackControl()(UMFPACK_IRSTEP) = 0;  // see refinement_threshold
+        return backend_->lu.solve(B);
+    }
+    return backend_->llt.solve(B);
+}
+
 LinearStatus LinearSolver::factorize_with(Kind kind)
 {
     Backend& b = *backend_;
@@ -174,11 +291,11 @@ LinearStatus LinearSolver::factorize_with(Kind kind)
     if (!analysed) {
         ++n_symbolic_;
         if (kind == Kind::lu) {
-            b.lu.analyzePattern(K_);
+            b.lu.analyzePattern(reference_);
             if (b.lu.info() != Eigen::Success)
                 return LinearStatus::failed;
         } else {
-            b.llt.analyzePattern(K_);
+            b.llt.analyzePattern(reference_);
             // Eigen reports Success even when cholmod_analyze failed (and left no
             // factor, which factorize() would dereference): check CHOLMOD's status.
             if (b.llt.info() != Eigen::Success || b.llt.cholmod().status < 0)
@@ -189,43 +306,71 @@ LinearStatus LinearSolver::factorize_with(Kind kind)
 
     ++n_numeric_;
     if (kind == Kind::lu) {
-        b.lu.factorize(K_);
+        b.lu.factorize(reference_);
         if (b.lu.info() != Eigen::Success)
             return LinearStatus::singular;
+        factor_flops_ = b.lu.statistic(UMFPACK_FLOPS);
+        factor_entries_ = b.lu.statistic(UMFPACK_LNZ) + b.lu.statistic(UMFPACK_UNZ);
     } else {
-        b.llt.factorize(K_);
+        b.llt.factorize(reference_);
         if (b.llt.info() != Eigen::Success)
             return LinearStatus::failed;
+        factor_flops_ = b.llt.cholmod().fl;  // of the last analysis, which is this pattern's
+        factor_entries_ = 2 * b.llt.cholmod().lnz;  // L and L^T are both streamed by a solve
     }
+    column_flops_ = 2 * factor_entries_;  // one multiply-add per entry of the factors
     factorized_ = true;
     factorized_kind_ = kind;
+    if (update_)
+        update_->reset(reference_.rows());
     return LinearStatus::ok;
 }
 
 LinearStatus LinearSolver::solve(const Vector& b, Vector& x) const
 {
     IGA_CHECK(factorized_, "LinearSolver::solve: needs a successful factorize() first");
-    IGA_CHECK(b.size() == K_.rows(), "LinearSolver::solve: right-hand side size differs from the matrix");
-    if (K_.rows() == 0) {
+    IGA_CHECK(b.size() == reference_.rows(), "LinearSolver::solve: right-hand side size differs from the matrix");
+    if (reference_.rows() == 0) {
         x.resize(0);
         return LinearStatus::ok;
     }
 
-    if (condensation_) {
-        if (condensation_->solve(b, x) != LinearStatus::ok)
-            return LinearStatus::singular;
-    } else if (factorized_kind_ == Kind::lu) {
-        x = backend_->lu.solve(b);
-    } else {
-        x = backend_->llt.solve(b);
-        if (backend_->llt.info() != Eigen::Success)
-            return LinearStatus::singular;
-    }
-    if (!x.allFinite())
+    // With the reference's factorization, corrected by the update if there is one.
+    auto solve_once = [this](const Vector& rhs, Vector& y) {
+        if (factorized_kind_ == Kind::lu) {
+            backend_->lu.umfpackControl()(UMFPACK_IRSTEP) = updated_ ? 0 : umfpack_refinement_steps;
+            y = backend_->lu.solve(rhs);
+        } else {
+            y = backend_->llt.solve(rhs);
+            if (backend_->llt.info() != Eigen::Success)
+                return false;
+        }
+        if (updated_)
+            update_->correct(y);
+        return y.allFinite();
+    };
+    if (!solve_once(b, x))
         return LinearStatus::singular;
     // Also catches Cholesky handed a non-symmetric K: it reads one triangle only,
     // the check multiplies by the whole matrix.
-    const double residual = (K_ * x - b).norm();
+    const SparseMatrix& K = updated_ ? K_ : reference_;
+    Vector r = b - K * x;
+    double residual = r.norm();
+    // An update's solution carries the rounding of K_ref^-1 b and of the
+    // correction, which cancel where penalty stiffness dominates: refine against
+    // K while that pays.
+    for (int step = 0; updated_ && step < max_refinement_steps && residual > refinement_threshold * b.norm(); ++step) {
+        Vector dx;
+        if (!solve_once(r, dx))
+            break;
+        const Vector refined = x + dx;
+        Vector r_refined = b - K * refined;
+        if (!(r_refined.norm() < 0.5 * residual))
+            break;  // no progress: keep the better x
+        x = refined;
+        r = std::move(r_refined);
+        residual = r.norm();
+    }
     if (!(residual <= backward_error_tolerance * b.norm()))
         return LinearStatus::singular;
     return LinearStatus::ok;

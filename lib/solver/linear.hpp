@@ -22,6 +22,16 @@
 // indices, see core/types.hpp), b and x have n entries.
 // Ownership: factorize() copies K (O(nnz)), because UMFPACK reads the matrix
 // again in solve() for iterative refinement; the caller's K may change afterwards.
+//
+// Updates (set_updates(true); solver/woodbury.hpp): a factorization is kept as a
+// reference, and a later K that differs from it only in the rows and columns of a
+// few dofs is solved by a Woodbury update of the reference instead of being
+// factorized, when that costs fewer flops than a factorization (the columns of
+// K_ref^-1 the update still needs against the factorization's own flop count,
+// both known from the backend's analysis), and its columns fit in the memory of
+// the factor. Anything else (a dense change, a singular capacitance, a solution
+// whose backward error stays above the bound after one refinement step) takes the
+// ordinary path, and the new factorization becomes the reference.
 
 #include "core/types.hpp"
 
@@ -38,7 +48,7 @@ enum class LinearStatus {
 
 const char* status_name(LinearStatus status);
 
-class Condensation;
+class WoodburyUpdate;
 
 class LinearSolver {
 public:
@@ -66,13 +76,12 @@ public:
     /// Precondition: the last factorize() returned ok.
     LinearStatus solve(const Vector& b, Vector& x) const;
 
-    /// Static condensation onto these dofs (solver/condensation.hpp): for tangents
-    /// that change only in these rows/columns between calls (contact under small
-    /// kinematics). Empty: off (the default).
-    void set_condensed_dofs(std::vector<int> dofs);
-    bool condensed() const { return condensation_ != nullptr; }
-    /// The condensed dofs (sorted), empty when not condensing.
-    const std::vector<int>& condensed_dofs() const;
+    /// Woodbury updates of a reference factorization (see above): for tangents that
+    /// change in a few rows and columns between calls (contact under small
+    /// kinematics). Off by default.
+    void set_updates(bool on);
+    /// Whether the last factorize() was an update of the reference.
+    bool updated() const { return updated_; }
 
     /// Fill-reducing ordering of the symbolic analyses: approximate minimum degree
     /// (the backends' default) or METIS nested dissection, which fills far less in
@@ -96,22 +105,30 @@ public:
     int n_cholesky_fallbacks() const { return n_fallbacks_; }  ///< matrices Cholesky refused so far
     int n_symbolic() const { return n_symbolic_; }  ///< symbolic analyses done so far
     int n_numeric() const { return n_numeric_; }    ///< numeric factorizations done so far
-    Index size() const { return K_.rows(); }
+    int n_updates() const { return n_updates_; }    ///< factorize() calls served by a Woodbury update
+    Index size() const { return reference_.rows(); }
 
 private:
     struct Backend;  // the Eigen/SuiteSparse objects, kept out of this header
-    std::unique_ptr<Condensation> condensation_;
 
-    bool same_pattern(const SparseMatrix& K) const;
-    LinearStatus factorize_with(Kind kind);  // K_ by one backend, after its analysis if needed
+    bool same_pattern(const SparseMatrix& K) const;  // as reference_
+    LinearStatus factorize_with(Kind kind);  // reference_ by one backend, after its analysis if needed
+    bool try_update(const SparseMatrix& K);  // K as a Woodbury update of reference_, if it pays
+    Matrix solve_reference(const Matrix& B) const;  // reference_^-1 B
 
     Kind kind_;
     Kind factorized_kind_;
     std::unique_ptr<Backend> backend_;
-    SparseMatrix K_;              // the factorized matrix (compressed), read by solve()
-    bool analysed_ = false;       // K_'s pattern is the one the analyses below were made for
-    bool analysed_lu_ = false;    // UMFPACK's symbolic analysis matches K_'s pattern
-    bool analysed_llt_ = false;   // CHOLMOD's symbolic analysis matches K_'s pattern
+    SparseMatrix reference_;      // the factorized matrix (compressed), read by solve()
+    SparseMatrix K_;              // the matrix of the last factorize() when it was an update
+    std::unique_ptr<WoodburyUpdate> update_;  // set_updates(true)
+    bool updated_ = false;        // the last factorize() was an update: solve() corrects and checks against K_
+    double factor_flops_ = 0;     // of reference_'s factorization (backend's count)
+    double column_flops_ = 0;     // of one solve with it
+    double factor_entries_ = 0;   // nonzeros of its factors
+    bool analysed_ = false;       // reference_'s pattern is the one the analyses below were made for
+    bool analysed_lu_ = false;    // UMFPACK's symbolic analysis matches reference_'s pattern
+    bool analysed_llt_ = false;   // CHOLMOD's symbolic analysis matches reference_'s pattern
     bool factorized_ = false;     // the last numeric factorization succeeded
     bool semidefinite_ = false;   // set_semidefinite()
     int cholesky_skips_ = 0;      // factorizations left before Cholesky is tried again
@@ -119,6 +136,7 @@ private:
     int n_fallbacks_ = 0;
     int n_symbolic_ = 0;
     int n_numeric_ = 0;
+    int n_updates_ = 0;
 };
 
 const char* kind_name(LinearSolver::Kind kind);

@@ -160,32 +160,17 @@ StepResult newton_step(const SparseMatrix& K, const Vector& r, LinearSolver& sol
             d(i) = K_reg.valuePtr()[diagonal_position[i]];
         return d;
     }();
-    // A condensing solver first shifts only the condensed block: the singular mode
-    // of a body held by contact alone moves its contact dofs, so K + mu D_C is
-    // regular, and the factorized interior (its K_II^-1 K_IC set-up, the costly
-    // part) is reused instead of being redone for a shifted K_II. If that fails,
-    // the whole diagonal is shifted.
-    std::vector<Vector> shifts;
-    if (!solver.condensed_dofs().empty()) {
-        Vector D_C = Vector::Zero(n);
-        for (int c : solver.condensed_dofs())
-            D_C(c) = D(c);
-        shifts.push_back(std::move(D_C));
-    }
-    shifts.push_back(D);
-    for (const Vector& shift : shifts) {
-        double mu = first_mu;
-        for (int attempt = 0; attempt < max_regularizations; ++attempt, mu *= mu_growth) {
-            for (int i = 0; i < n; ++i)
-                K_reg.valuePtr()[diagonal_position[i]] = K_diagonal(i) + mu * shift(i);
-            result.status = solver.factorize(K_reg);
-            if (result.status == LinearStatus::ok)
-                result.status = solver.solve(rhs, du);
-            if (result.status == LinearStatus::ok) {
-                result.regularized = true;
-                result.mu = mu;
-                return result;
-            }
+    double mu = first_mu;
+    for (int attempt = 0; attempt < max_regularizations; ++attempt, mu *= mu_growth) {
+        for (int i = 0; i < n; ++i)
+            K_reg.valuePtr()[diagonal_position[i]] = K_diagonal(i) + mu * D(i);
+        result.status = solver.factorize(K_reg);
+        if (result.status == LinearStatus::ok)
+            result.status = solver.solve(rhs, du);
+        if (result.status == LinearStatus::ok) {
+            result.regularized = true;
+            result.mu = mu;
+            return result;
         }
     }
     return result;
