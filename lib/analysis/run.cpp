@@ -258,7 +258,7 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
 
     context.add_count("symbolic_factorizations", linear.n_symbolic());
     context.add_count("numeric_factorizations", linear.n_numeric());
-    if (linear.n_updates() > 0)
+    if (scene.kinematics == mechanics::Kinematics::small && scene.has_contact())
         context.add_count("woodbury_updates", linear.n_updates());
 
     if (!deck.output.every_step && last_step) {

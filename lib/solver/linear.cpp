@@ -27,11 +27,13 @@ constexpr double refinement_threshold = 1e-14;
 constexpr int max_refinement_steps = 4;
 constexpr int umfpack_refinement_steps = 2;  // UMFPACK's default, for solves with the factorized K itself
 
-// Woodbury updates: the columns of K_ref^-1 they need are paid in solves of the
-// reference at this many flops per flop of a factorization (a blocked supernodal
-// solve streams the factor once per block of columns, a factorization works at
-// matrix-matrix speed; measured on the 3D Hertz sphere, README "Contact cost"),
-// and they may hold at most this many doubles per entry of the factors.
+// Woodbury updates: the columns of K_ref^-1 they need are priced at their flops
+// times this against the flops of a factorization. A column solve runs slower per
+// flop than a factorization (measured: 2.6x for CHOLMOD on the 3D Hertz sphere,
+// blocks of 64 columns; 6x for UMFPACK on the squeeze, one column at a time), but a
+// column serves every later iteration while the reference lasts (the squeeze: 42
+// updates on 136 columns), so the flops alone are the price. The columns may hold
+// at most this many doubles per entry of the factors.
 constexpr double column_flop_cost = 1.0;
 constexpr double column_memory_per_factor_entry = 1.0;
 
@@ -248,19 +250,21 @@ LinearStatus LinearSolver::factorize(const SparseMatrix& K)
 bool LinearSolver::try_update(const SparseMatrix& K)
 {
     const Index n = reference_.rows();
-    if (K.rows() != n || n == 0 || !all_finite(K))
+    if (K.rows() != n || n == 0)
         return false;
     // Memory: the columns held and the new ones within the factor's size.
-    const auto max_columns = static_cast<Index>(column_memory_per_factor_entry * factor_entries_ / static_cast<double>(n));
+    const auto max_columns =
+        static_cast<Index>(column_memory_per_factor_entry * factor_entries_ / static_cast<double>(n));
     const Index room = max_columns - update_->stored_columns();
     std::vector<int> dofs;
     Matrix D;
-    if (room <= 0 || !difference_support(K, reference_, max_columns, dofs, D))
-        return false;
+    if (room <= 0 || !difference_support(K, reference_, max_columns, dofs, D) || !D.allFinite())
+        return false;  // (a non-finite entry of K differs from the reference: it is in D)
     // Time: the new columns and the dense capacitance against a factorization.
     const auto m = static_cast<double>(dofs.size());
     const Index missing = update_->missing_columns(dofs);
-    const double update_flops = static_cast<double>(missing) * column_flops_ * column_flop_cost + 2.0 / 3.0 * m * m * m;
+    const double update_flops =
+        static_cast<double>(missing) * column_flops_ * column_flop_cost + 2.0 / 3.0 * m * m * m;
     if (missing > room || update_flops >= factor_flops_)
         return false;
     if (!update_->set_up(dofs, std::move(D), [this](const Matrix& B) { return solve_reference(B); }))

@@ -52,7 +52,10 @@ public:
     void correct(Vector& y) const;
 
 private:
-    const Vector& column(int dof) const { return columns_[static_cast<std::size_t>(column_of_[static_cast<std::size_t>(dof)])]; }
+    const Vector& column(int dof) const
+    {
+        return columns_[static_cast<std::size_t>(column_of_[static_cast<std::size_t>(dof)])];
+    }
 
     std::vector<int> column_of_;  // per dof: index into columns_, or -1
     std::vector<Vector> columns_; // K_ref^-1 e_j of the dofs met so far

@@ -6,6 +6,7 @@
 #include <Eigen/SparseCholesky>
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 namespace iga::solver {
@@ -163,7 +164,8 @@ TEST(LinearSolver, UpdatesServeTangentsThatChangeInAFewDofs)
     for (LinearSolver::Kind kind : {LinearSolver::Kind::cholesky, LinearSolver::Kind::lu}) {
         LinearSolver solver(kind);
         solver.set_updates(true);
-        const std::vector<std::vector<int>> supports{{100, 101, 102}, {100, 101, 102, 115, 116}, {101, 102, 115, 116, 117}};
+        const std::vector<std::vector<int>> supports{
+            {100, 101, 102}, {100, 101, 102, 115, 116}, {101, 102, 115, 116, 117}};
         for (std::size_t k = 0; k < supports.size(); ++k) {
             SparseMatrix K = K0;  // a symmetric positive semi-definite contact stiffness on the support
             for (int a : supports[k])
@@ -192,7 +194,13 @@ TEST(LinearSolver, UpdatesServeTangentsThatChangeInAFewDofs)
         EXPECT_EQ(solver.n_numeric(), 2) << kind_name(kind);
         Vector x;
         ASSERT_EQ(solver.solve(Vector::Ones(n), x), LinearStatus::ok);
-        EXPECT_TRUE(test::at_most((shifted * x - Vector::Ones(n)).norm() / std::sqrt(static_cast<double>(n)), agreement));
+        EXPECT_TRUE(
+            test::at_most((shifted * x - Vector::Ones(n)).norm() / std::sqrt(static_cast<double>(n)), agreement));
+
+        // A non-finite entry is never taken into an update.
+        SparseMatrix broken = shifted;
+        broken.coeffRef(100, 100) = std::numeric_limits<double>::quiet_NaN();
+        EXPECT_EQ(solver.factorize(broken), LinearStatus::failed) << kind_name(kind);
     }
 }
 
