@@ -78,7 +78,7 @@ private:
     };
     std::vector<BlockOwner> owner_;                // element block -> (body, element), blocks come first
     std::optional<SparseMatrix> full_stiffness_;   // small kinematics: elastic K over all (full) dofs
-    std::vector<Vector> element_force_;            // per element block, reused storage
+    std::vector<Vector> element_force_;            // finite kinematics: f_int per block (reused storage)
     int last_active_ = 0;
 };
 
