@@ -205,7 +205,15 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
             for (Index k = 0; k < state.residual.size(); ++k)
                 result.obstacle_force[static_cast<std::size_t>(k % d)] += state.residual(k);
         }
-        for (const contact::CarrierResult& carrier : state.carriers) {
+        for (const contact::CarrierResult& computed : state.carriers) {
+            // Small kinematics know one area, the reference one: a pressure integrated over
+            // the current surface (two-half-pass) is shown per unit reference area, p j/J,
+            // the traction the linear-elastic body carries (docs/theory.md "Two-half-pass balance").
+            contact::CarrierResult carrier = computed;
+            if (scene.kinematics == mechanics::Kinematics::small) {
+                carrier.pressure = carrier.pressure.cwiseProduct(carrier.stretch);
+                carrier.weight = carrier.weight.cwiseQuotient(carrier.stretch);
+            }
             const contact::DeformableSide* side = deformable(model.pair, carrier.surface);
             IGA_CHECK(side != nullptr, "a rigid surface cannot carry Gauss points");
             const contact::RecoveredPressure recovered = contact::recover_pressure(
@@ -245,7 +253,7 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
                 }
             r.attributes["n_active"] = active;
             r.attributes["max_penetration"] = penetration;
-            r.attributes["contact_measure"] = contact_measure;  // reference length (area in 3D) in contact
+            r.attributes["contact_measure"] = contact_measure;  // length (area in 3D) in contact, measured as the weights
             result.sides.push_back(std::move(r));
         }
         step.contact.push_back(std::move(result));

@@ -174,7 +174,7 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
                 options.warning(line);
         }
     };
-    warn(overclosure_warnings(scene, system));
+    warn(release_initial_overclosure(scene, system));
 
     for (const PairModel& p : scene.pairs)
         if (p.penalty_auto)

@@ -47,7 +47,7 @@ double attribute(const io::ContactSideResult& side, const std::string& name)
 
 }  // namespace
 
-std::vector<std::string> overclosure_warnings(const Scene& scene, SceneSystem& system)
+std::vector<std::string> release_initial_overclosure(Scene& scene, SceneSystem& system)
 {
     std::vector<std::string> out;
     if (!scene.has_contact())
@@ -56,22 +56,32 @@ std::vector<std::string> overclosure_warnings(const Scene& scene, SceneSystem& s
     const std::vector<contact::PairEvaluation> states = system.contact_state(u0, 0.0);
     const double tolerance = overclosure_tolerance * scene.model_size;
     for (std::size_t p = 0; p < scene.pairs.size(); ++p) {
-        const PairModel& model = scene.pairs[p];
+        PairModel& model = scene.pairs[p];
+        std::vector<Vector> overlap;
+        std::string line;
         for (const contact::CarrierResult& carrier : states[p].carriers) {
+            Vector g0 = Vector::Zero(carrier.gap.size());
             Index deepest = -1;
-            for (Index g = 0; g < carrier.gap.size(); ++g)
-                if (carrier.state[static_cast<std::size_t>(g)] == contact::PointState::ok &&
-                    carrier.gap(g) > tolerance && (deepest < 0 || carrier.gap(g) > carrier.gap(deepest)))
+            for (Index g = 0; g < carrier.gap.size(); ++g) {
+                if (carrier.state[static_cast<std::size_t>(g)] != contact::PointState::ok || !(carrier.gap(g) > tolerance))
+                    continue;
+                g0(g) = carrier.gap(g);
+                if (deepest < 0 || carrier.gap(g) > carrier.gap(deepest))
                     deepest = g;
-            if (deepest < 0)
-                continue;
-            out.push_back(fmt::format(
-                "contact pair '{}': {} starts {:.3g} deep inside the other surface (at {}); the first increment "
-                "pushes it out with the full penalty force. If the overlap is not intended, move the bodies apart",
-                model.name, model.label[static_cast<std::size_t>(carrier.surface)], carrier.gap(deepest),
-                point_text(carrier.reference_coordinates, deepest)));
-            break;  // one line per pair: the other half pass sees the same overlap
+            }
+            if (deepest >= 0 && line.empty())  // one line per pair: the other half pass sees the same overlap
+                line = fmt::format(
+                    "contact pair '{}': {} starts {:.3g} deep inside the other surface (at {}); the overlap is "
+                    "released over the load path (in full at load factor 1). If it is not intended, move the bodies "
+                    "apart",
+                    model.name, model.label[static_cast<std::size_t>(carrier.surface)], carrier.gap(deepest),
+                    point_text(carrier.reference_coordinates, deepest));
+            overlap.push_back(std::move(g0));
         }
+        if (line.empty())
+            continue;
+        model.pair.set_initial_overlap(std::move(overlap));
+        out.push_back(std::move(line));
     }
     return out;
 }

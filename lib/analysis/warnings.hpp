@@ -2,7 +2,8 @@
 // Set-ups that run to the end but are grossly wrong, caught and worded for the
 // user (stderr "warning: ..." and the results' root attribute `warnings`):
 //  - initial overclosure: contact surfaces that overlap in the reference
-//    configuration by more than overclosure_tolerance of the model size;
+//    configuration by more than overclosure_tolerance of the model size (the
+//    overlap is released over the load path, contact::ContactPair::set_initial_overlap);
 //  - a penetration large against the contact zone (its reference length, or the
 //    square root of its area in 3D), against the body, or against the travel
 //    imposed by displacements and obstacle motion: the penalty is too soft for
@@ -40,8 +41,11 @@ constexpr double half_pass_disagreement = 0.03;
 /// of grazing contact, not a resolved force: no disagreement is reported for them.
 constexpr double negligible_contact_force = 1e-8;
 
-/// Warnings about the surfaces' overlap at load factor 0 (u = 0).
-std::vector<std::string> overclosure_warnings(const Scene& scene, SceneSystem& system);
+/// The surfaces' overlap at load factor 0 (u = 0): every Gauss point deeper than
+/// overclosure_tolerance of the model size gets it as its initial overlap, released
+/// over the load path (the first increment need not push it all out at once, and
+/// cutbacks shrink it like any load); one warning per pair that has one.
+std::vector<std::string> release_initial_overclosure(Scene& scene, SceneSystem& system);
 
 /// Warnings about the contact state of a converged increment (the last one).
 std::vector<std::string> contact_warnings(const io::Deck& deck, const Scene& scene, const io::StepData& step);

@@ -7,12 +7,16 @@
 #include "core/error.hpp"
 #include "quadrature/gauss.hpp"
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
 #include <optional>
 #include <sstream>
+#include <tuple>
+#include <utility>
 
 namespace iga::contact {
 namespace {
@@ -53,6 +57,29 @@ void check_surface(const Surface& s, const char* which, int dim)
                       "contact: a surface piece needs a surface index per control point");
         }
     }
+}
+
+/// W = w_g j and dW/du (n_s d) at a Gauss point whose carrying surface has current
+/// control points `points` (rows `indices`): with the current tangents a = sum_c x_c dN_c
+/// (d x q) and metric m = a^T a, j = sqrt(det m) and dj/dx_c = j a m^-1 dN_c^T (the
+/// contravariant basis a^al = a m^-1 along dN_c,al), in 2D dj/dx_c = dN_c a / |a|.
+std::pair<double, Vector> current_weight(double rule_weight, const Matrix& dN, const std::vector<int>& indices,
+                                         const RowMatrix& points)
+{
+    const Index d = points.cols();
+    const Index n_s = dN.rows();
+    Matrix a = Matrix::Zero(d, dN.cols());
+    for (Index c = 0; c < n_s; ++c)
+        a += points.row(indices[static_cast<std::size_t>(c)]).transpose() * dN.row(c);
+    const Matrix m = a.transpose() * a;
+    const double j = std::sqrt(std::max(m.determinant(), 0.0));
+    Vector dW = Vector::Zero(n_s * d);
+    if (j > 0.0) {
+        const Matrix contravariant = a * m.inverse();  // d x q
+        for (Index c = 0; c < n_s; ++c)
+            dW.segment(c * d, d) = rule_weight * j * contravariant * dN.row(c).transpose();
+    }
+    return {rule_weight * j, dW};
 }
 
 /// Current control points of a surface: reference + displacement.
@@ -192,12 +219,12 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
 
     if (deformable[0] && deformable[1]) {
         if (settings_.formulation == Formulation::two_half_pass)
-            carriers_ = {{0, 1, false, {}}, {1, 0, false, {}}};
+            carriers_ = {{0, 1, false, true, {}}, {1, 0, false, true, {}}};
         else
-            carriers_ = {{0, 1, true, {}}};
+            carriers_ = {{0, 1, true, false, {}}};
     } else {
         const int s = deformable[0] ? 0 : 1;
-        carriers_ = {{s, 1 - s, false, {}}};
+        carriers_ = {{s, 1 - s, false, false, {}}};
     }
 
     double size = 0.0;
@@ -273,12 +300,14 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
                 gp.element = first + static_cast<int>(e);
                 gp.xi = xi;
                 // W = w_g * reference length (2D) or area (3D) element, |raw normal|.
+                gp.rule_weight = rule.weights(q);
                 gp.weight = rule.weights(q) * boundary::raw_normal(X.dx).norm();
                 gp.reference = X.x;
                 gp.indices = basis.indices;
                 for (int& a : gp.indices)
                     a = piece.surface_index[static_cast<std::size_t>(a)];
                 gp.N = basis.R;
+                gp.dN = basis.dR;
                 c.points.push_back(std::move(gp));
             }
         }
@@ -292,6 +321,17 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
     }
     committed_xi_ = trial_xi_;
     committed_multiplier_ = multiplier_;
+    initial_overlap_ = multiplier_;  // zeros: no overclosure until set_initial_overlap()
+}
+
+void ContactPair::set_initial_overlap(std::vector<Vector> g0)
+{
+    IGA_CHECK(g0.size() == carriers_.size(), "contact: one initial overlap vector per carrier");
+    for (std::size_t c = 0; c < carriers_.size(); ++c)
+        IGA_CHECK(g0[c].size() == static_cast<Index>(carriers_[c].points.size()) && g0[c].allFinite() &&
+                      (g0[c].array() >= 0.0).all(),
+                  "contact: an initial overlap is finite, >= 0, one per Gauss point");
+    initial_overlap_ = std::move(g0);
 }
 
 void ContactPair::update_multipliers(const PairEvaluation& state)
@@ -367,6 +407,13 @@ std::vector<Coupling> ContactPair::candidate_couplings() const
     return out;
 }
 
+/// The evaluation's stopwatches and the candidate list reused over its Gauss points.
+struct ContactPair::Timing {
+    Stopwatch& search;
+    Stopwatch& projection;
+    std::vector<int>& candidates;
+};
+
 PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatrix& disp_second, bool need_tangent,
                                      RunContext* ctx, double load_factor) const
 {
@@ -416,7 +463,12 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
         cr.gap = Vector::Constant(n_g, -search_distance_);
         cr.pressure = Vector::Zero(n_g);
         cr.multiplier = multiplier_[ci];
+        // The part of the initial overlap not yet released enters the pressure law as a
+        // shift of the multiplier: p = <(lambda - eps (1 - r) g_0) + eps g_N>.
+        const double unreleased = 1.0 - std::clamp(load_factor, 0.0, 1.0);
+        const Vector shifted_multiplier = multiplier_[ci] - settings_.penalty * unreleased * initial_overlap_[ci];
         cr.weight.resize(n_g);
+        cr.stretch = Vector::Ones(n_g);
         cr.state.assign(n_g, PointState::far);
         for (int g = 0; g < n_g; ++g) {
             const GaussPoint& gp = c.points[g];
@@ -427,7 +479,9 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
             cr.parameter.row(g) = gp.xi.transpose();
             cr.reference_coordinates.row(g) = gp.reference.transpose();
             cr.coordinates.row(g) = x.transpose();
-            cr.weight(g) = gp.weight;
+            cr.weight(g) = c.current_measure ? current_weight(gp.rule_weight, gp.dN, gp.indices, current[c.slave]).first
+                                             : gp.weight;
+            cr.stretch(g) = cr.weight(g) / gp.weight;
         }
 
         // Scatters a kernel's local residual (slave cps then master cps) into the
@@ -494,7 +548,7 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
                 cr.gap(g) = foot.gap;
                 cr.state[g] = PointState::ok;
                 KernelSettings point_settings = kernel_base;
-                point_settings.multiplier = cr.multiplier(g);
+                point_settings.multiplier = shifted_multiplier(g);
                 const KernelResult kr = gpts_rigid_kernel(c.points[g].N, c.points[g].weight, foot.normal, foot.gap,
                                                           point_settings, foot.radius);
                 cr.pressure(g) = kr.pressure;
@@ -509,67 +563,26 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
         }
 
         const DeformableSide& master = std::get<DeformableSide>(surfaces_[c.master]);
-        const std::size_t n_pieces = master.pieces.size();
-        std::vector<nurbs::Patch> master_patches;
-        std::vector<ElementSearch> searches;
-        std::vector<int> first_element;
         search_time.start();
-        bool may_touch = false;
+        const MasterView view = master_view(master, current[c.master], search_distance_);
         const Box slave_box = bounding_box(current[c.slave]);
-        for (std::size_t k = 0; k < n_pieces; ++k) {
-            const SidePiece& piece = master.pieces[k];
-            master_patches.push_back(piece.side.patch.with_control_points(piece_points(piece, current[c.master])));
-            searches.emplace_back(master_patches.back(), SearchOptions{.distance = search_distance_});
-            first_element.push_back(master.first_element(static_cast<int>(k)));
-            may_touch = may_touch || slave_box.overlaps(searches.back().bounds());
-        }
+        bool may_touch = false;
+        for (const ElementSearch& search : view.searches)
+            may_touch = may_touch || slave_box.overlaps(search.bounds());
         search_time.stop();
         if (!may_touch) {  // the slave side's hull misses every inflated master span box
             ev.carriers.push_back(std::move(cr));
             continue;
         }
-        const double master_size =
-            (current[c.master].colwise().maxCoeff() - current[c.master].colwise().minCoeff()).norm();
         KernelSettings kernel_settings = kernel_base;
         kernel_settings.master_rows = c.master_rows;
+        Timing timing{search_time, projection_time, candidates};
 
         for (int g = 0; g < n_g; ++g) {
             const GaussPoint& gp = c.points[g];
             const VecN x = cr.coordinates.row(g).transpose();
-            std::optional<Projection> best;
-            std::size_t best_piece = 0;
             bool failed = false;
-            const Foot& warm = trial_xi_[ci][g];
-            for (std::size_t k = 0; k < n_pieces && !failed; ++k) {
-                search_time.start();
-                searches[k].candidates(x, candidates);
-                search_time.stop();
-                if (candidates.empty())
-                    continue;
-                ev.candidates += static_cast<long long>(candidates.size());
-
-                ProjectionOptions options;
-                const int n_piece_elements = searches[k].n_elements();
-                if (warm.element >= first_element[k] && warm.element < first_element[k] + n_piece_elements) {
-                    options.start = warm.xi;
-                    options.start_element = warm.element - first_element[k];
-                }
-                options.candidate_elements = candidates;  // elements of a curve = its spans, in order
-                projection_time.start();
-                Projection proj = project_to_surface(master_patches[k], master.pieces[k].outward_sign, x, options);
-                projection_time.stop();
-                ++ev.projections;
-                ev.projection_iterations += proj.iterations;
-                if (proj.status == Projection::Status::failed) {
-                    failed = true;
-                    break;
-                }
-                if (!best || nearer_foot(proj.distance, proj.status == Projection::Status::ok, best->distance,
-                                         best->status == Projection::Status::ok, master_size)) {
-                    best = std::move(proj);
-                    best_piece = k;
-                }
-            }
+            std::optional<Projection> best = project_on_master(c.master, view, x, trial_xi_[ci][g], ev, timing, failed);
             if (failed) {
                 ev.ok = false;
                 ev.message = "contact: closest-point projection failed at " + describe_point(c.slave, g, gp.xi, x);
@@ -578,38 +591,24 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
             }
             if (!best)
                 continue;
-            Projection& proj = *best;
-            if (n_pieces > 1) {
-                // Piece numbering -> surface numbering; an end shared with another piece is a crease.
-                for (int& a : proj.basis.indices)
-                    a = master.pieces[best_piece].surface_index[static_cast<std::size_t>(a)];
-                proj.element += first_element[best_piece];
-                if (proj.status == Projection::Status::off_end) {
-                    const nurbs::Patch& patch = master_patches[best_piece];
-                    bool outer = false;
-                    for (int k = 0; k < patch.n_par(); ++k)
-                        for (int end = 0; end < 2; ++end) {
-                            const auto& kv = patch.knots(k);
-                            const bool at = end ? proj.xi(k) >= kv.back() : proj.xi(k) <= kv.front();
-                            if (at && !inner_edge_[static_cast<std::size_t>(c.master)][best_piece][k][end])
-                                outer = true;
-                        }
-                    if (!outer)
-                        proj.status = Projection::Status::at_kink;
-                }
-            }
+            const Projection& proj = *best;
             trial_xi_[ci][g] = Foot{proj.xi, proj.element};
             cr.gap(g) = proj.gap;
             if (proj.status != Projection::Status::ok) {
                 cr.state[g] = proj.status == Projection::Status::off_end ? PointState::off_end : PointState::at_kink;
                 continue;
             }
+            const MasterFoot foot = master_foot(proj);
             cr.state[g] = PointState::ok;
             // Active when <lambda + eps g_N> > 0: with a multiplier, also at a small open gap.
-            kernel_settings.multiplier = cr.multiplier(g);
-            if (!(kernel_settings.multiplier + kernel_settings.penalty * proj.gap > 0.0))
+            kernel_settings.multiplier = shifted_multiplier(g);
+            if (!(kernel_settings.multiplier + kernel_settings.penalty * foot.gap > 0.0))
                 continue;
-            const KernelResult kr = gpts_kernel(gp.N, gp.weight, proj, kernel_settings);
+            Vector dW;
+            double W = gp.weight;
+            if (c.current_measure)
+                std::tie(W, dW) = current_weight(gp.rule_weight, gp.dN, gp.indices, current[c.slave]);
+            const KernelResult kr = gpts_kernel(gp.N, W, foot, kernel_settings, need_tangent ? dW : Vector());
             if (!kr.ok) {
                 ev.ok = false;
                 ev.message = "contact: the penetration at " + describe_point(c.slave, g, gp.xi, x) +
@@ -620,7 +619,7 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
             }
             cr.pressure(g) = kr.pressure;
             ++ev.n_active;
-            ev.max_penetration = std::max(ev.max_penetration, proj.gap);
+            ev.max_penetration = std::max(ev.max_penetration, foot.gap);
             scatter(kr, gp, proj.basis.indices, proj.element);
         }
         ev.carriers.push_back(std::move(cr));
@@ -629,6 +628,83 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
     std::sort(ev.tangent.begin(), ev.tangent.end(),
               [](const LocalBlock& a, const LocalBlock& b) { return a.element < b.element; });
     return ev;
+}
+
+ContactPair::MasterView ContactPair::master_view(const DeformableSide& master, const RowMatrix& points,
+                                                 double distance) const
+{
+    MasterView view;
+    for (std::size_t k = 0; k < master.pieces.size(); ++k) {
+        const SidePiece& piece = master.pieces[k];
+        view.patches.push_back(piece.side.patch.with_control_points(piece_points(piece, points)));
+        view.first_element.push_back(master.first_element(static_cast<int>(k)));
+    }
+    for (const nurbs::Patch& patch : view.patches)  // after the patches: searches keep no reference to them
+        view.searches.emplace_back(patch, SearchOptions{.distance = distance});
+    view.size = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+    return view;
+}
+
+std::optional<Projection> ContactPair::project_on_master(int master_surface, const MasterView& view, const VecN& x,
+                                                         const Foot& warm, PairEvaluation& ev, Timing& timing,
+                                                         bool& failed) const
+{
+    const DeformableSide& master = std::get<DeformableSide>(surfaces_[static_cast<std::size_t>(master_surface)]);
+    const std::size_t n_pieces = master.pieces.size();
+    std::optional<Projection> best;
+    std::size_t best_piece = 0;
+    failed = false;
+    for (std::size_t k = 0; k < n_pieces; ++k) {
+        timing.search.start();
+        view.searches[k].candidates(x, timing.candidates);
+        timing.search.stop();
+        if (timing.candidates.empty())
+            continue;
+        ev.candidates += static_cast<long long>(timing.candidates.size());
+
+        ProjectionOptions options;
+        const int n_piece_elements = view.searches[k].n_elements();
+        if (warm.element >= view.first_element[k] && warm.element < view.first_element[k] + n_piece_elements) {
+            options.start = warm.xi;
+            options.start_element = warm.element - view.first_element[k];
+        }
+        options.candidate_elements = timing.candidates;  // elements of a curve = its spans, in order
+        timing.projection.start();
+        Projection proj = project_to_surface(view.patches[k], master.pieces[k].outward_sign, x, options);
+        timing.projection.stop();
+        ++ev.projections;
+        ev.projection_iterations += proj.iterations;
+        if (proj.status == Projection::Status::failed) {
+            failed = true;
+            return std::nullopt;
+        }
+        if (!best || nearer_foot(proj.distance, proj.status == Projection::Status::ok, best->distance,
+                                 best->status == Projection::Status::ok, view.size)) {
+            best = std::move(proj);
+            best_piece = k;
+        }
+    }
+    if (!best || n_pieces == 1)
+        return best;
+    // Piece numbering -> surface numbering; an end shared with another piece is a crease.
+    Projection& proj = *best;
+    for (int& a : proj.basis.indices)
+        a = master.pieces[best_piece].surface_index[static_cast<std::size_t>(a)];
+    proj.element += view.first_element[best_piece];
+    if (proj.status == Projection::Status::off_end) {
+        const nurbs::Patch& patch = view.patches[best_piece];
+        bool outer = false;
+        for (int k = 0; k < patch.n_par(); ++k)
+            for (int end = 0; end < 2; ++end) {
+                const auto& kv = patch.knots(k);
+                const bool at = end ? proj.xi(k) >= kv.back() : proj.xi(k) <= kv.front();
+                if (at && !inner_edge_[static_cast<std::size_t>(master_surface)][best_piece][k][end])
+                    outer = true;
+            }
+        if (!outer)
+            proj.status = Projection::Status::at_kink;
+    }
+    return best;
 }
 
 }  // namespace iga::contact

@@ -12,9 +12,14 @@
 //    master rows are assembled (action-reaction; tangent symmetric);
 //  - deformable vs rigid obstacle (plane or sphere): the deformable side, whatever the formulation.
 // Gauss points: `quadrature` per knot span of the carrying side (0 means degree
-// + 2, per direction on a surface), placed in the REFERENCE configuration with
-// weight W = w_g * reference length / area element
-// (reference Jacobian, held fixed); kinematics use the current configuration.
+// + 2, per direction on a surface), placed in the REFERENCE configuration;
+// kinematics use the current configuration. Weight W = w_g * area element
+// (length in 2D): the REFERENCE one, held fixed, for a single pass and against a
+// rigid obstacle (the tangent stays symmetric; one integral, balanced by
+// action-reaction); the CURRENT one in both half passes of two-half-pass, whose two
+// integrals must cover the same contact zone: over reference areas each surface
+// would count its own stretch and the forces on the two bodies would differ by the
+// difference of their surface strains (docs/theory.md "Two-half-pass balance").
 //
 // Sign conventions as in gap.hpp (positive gap = penetration); the residual is
 // the contact part r_c = dPi_c/du of the driver's r = f_int - lambda f_ext + r_c.
@@ -61,13 +66,17 @@
 // Both surfaces live in the same dimension d (2 or 3), else the constructor throws
 // iga::Error.
 
+#include "contact/gpts_kernel.hpp"
+#include "contact/projection.hpp"
 #include "contact/rigid_obstacle.hpp"
+#include "contact/search.hpp"
 #include "core/run_context.hpp"
 #include "core/side.hpp"
 #include "core/types.hpp"
 #include "nurbs/side_patch.hpp"
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -140,7 +149,9 @@ struct CarrierResult {
     Vector gap;                         ///< n_g, g_N (positive = penetration); far: -search distance, a bound
     Vector pressure;                    ///< n_g, <lambda + eps g_N> (0 unless state ok)
     Vector multiplier;                  ///< n_g, the multipliers lambda of this evaluation (0: penalty)
-    Vector weight;                      ///< n_g, W = w_g * reference area element
+    Vector weight;                      ///< n_g, W = w_g * area element (current for two-half-pass, see above)
+    Vector stretch;                     ///< n_g, W / (w_g * reference area element): the surface stretch j/J
+                                        ///< of a current-measure carrier, 1 elsewhere
     std::vector<PointState> state;      ///< n_g
 };
 
@@ -220,20 +231,33 @@ public:
     /// Replaces eps_N (> 0, finite); the multipliers are kept.
     void set_penalty(double penalty);
 
+    /// Initial overclosure released over the load path (docs/theory.md "Initial
+    /// overclosure"): g0[c] (n_gauss_points(c), >= 0) is the overlap of carrier c's Gauss
+    /// points at rest. The pressure becomes p = <lambda + eps (g_N - (1 - r) g_0)> with
+    /// r = clamp(load factor, 0, 1): the overlap is pushed out gradually, in full at load
+    /// factor 1, so load steps and cutbacks act on it like on any load.
+    void set_initial_overlap(std::vector<Vector> g0);
+    const Vector& initial_overlap(int carrier) const { return initial_overlap_[static_cast<std::size_t>(carrier)]; }
+
 private:
     struct GaussPoint {
         int piece;                 ///< piece of the carrying surface
         int element;               ///< element number on the carrying surface
         VecN xi;                   ///< d - 1 parameters on the side
+        double rule_weight;        ///< w_g, the Gauss weight in the side's parameters
         double weight;             ///< W = w_g * reference length / area element
         VecN reference;            ///< X(xi)
         std::vector<int> indices;  ///< surface control points with non-zero basis
         Vector N;                  ///< their basis values
+        Matrix dN;                 ///< their derivatives, n_s x (d - 1)
     };
     struct Carrier {
         int slave;
         int master;
         bool master_rows;
+        /// Two-half-pass: W = w_g * CURRENT area element, so that both passes integrate
+        /// over the same (current) contact zone and their forces balance.
+        bool current_measure;
         std::vector<GaussPoint> points;
     };
 
@@ -254,6 +278,22 @@ private:
     std::vector<std::vector<Foot>> committed_xi_;
     std::vector<Vector> multiplier_;            ///< per carrier, n_g: lambda >= 0 in use
     std::vector<Vector> committed_multiplier_;  ///< per carrier: at the last commit()
+    std::vector<Vector> initial_overlap_;       ///< per carrier, n_g: g_0 >= 0, released over the load path
+
+    /// A master surface's pieces at given control points, with their element searches.
+    struct MasterView {
+        std::vector<nurbs::Patch> patches;
+        std::vector<ElementSearch> searches;
+        std::vector<int> first_element;  ///< first surface element of each piece
+        double size = 0.0;               ///< diagonal of the surface's control points
+    };
+    struct Timing;
+    MasterView master_view(const DeformableSide& master, const RowMatrix& points, double distance) const;
+    /// The nearest foot of x over the master's pieces (surface numbering); nullopt when
+    /// no piece has a candidate element; `failed` when a projection failed.
+    std::optional<Projection> project_on_master(int master_surface, const MasterView& view, const VecN& x,
+                                                const Foot& warm, PairEvaluation& ev, Timing& timing,
+                                                bool& failed) const;
 };
 
 }  // namespace iga::contact

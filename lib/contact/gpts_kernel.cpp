@@ -18,7 +18,8 @@ double contact_pressure_argument(const KernelSettings& settings, double g_N)
 
 }  // namespace
 
-KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, const KernelSettings& settings)
+KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, const KernelSettings& settings,
+                         const Vector& dW)
 {
     const Index d = master.normal.size();
     const Index q = d - 1;  // parametric dimension of the master side
@@ -29,6 +30,8 @@ KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, co
               "contact: GPTS kernel needs (d-1) x (d-1) metric and curvature");
     IGA_CHECK(master.dR.rows() == master.R.size() && master.dR.cols() == q,
               "contact: GPTS kernel needs the master basis derivatives");
+    IGA_CHECK(dW.size() == 0 || dW.size() == N.size() * d,
+              "contact: the variation of the slave weight needs one entry per slave dof");
     const Vector& R = master.R;
     const Index n_s = N.size();
     const Index n_m = R.size();
@@ -93,6 +96,9 @@ KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, co
     const Matrix turn = Nd + D * master.curvature;                                  // Nd + D b (b symmetric)
     out.tangent.topRows(n_rows) = eps * W * Nn.head(n_rows) * Nn.transpose();
     out.tangent.topRows(n_rows) += p * W * (Nd.topRows(n_rows) * D.transpose() + T_m.topRows(n_rows) * turn.transpose());
+    // W = w_g j(u): the current area element stretches with the slave's control points.
+    if (dW.size() > 0)
+        out.tangent.topLeftCorner(n_rows, n_s * d) -= p * Nn.head(n_rows) * dW.transpose();
     return out;
 }
 
@@ -109,10 +115,11 @@ MasterFoot master_foot(const Projection& projection)
     return foot;
 }
 
-KernelResult gpts_kernel(const Vector& N, double W, const Projection& master, const KernelSettings& settings)
+KernelResult gpts_kernel(const Vector& N, double W, const Projection& master, const KernelSettings& settings,
+                         const Vector& dW)
 {
     IGA_CHECK(master.basis.dR.cols() >= 1, "contact: GPTS kernel needs the master basis derivatives");
-    return gpts_kernel(N, W, master_foot(master), settings);
+    return gpts_kernel(N, W, master_foot(master), settings, dW);
 }
 
 KernelResult gpts_rigid_kernel(const Vector& N, double W, const VecN& normal, double gap,

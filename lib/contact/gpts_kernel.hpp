@@ -10,7 +10,10 @@
 // gives p = eps <g_N>; docs/theory.md "Augmented Lagrangian").
 //
 //   Pi_c = 1/(2 eps) W <lambda + eps g_N>^2,   r = dPi_c/du = p W dg_N/du,   K = dr/du,
-//   W = Gauss weight * reference area element of the slave (held fixed).
+//   W = Gauss weight * area element of the slave: held fixed (the reference one), or
+//       the current one, W = w_g j(u), whose variation dW/du_slave the caller passes
+//       (two-half-pass: both passes integrate over the current surface, docs/theory.md
+//       "Two-half-pass balance"); the tangent then gains -p Nn dW^T on the slave columns.
 //   slave rows  a: r_a = -p W N_a n      (the force +p W N_a n pushes the slave out)
 //   master rows b: r_b = +p W R_b(xibar) n
 // Foot point xibar (q = d - 1 parameters), covariant tangents a_al, metric m_ab,
@@ -67,12 +70,15 @@ struct MasterFoot {
 
 /// Slave Gauss point with basis values N (n_s) and weight W against the master
 /// foot point (a distance minimum: m + g_N b positive definite, else ok = false).
-KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, const KernelSettings& settings);
+/// dW (n_s d, or empty when W is held fixed): dW/du of the slave's control points.
+KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, const KernelSettings& settings,
+                         const Vector& dW = Vector());
 
 /// A projection's foot point (curve in 2D, surface in 3D) as a MasterFoot.
 MasterFoot master_foot(const Projection& projection);
 /// 2D convenience: the kernel at a curve projection (status ok).
-KernelResult gpts_kernel(const Vector& N, double W, const Projection& master, const KernelSettings& settings);
+KernelResult gpts_kernel(const Vector& N, double W, const Projection& master, const KernelSettings& settings,
+                         const Vector& dW = Vector());
 
 /// Slave Gauss point against a rigid obstacle with outward unit normal `normal`
 /// and gap g_N `gap`: only slave dofs (n_s d), any d. `normal_radius` is the

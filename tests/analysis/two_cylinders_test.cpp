@@ -175,10 +175,10 @@ TEST(TwoCylinders, ForceDrivenMatchesTwoCylinderHertzOnBothSides)
     EXPECT_TRUE(near_rel(results.number(pair_group + upper_side, "normal_force"), applied_force, force_tolerance));
     // The lower body's half pass is balanced by its support, not by the load: the
     // two-half-pass forces are equal and opposite only approximately (physics.md
-    // §3.4). Here the sides slip by up to 3.7e-4 at the contact edge (different far
-    // boundary conditions), and the weights W use reference lengths, so the lower
-    // resultant is 0.35 % low. 1 % bounds this; a lost pass or point set is O(1).
-    constexpr double momentum_balance_tolerance = 0.01;
+    // §3.4), up to the quadrature of each side: both passes integrate over the current
+    // surface (docs/theory.md "Two-half-pass balance"); measured +0.003 % (it was
+    // -0.35 % with reference lengths). 0.2 % bounds this; a lost pass or point set is O(1).
+    constexpr double momentum_balance_tolerance = 0.002;
     EXPECT_TRUE(near_rel(results.number(pair_group + lower_side, "normal_force"), applied_force,
                          momentum_balance_tolerance));
 }
@@ -217,6 +217,83 @@ TEST(TwoCylinders, ListingOrderDoesNotChangeTheAnswer)
     constexpr double error_tolerance = 1e-8;  // relative changes of the pressure, as above
     EXPECT_TRUE(near(b.number(reference_group, upper_side + ".l2"), a.number(reference_group, "l2"), error_tolerance));
     EXPECT_TRUE(near(b.number(reference_group, "l2"), a.number(reference_group, lower_side + ".l2"), error_tolerance));
+}
+
+// Dissimilar bodies (docs/theory.md "Two-half-pass balance"): upper E = 1000, nu = 0.3,
+// lower E = 3000, nu = 0 (the set-up). Their surfaces stretch differently under
+// the pressure (plane strain: eps_t = -(1 - 2 nu)(1 + nu) p / E, 0.52 p/1000 against
+// p/3000), so half passes that integrated over their own reference surfaces differed by
+// that strain difference: the lower pass carried 4.952 of 5 (-1.0 %), at every h. Both
+// passes now integrate over the current surface. Frictionless Hertz holds for dissimilar
+// materials with 1/E* = sum (1 - nu^2)/E: E* = 804.29, a = 0.08897, p0 = 71.556.
+std::vector<std::string> dissimilar(std::vector<std::string> more = {})
+{
+    more.insert(more.begin(), {"materials=[{name: rubber, model: linear_elastic, E: 1000.0, nu: 0.3}, "
+                               "{name: stiff, model: linear_elastic, E: 3000.0, nu: 0.0}]",
+                               "bodies.lower.material=stiff"});
+    return more;
+}
+
+/// The lower body's support reaction (y) and both sides' resultants of a dissimilar run.
+struct Balance {
+    double support, upper, lower;
+};
+
+Balance balance_of(const Results& results)
+{
+    return {results.reals("results/reactions/lower.v0").at(1),
+            results.number(pair_group + upper_side, "normal_force"),
+            results.number(pair_group + lower_side, "normal_force")};
+}
+
+TEST(TwoCylinders, DissimilarBodiesBalanceAndMatchHertz)
+{
+    const auto file = scratch_dir("two_cylinders_dissimilar") / "graded.h5";
+    const analysis::RunOutcome outcome = run_deck(deck_path(), dissimilar(), file);
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    const Results results(file);
+    // The graded mesh resolves the zone with du = 0.001 at its edge: what is left of the
+    // imbalance is the quadrature of the pressure's kink there (measured +0.011 %). The
+    // issue's bound 0.2 % is far below the 1.0 % of a mismatched measure.
+    constexpr double balance_tolerance = 0.002;
+    const Balance b = balance_of(results);
+    RecordProperty("support", std::to_string(b.support));
+    EXPECT_TRUE(near_rel(b.support, applied_force, balance_tolerance)) << "support reaction " << b.support;
+    EXPECT_TRUE(near_rel(b.upper, applied_force, balance_tolerance)) << "upper resultant " << b.upper;
+    EXPECT_TRUE(near_rel(b.lower, applied_force, balance_tolerance)) << "lower resultant " << b.lower;
+    // Pressure against Hertz with E* of the two materials, both sides. The bounds are
+    // those of the identical bodies (ForceDriven...); measured peak -0.75 % / +0.19 %,
+    // L2 2.2 % / 1.0 % (upper / lower).
+    EXPECT_TRUE(near(results.number(reference_group, "E_star"), 804.2895442, 1e-6)) << "E* of two materials";
+    constexpr double peak_tolerance = 0.015;
+    constexpr double l2_tolerance = 0.025;
+    for (const std::string& prefix : {std::string(), lower_side + "."}) {
+        SCOPED_TRACE(prefix.empty() ? upper_side : lower_side);
+        EXPECT_TRUE(near(results.number(reference_group, prefix + "peak"), 0.0, peak_tolerance)) << "peak";
+        EXPECT_TRUE(at_most(results.number(reference_group, prefix + "l2"), l2_tolerance)) << "L2";
+    }
+}
+
+// The imbalance is discretization error: on uniform meshes (n spans along the quarter
+// arc, 8 radially) it falls with h like the pressure's L2 error. Measured support
+// reaction errors -2.27 % (n = 16) and +0.13 % (n = 64), L2 31 % and 9.4 %; with
+// reference measures it stayed near -1 % at every n.
+TEST(TwoCylinders, DissimilarImbalanceFallsWithH)
+{
+    const auto dir = scratch_dir("two_cylinders_dissimilar_h");
+    std::vector<double> error;
+    for (const int n : {16, 64}) {
+        const std::string refine = "{elevate: [0, 1], spans: [" + std::to_string(n) + ", 8]}";
+        const auto file = dir / ("n" + std::to_string(n) + ".h5");
+        const analysis::RunOutcome outcome =
+            run_deck(deck_path(), dissimilar({"bodies.upper.refine=" + refine, "bodies.lower.refine=" + refine}), file);
+        ASSERT_EQ(outcome.status, "completed") << outcome.message;
+        error.push_back(std::abs(balance_of(Results(file)).support / applied_force - 1.0));
+    }
+    // h / 4 must cut the error at least fourfold (first order; measured 17x), and the
+    // fine mesh lands within 0.5 % (measured 0.13 %).
+    EXPECT_TRUE(at_most(error[1], error[0] / 4.0)) << error[0] << " -> " << error[1];
+    EXPECT_TRUE(at_most(error[1], 0.005)) << error[1];
 }
 
 // Newton's relative residuals e_0, e_1, ... of the force-driven run. The last
