@@ -306,6 +306,20 @@ TEST(DeckReaderErrors, Refinement)
     EXPECT_NO_THROW(read(replaced(hertz_deck, "insert: [[0.05, 0.1], []]", "insert: [[0.3, 0.3, 0.3], []]")));
 }
 
+TEST(DeckReaderErrors, BodyQuadrature)
+{
+    const auto quadrature = [](const std::string& value) {
+        return issue_of(replaced(minimal_deck, "size: [2, 1]}\n", "size: [2, 1]}\n    quadrature: " + value + "\n"));
+    };
+    EXPECT_EQ(quadrature("{element: 0}"), "");
+    EXPECT_EQ(quadrature("{side: 2.5}"), "");
+    EXPECT_EQ(quadrature("{elements: 4}"), "");
+    EXPECT_EQ(quadrature("4"), "");
+    EXPECT_EQ(issue_of(replaced(minimal_deck, "  - name: floor\n", "  - name: floor\n    quadrature: {element: 4}\n")),
+              "");
+    EXPECT_NO_THROW(read(replaced(minimal_deck, "size: [2, 1]}\n", "size: [2, 1]}\n    quadrature: {element: 6, side: 8}\n")));
+}
+
 TEST(DeckReaderErrors, BuiltInShapes)
 {
     EXPECT_EQ(issue_of(replaced(minimal_deck, "size: [2, 1]", "size: [2, 0]")),
