@@ -199,7 +199,8 @@ RationalSquare run_rational_square(const std::string& name, const std::vector<st
         const double e = std::max(std::abs(u(a, 0) - a_xx * points(a, 0)), std::abs(u(a, 1) - a_yy * points(a, 1)));
         worst = std::isfinite(e) ? std::max(worst, e) : std::nan("");
     }
-    return {worst / std::abs(a_xx), results.matrix("results/reactions/total/square").row(0).transpose()};
+    const std::vector<double> total = results.reals("results/reactions/total/square");
+    return {worst / std::abs(a_xx), Eigen::Map<const VecN>(total.data(), static_cast<Index>(total.size()))};
 }
 
 TEST(PatchTest, RationalSquareIsExactWithTheBodysQuadrature)
