@@ -143,7 +143,8 @@ int run_command(int argc, char** argv)
         else
             std::cerr << fmt::format("igacontact: {}: {}\n", outcome.status, outcome.message);
         for (const io::Reaction& r : outcome.reactions)
-            std::cerr << fmt::format("reaction on {}: ({:.6g})\n", r.name, fmt::join(r.force, ", "));
+            if (r.name.rfind("items/", 0) != 0)  // the items split the totals: in the results file only
+                std::cerr << fmt::format("reaction on {}: ({:.6g})\n", r.name, fmt::join(r.force, ", "));
         for (const auto& [pair, force] : outcome.obstacle_forces)
             std::cerr << fmt::format("contact force on the obstacle of {}: ({:.6g})\n", pair, fmt::join(force, ", "));
         std::cerr << "results: " << outcome.results_file << '\n';

@@ -4,7 +4,7 @@
 Usage:  scripts/plot_history.py RESULTS.h5 [-o PNG]
 
 Reads /history (results.md, "Additions"): load_factor (n), reactions/<body.side>
-(n x d) and contact/<pair>/<body.side>/normal_force (n), one row per converged
+and reactions/total/<body> (n x d) and contact/<pair>/<body.side>/normal_force (n), one row per converged
 increment. Draws every reaction component that is not zero throughout and every
 contact normal force. The abscissa is the load factor, or, when the deck (the
 /deck text) prescribes a displacement, the prescribed displacement of the first
@@ -87,8 +87,13 @@ def history_series(h5):
 
     curves = []
     if "reactions" in history:
-        for name in history["reactions"]:
-            r = np.asarray(history["reactions"][name][()], dtype=float).reshape(len(load), -1)
+        # Sides and total/<body>; items/<k> repeat the same forces split by constraint item.
+        reactions = history["reactions"]
+        names = [n for n in reactions if isinstance(reactions[n], h5py.Dataset)]
+        if "total" in reactions:
+            names += [f"total/{n}" for n in reactions["total"]]
+        for name in names:
+            r = np.asarray(reactions[name][()], dtype=float).reshape(len(load), -1)
             for k in range(r.shape[1]):
                 if np.any(r[:, k] != 0.0):
                     curves.append((f"reaction {name} ({COMPONENTS[k]})", r[:, k]))

@@ -40,6 +40,8 @@ DirichletData dirichlet_data(const io::Deck& deck, const std::vector<BodyModel>&
     std::map<int, Owner> owner;  // full dof -> first item prescribing it
     DirichletData out;
     std::map<std::string, std::size_t> group_of;  // "body.side" -> reactions index
+    std::vector<ReactionGroup> totals;            // "total/<body>", deck order of first appearance
+    std::vector<ReactionGroup> items(deck.constraints.size());  // "items/<k>": the dofs item k owns
 
     for (std::size_t k = 0; k < deck.constraints.size(); ++k) {
         const io::Constraint& c = deck.constraints[k];
@@ -73,6 +75,11 @@ DirichletData dirichlet_data(const io::Deck& deck, const std::vector<BodyModel>&
         if (added)
             out.reactions.push_back({name, {}});
         std::vector<int>& group_dofs = out.reactions[group->second].dofs;
+        items[k].name = fmt::format("items/{}", k);
+        const std::string total_name = "total/" + c.body;
+        auto total = std::find_if(totals.begin(), totals.end(), [&](const ReactionGroup& g) { return g.name == total_name; });
+        if (total == totals.end())
+            total = totals.insert(totals.end(), ReactionGroup{total_name, {}});
 
         for (int p : side_nodes)
             for (int i = 0; i < d; ++i) {
@@ -83,8 +90,10 @@ DirichletData dirichlet_data(const io::Deck& deck, const std::vector<BodyModel>&
                 if (std::find(group_dofs.begin(), group_dofs.end(), dof) == group_dofs.end())
                     group_dofs.push_back(dof);
                 const auto [it, fresh] = owner.try_emplace(dof, Owner{k, value});
-                if (fresh) {
+                if (fresh) {  // the first item to prescribe a dof owns it (items/<k>, total/<body>)
                     out.prescribed.push_back({dof, value});
+                    items[k].dofs.push_back(dof);
+                    total->dofs.push_back(dof);
                     continue;
                 }
                 if (it->second.value == value)
@@ -102,6 +111,8 @@ DirichletData dirichlet_data(const io::Deck& deck, const std::vector<BodyModel>&
                                 c.body, io::side_text(c.patch, c.side, c.surface))));
             }
     }
+    out.reactions.insert(out.reactions.end(), totals.begin(), totals.end());
+    out.reactions.insert(out.reactions.end(), items.begin(), items.end());
     return out;
 }
 

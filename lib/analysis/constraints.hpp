@@ -8,10 +8,17 @@
 // a component prescribed twice with the same value is fine; with different
 // values it is a located DeckError naming both items, the side and the point.
 //
-// Reaction groups: one per `body.side` that carries a constraint, in deck order
-// of first appearance; a group holds every dof any of its items prescribes. A
-// dof on two constrained sides (a shared corner) belongs to both groups, so each
-// side's reaction is the full force its constraint exerts (results.md).
+// Reaction groups, three views of the same constrained dofs (results.md):
+//  - `body.side`: one per side that carries a constraint, in deck order of first
+//    appearance; a group holds every dof any of its items prescribes. A dof on two
+//    constrained sides (a shared edge or corner) belongs to both groups, so each
+//    side's reaction is the full force its constraint exerts, and the sides of a
+//    body do not add up to its total;
+//  - `total/<body>`: every constrained dof of the body once, so that reactions,
+//    loads and contact forces of the body sum to zero;
+//  - `items/<k>`: the dofs owned by constraint item k (0-based deck index), where a
+//    dof prescribed by several items is owned by the first in deck order. The items
+//    of a body partition its total.
 
 #include "analysis/scene.hpp"
 #include "assembly/dof_map.hpp"
@@ -23,7 +30,7 @@ namespace iga::analysis {
 
 struct DirichletData {
     std::vector<assembly::PrescribedDof> prescribed;  ///< each dof once
-    std::vector<ReactionGroup> reactions;
+    std::vector<ReactionGroup> reactions;  ///< sides, then totals, then items (see above)
 };
 
 /// bodies: the scene's deformable bodies (patches refined); node_offset: first

@@ -61,13 +61,15 @@ std::vector<int> dofs_of(const assembly::DofMap& dofs, int body, const std::vect
     return out;
 }
 
-/// The side quadrature of a list of patch sides, element indices over body nodes.
-mechanics::SideQuadrature body_side_quadrature(const BodyModel& body, const std::vector<BodySide>& sides)
+/// The side quadrature of a list of patch sides, element indices over body nodes;
+/// n_per_direction <= 0: the default rule (max side degree + 1).
+mechanics::SideQuadrature body_side_quadrature(const BodyModel& body, const std::vector<BodySide>& sides,
+                                               int n_per_direction)
 {
     mechanics::SideQuadrature out;
     for (const BodySide& side : sides) {
         const PatchModel& patch = body.patches[static_cast<std::size_t>(side.patch)];
-        mechanics::SideQuadrature q = mechanics::side_quadrature(patch.patch, side.side);
+        mechanics::SideQuadrature q = mechanics::side_quadrature(patch.patch, side.side, n_per_direction);
         out.side = q.side;
         out.dim = q.dim;
         for (mechanics::SideElement& element : q.elements) {
@@ -159,7 +161,7 @@ Scene build_scene(const io::Deck& deck, int refine_levels)
             const std::string path = "bodies." + body.name + (body.multi_patch() ? ".patches." + built.names[p] : "");
             std::vector<mechanics::ElementGeometry> elements;
             try {
-                elements = mechanics::patch_geometry(patch);
+                elements = mechanics::patch_geometry(patch, body.quadrature.element);
             } catch (const mechanics::NonPositiveJacobian& e) {
                 throw DeckError(body_issue(
                     deck, path,
@@ -243,8 +245,10 @@ Scene build_scene(const io::Deck& deck, int refine_levels)
         }
         mechanics::SideQuadrature side;
         try {
-            side = body_side_quadrature(body, sides_of(deck, scene, load.body, load.patch, load.side.value_or(Side::u0),
-                                                       load.surface));
+            side = body_side_quadrature(body,
+                                        sides_of(deck, scene, load.body, load.patch, load.side.value_or(Side::u0),
+                                                 load.surface),
+                                        deck.find_body(load.body)->quadrature.side);
         } catch (const boundary::FoldedSide& e) {
             throw DeckError(body_issue(deck, fmt::format("loads.{}.side", load_index), e.what()));
         }

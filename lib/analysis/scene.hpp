@@ -75,10 +75,12 @@ struct FollowerPressure {
     int first_block = 0;
 };
 
-/// The constrained dofs of one side (all constraint items on the same body.side
-/// together): their residual entries sum to the side's reaction.
+/// A group of constrained dofs whose residual entries sum to one reported reaction:
+/// a side (all constraint items on the same body.side together), a body's total or
+/// one constraint item's share (analysis/constraints.hpp says how dofs are shared).
 struct ReactionGroup {
-    std::string name;       ///< "body.side", "body.patch.side" or "body.surface"
+    std::string name;       ///< path under reactions/: "body.side" ("body.patch.side", "body.surface"),
+                            ///< "total/<body>" or "items/<k>"
     std::vector<int> dofs;  ///< full dofs the side prescribes (each once); component = dof % d
 };
 
@@ -114,7 +116,7 @@ struct Scene {
     Vector f_ext;  ///< full, at load factor 1: dead tractions, forces, gravity, small-kinematics pressures
     std::vector<FollowerPressure> followers;
     std::vector<PairModel> pairs;
-    std::vector<ReactionGroup> reactions;  ///< one per constrained side, deck order of first appearance
+    std::vector<ReactionGroup> reactions;  ///< sides, then body totals, then constraint items
     std::unique_ptr<assembly::SparsePattern> pattern;
     int n_element_blocks = 0;
     double model_size = 1.0;  ///< bounding-box diagonal of all deformable bodies

@@ -258,7 +258,9 @@ SizeEstimate estimate_size(const io::Deck& deck)
                 s.control_points.push_back(dir.control_points());
             }
             const double n_local = product(dirs, [](const Direction& x) { return x.degree + 1; });
-            const double gauss_per_element = n_local;  // (p+1) points per direction
+            const int n_gauss = body.quadrature.element;  // 0: (p+1) points per direction
+            const double gauss_per_element =
+                n_gauss > 0 ? std::pow(static_cast<double>(n_gauss), static_cast<double>(dirs.size())) : n_local;
             s.elements = product(dirs, [](const Direction& x) { return x.spans(); });
             s.dofs = d * product(dirs, [](const Direction& x) { return x.control_points(); });
             const double nonzeros = s.dofs * d * product(dirs, [](const Direction& x) { return 2 * x.degree + 1; });
@@ -310,6 +312,11 @@ void check_size(const io::Deck& deck, const SizeLimits& limits)
     for (const io::Body& body : deck.bodies) {
         if (body.rigid)
             continue;
+        for (const auto& [key, n] : {std::pair{"element", body.quadrature.element}, {"side", body.quadrature.side}})
+            if (n > limits.max_quadrature)
+                refuse(deck, "bodies." + body.name + ".quadrature." + key, std::to_string(n),
+                       fmt::format("more than {} Gauss points per knot span (the limit; docs/deck.md)",
+                                   limits.max_quadrature));
         const std::vector<std::vector<Direction>> patches = patch_directions(body);
         for (std::size_t p = 0; p < patches.size(); ++p) {
             const std::vector<Direction>& dirs = patches[p];

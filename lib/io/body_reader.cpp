@@ -522,7 +522,8 @@ std::vector<NamedSurface> read_surfaces(const Cursor& map, const std::string& bo
 Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names)
 {
     Body b;
-    if (!c.allow_only({"name", "material", "nurbs", "shape", "patches", "geometry", "refine", "surfaces", "rigid"}))
+    if (!c.allow_only(
+            {"name", "material", "nurbs", "shape", "patches", "geometry", "refine", "quadrature", "surfaces", "rigid"}))
         return b;
     b.rigid = c.has("rigid");
     if (const auto name = read_name(c)) {
@@ -531,7 +532,7 @@ Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names)
             known.bodies.emplace_back(*name, b.rigid);
     }
     if (b.rigid) {
-        for (const char* key : {"material", "nurbs", "shape", "patches", "geometry", "refine", "surfaces"})
+        for (const char* key : {"material", "nurbs", "shape", "patches", "geometry", "refine", "quadrature", "surfaces"})
             if (c.has(key))
                 c.child(key).fail_here("a rigid body takes no '" + std::string(key) + "'");
         if (const Cursor rigid = c.child("rigid"); rigid.expect_map())
@@ -561,6 +562,10 @@ Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names)
         b.shape = read_shape(c.child("shape"), known.dim, param);
     if (c.has("refine"))
         b.refine = read_refine(c.child("refine"), known.dim, param);  // multi-patch: checked per patch at build
+    if (const Cursor q = c.child("quadrature"); q.exists() && q.expect_map() && q.allow_only({"element", "side"})) {
+        b.quadrature.element = q.integer_at_least("element", 0, 1);
+        b.quadrature.side = q.integer_at_least("side", 0, 1);
+    }
     if (has_patches && alone)
         b.patches = read_patches(c.child("patches"), known.dim, b.refine);
     if (has_file && alone) {

@@ -106,6 +106,16 @@ struct Refine {
     bool operator==(const Refine&) const = default;
 };
 
+/// Gauss points per direction and knot span of a body's element integrals and of
+/// its loaded sides (tractions, forces, pressures); 0 = the default, max degree + 1.
+/// More points for rational patches, whose integrands no Gauss rule integrates exactly.
+struct Quadrature {
+    int element = 0;
+    int side = 0;
+
+    bool operator==(const Quadrature&) const = default;
+};
+
 struct RigidPlane {
     std::vector<double> point;   ///< d coordinates
     std::vector<double> normal;  ///< d coordinates, points out of the obstacle (normalized by the reader)
@@ -159,6 +169,7 @@ struct Body {
     std::vector<PatchData> patches;  ///< a multi-patch body: its patches; empty otherwise
     std::string geometry_file;       ///< `geometry: {file}` as written (relative to the deck folder); "" if inline
     Refine refine;                   ///< applies to every patch
+    Quadrature quadrature;           ///< applies to every patch
     std::vector<NamedSurface> surfaces;
     // Rigid obstacle: exactly one of plane / sphere, and its motion.
     std::optional<RigidPlane> plane;

@@ -164,6 +164,14 @@ void write_body(YAML::Emitter& out, const Body& b)
         out << YAML::EndMap;
     }
     write_refine(out, b.refine);
+    if (b.quadrature.element > 0 || b.quadrature.side > 0) {  // 0: the default rule, left out
+        out << YAML::Key << "quadrature" << YAML::Value << YAML::Flow << YAML::BeginMap;
+        if (b.quadrature.element > 0)
+            out << YAML::Key << "element" << YAML::Value << std::to_string(b.quadrature.element);
+        if (b.quadrature.side > 0)
+            out << YAML::Key << "side" << YAML::Value << std::to_string(b.quadrature.side);
+        out << YAML::EndMap;
+    }
     if (!b.surfaces.empty()) {
         out << YAML::Key << "surfaces" << YAML::Value << YAML::BeginMap;
         for (const NamedSurface& surface : b.surfaces) {

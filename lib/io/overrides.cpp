@@ -54,6 +54,7 @@ Schema make_deck_schema()
                                                    {"refine", map({{"elevate", v}, {"spans", v}, {"insert", v}})}}))},
                              {"geometry", map({{"file", v}})},
                              {"refine", map({{"elevate", v}, {"spans", v}, {"insert", v}})},
+                             {"quadrature", map({{"element", v}, {"side", v}})},
                              {"surfaces", v},  // a map of user-chosen names: set as a whole
                              {"rigid", map({{"plane", map({{"point", v}, {"normal", v}})},
                                             {"circle", map({{"center", v}, {"radius", v}})},

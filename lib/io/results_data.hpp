@@ -101,9 +101,10 @@ struct BodyFields {
     Vector von_mises;                 ///< n_t
 };
 
-/// Total reaction of one constrained side (or named surface): steps/<kkkk>/reactions/<name>.
+/// Total reaction of one constrained side (or named surface), of a body or of one
+/// constraint item: steps/<kkkk>/reactions/<name>.
 struct Reaction {
-    std::string name;            ///< "body.side", e.g. "block.v0"
+    std::string name;            ///< path under reactions/: "block.v0", "total/block" or "items/0"
     std::vector<double> force;   ///< d: force the constraint exerts on the body (sum over its constrained dofs)
 };
 
@@ -130,7 +131,7 @@ struct StepData {
     std::vector<ContactPairResult> contact;
     /// Displacements at the tessellation points (output.paraview): steps/<kkkk>/paraview/<body>/displacement.
     std::vector<std::pair<std::string, RowMatrix>> tessellation_displacement;
-    std::vector<Reaction> reactions;  ///< one per constrained side, deck order of first appearance
+    std::vector<Reaction> reactions;  ///< constrained sides (deck order), then total/<body>, then items/<k>
     std::vector<BodyFields> fields;   ///< output.fields: one per deformable body
 };
 

@@ -173,12 +173,26 @@ void write_fields(hid_t step, const std::vector<BodyFields>& fields)
     }
 }
 
+/// The group that holds the reaction `name` ("block.v0", or "total/block" below
+/// the subgroup "total", created on first use), and the dataset's name in it.
+std::pair<h5::Handle, std::string> reaction_location(hid_t reactions, const std::string& name)
+{
+    const std::size_t slash = name.find('/');
+    if (slash == std::string::npos)
+        return {h5::open_object(reactions, "."), name};
+    const std::string subgroup = name.substr(0, slash);
+    if (!h5::exists(reactions, subgroup))
+        h5::create_group(reactions, subgroup);
+    return {h5::open_object(reactions, subgroup), name.substr(slash + 1)};
+}
+
 void write_reactions(hid_t step, const std::vector<Reaction>& reactions)
 {
     h5::Handle group = h5::create_group(step, "reactions");
     for (const Reaction& reaction : reactions) {
         IGA_CHECK(!reaction.name.empty(), "a reaction needs the name of its side (body.side)");
-        h5::write_dataset(group.id(), reaction.name, std::span<const double>(reaction.force),
+        const auto [parent, name] = reaction_location(group.id(), reaction.name);
+        h5::write_dataset(parent.id(), name, std::span<const double>(reaction.force),
                           {static_cast<hsize_t>(reaction.force.size())});
     }
 }
@@ -222,9 +236,11 @@ void write_history(hid_t file, const HistoryColumns& h)
         h5::write_dataset(group.id(), "uzawa_updates", std::span<const int>(h.uzawa_updates), {n});
     if (!h.reaction_names.empty()) {
         h5::Handle reactions = h5::create_group(group.id(), "reactions");
-        for (std::size_t k = 0; k < h.reaction_names.size(); ++k)
-            h5::write_dataset(reactions.id(), h.reaction_names[k], std::span<const double>(h.reactions[k]),
+        for (std::size_t k = 0; k < h.reaction_names.size(); ++k) {
+            const auto [parent, name] = reaction_location(reactions.id(), h.reaction_names[k]);
+            h5::write_dataset(parent.id(), name, std::span<const double>(h.reactions[k]),
                               {n, static_cast<hsize_t>(h.dimension)});
+        }
     }
     if (!h.contact_sides.empty()) {
         h5::Handle contact = h5::create_group(group.id(), "contact");

@@ -115,6 +115,8 @@ LevelResults read_level_results(const std::string& path)
         const h5::Handle reactions = h5::open_object(results.id(), "reactions");
         static constexpr const char* axis[] = {"x", "y", "z"};
         for (const std::string& name : h5::link_names(reactions.id())) {
+            if (h5::object_kind(h5::open_object(reactions.id(), name).id()) != h5::ObjectKind::dataset)
+                continue;  // total/ and items/: the study follows the sides (results.md)
             const h5::Array r = h5::read_dataset(reactions.id(), name);
             for (std::size_t k = 0; k < r.reals.size() && k < 3; ++k)
                 out.quantities.emplace_back("reaction:" + name + ":" + axis[k], r.reals[k]);

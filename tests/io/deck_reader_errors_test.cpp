@@ -306,6 +306,22 @@ TEST(DeckReaderErrors, Refinement)
     EXPECT_NO_THROW(read(replaced(hertz_deck, "insert: [[0.05, 0.1], []]", "insert: [[0.3, 0.3, 0.3], []]")));
 }
 
+TEST(DeckReaderErrors, BodyQuadrature)
+{
+    const auto quadrature = [](const std::string& value) {
+        return issue_of(replaced(minimal_deck, "size: [2, 1]}\n", "size: [2, 1]}\n    quadrature: " + value + "\n"));
+    };
+    EXPECT_EQ(quadrature("{element: 0}"), "hertz.yaml:12:27: error: bodies.block.quadrature.element = 0: must be >= 1");
+    EXPECT_EQ(quadrature("{side: 2.5}"), "hertz.yaml:12:24: error: bodies.block.quadrature.side = 2.5: expected an integer");
+    EXPECT_EQ(quadrature("{elements: 4}"),
+              "hertz.yaml:12:18: error: bodies.block.quadrature: unknown key 'elements' (did you mean 'element'?)");
+    EXPECT_EQ(quadrature("4"), "hertz.yaml:12:17: error: bodies.block.quadrature = 4: expected a map of keys");
+    EXPECT_EQ(issue_of(replaced(minimal_deck, "  - name: floor\n", "  - name: floor\n    quadrature: {element: 4}\n")),
+              "hertz.yaml:13:17: error: bodies.floor.quadrature: a rigid body takes no 'quadrature'");
+    const Deck d = read(replaced(minimal_deck, "size: [2, 1]}\n", "size: [2, 1]}\n    quadrature: {element: 6, side: 8}\n"));
+    EXPECT_EQ(d.bodies.at(0).quadrature, (Quadrature{.element = 6, .side = 8}));
+}
+
 TEST(DeckReaderErrors, BuiltInShapes)
 {
     EXPECT_EQ(issue_of(replaced(minimal_deck, "size: [2, 1]", "size: [2, 0]")),

@@ -83,7 +83,9 @@ SampleRun sample_run()
         pair.sides = {side};
         pair.obstacle_force = {0.0, -100.0 * k};
         step.contact = {pair};
-        step.reactions = {{"cylinder.v1", {0.5 * k, 100.0 * k}}};
+        step.reactions = {{"cylinder.v1", {0.5 * k, 100.0 * k}},
+                          {"total/cylinder", {0.5 * k, 100.0 * k}},
+                          {"items/0", {0.5 * k, 100.0 * k}}};
         step.fields = {BodyFields{.body = "cylinder", .reference_coordinates = ramp(3, 2, 0.0),
                                   .displacement = ramp(3, 2, 1.0 * k), .stress = ramp(3, 6, 5.0 * k),
                                   .von_mises = Vector::LinSpaced(3, 1.0, 3.0 * k)}};
@@ -317,6 +319,26 @@ TEST_F(ResultsCompareTest, SecondReleaseItemsAreCompared)
     });
     EXPECT_EQ(paths_not_same(changed),
               (std::vector<std::string>{"/history/reactions/cylinder.v1", "/steps/0001/fields/cylinder/von_mises"}));
+}
+
+// Third release: the per-body totals and per-item reactions live in subgroups of
+// reactions/ (steps, /results, /history) and are compared like the sides.
+TEST_F(ResultsCompareTest, ReactionTotalsAndItemsAreCompared)
+{
+    write_run(sample_run(), path("new.h5"));
+    const CompareReport same = compare_results(reference_path(), path("new.h5"), {});
+    EXPECT_TRUE(same.same()) << format_report(same, false);
+    for (const char* item : {"/steps/0002/reactions/total/cylinder", "/steps/0002/reactions/items/0",
+                             "/history/reactions/total/cylinder", "/history/reactions/items/0"})
+        EXPECT_NE(find_entry(same, item), nullptr) << item << " was not compared";
+
+    constexpr double relative_change = 1e-3;  // a thousand times the default rtol of 1e-6
+    const CompareReport changed = compare_changed([&](SampleRun& run) {
+        run.steps[0].reactions[1].force[1] *= 1 + relative_change;
+        run.history[1].reactions[2].force[1] *= 1 + relative_change;
+    });
+    EXPECT_EQ(paths_not_same(changed),
+              (std::vector<std::string>{"/history/reactions/items/0", "/steps/0001/reactions/total/cylinder"}));
 }
 
 TEST_F(ResultsCompareTest, FirstReleaseReferenceAgreesOnWhatItHas)
