@@ -298,11 +298,13 @@ def contact_normal(pair_group, points, pressure, weight):
 
 def plane_basis(normal):
     """Two unit vectors spanning the plane normal to `normal`: e1 from the coordinate axis
-    most nearly in the plane, e2 = n x e1."""
+    most nearly in the plane, e2 = +-(n x e1), its largest component positive (a map seen
+    from either side of the plane reads the same way)."""
     axis = np.eye(3)[int(np.argmin(np.abs(normal)))]
     e1 = axis - (axis @ normal) * normal
     e1 /= np.linalg.norm(e1)
-    return e1, np.cross(normal, e1)
+    e2 = np.cross(normal, e1)
+    return e1, e2 if e2[np.argmax(np.abs(e2))] > 0 else -e2
 
 
 def grid_triangles(post, n_samples):
@@ -390,8 +392,8 @@ def plot_face_map(ax, fig, side, projection, title):
         ax.set_ylim(centre[1] - half, centre[1] + half)
     ax.set_aspect("equal")
     e1, e2 = projection.e1, projection.e2
-    ax.set_xlabel("along ({:.3g}, {:.3g}, {:.3g})  (reference configuration)".format(*e1), fontsize=8)
-    ax.set_ylabel("along ({:.3g}, {:.3g}, {:.3g})".format(*e2), fontsize=8)
+    ax.set_xlabel("along ({:.3g}, {:.3g}, {:.3g})  (reference configuration)".format(*(e1 + 0.0)), fontsize=8)
+    ax.set_ylabel("along ({:.3g}, {:.3g}, {:.3g})".format(*(e2 + 0.0)), fontsize=8)
     ax.set_title(title + "\nseen along the contact resultant ({:.3g}, {:.3g}, {:.3g})".format(*projection.normal),
                  fontsize=9)
 

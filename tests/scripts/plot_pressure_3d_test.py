@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """scripts/plot_pressure.py on a 3D result without a reference, at the size of
-inputs/hertz_sphere_plane_3d.yaml's contact face (29 x 29 spans: 7569 Gauss points,
-117 x 117 post-processed samples): it draws the pressure map and the radial profile
-(CTest gives it a TIMEOUT well under a minute; the O(n_g n_s) arc-length abscissa it
-replaces took 12 minutes here), and the geometry it draws is right: the projection
+inputs/hertz_sphere_plane_3d.yaml's contact face (29 x 29 spans: 13456 Gauss points,
+465 x 465 = 216225 post-processed samples, as its results file has): it draws the pressure map and the radial profile
+(CTest gives it a TIMEOUT; the O(n_g n_s) arc-length abscissa it replaces ran 12
+minutes on the real file and had not finished after 60 s on this one), and the geometry it draws is right: the projection
 plane is normal to the contact resultant, the grid triangles are the grid's cells,
 the radial distance is the distance from the peak.
 
@@ -24,7 +24,7 @@ SCRIPTS = pathlib.Path(sys.argv[1]) if len(sys.argv) > 1 else pathlib.Path(__fil
 WORK = pathlib.Path(sys.argv[2]) if len(sys.argv) > 2 else pathlib.Path("/tmp/plot_pressure_3d_test")
 EXACT = 1e-12  # coordinates of order 1 through a few products: round-off
 RADIUS, A, P0 = 1.0, 0.1, 70.0
-SPANS, GAUSS_PER_SPAN, SAMPLES_PER_SPAN = 29, 3, 4
+SPANS, GAUSS_PER_SPAN, SAMPLES_PER_SPAN = 29, 4, 16
 
 
 def load(name):
