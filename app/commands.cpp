@@ -75,7 +75,7 @@ int run_command(int argc, char** argv)
     cli.add_option("-o,--output", output, "results file (default: output.file of the deck, or DECK with .h5)");
     cli.add_option("--set", overrides, "override a deck value, PATH=VALUE (VALUE is YAML); repeatable")
         ->allow_extra_args(false);
-    cli.add_flag("-q,--quiet", quiet, "print nothing but errors");
+    cli.add_flag("-q,--quiet", quiet, "no progress: print only warnings and errors (a failed run's reason)");
     cli.add_flag("-v,--verbose", verbose, "print Newton iterations");
     cli.add_option("--summary", summary, "print one summary line at the end")->check(CLI::IsMember({"json"}));
     int threads = 0;
@@ -131,17 +131,17 @@ int run_command(int argc, char** argv)
     options.refine_levels = refine_levels;
     if (terminal)
         options.progress = [](const std::string& line) { std::cerr << line << '\n'; };
-    if (!quiet)
-        options.warning = [](const std::string& line) { std::cerr << "warning: " << line << '\n'; };
+    // -q silences progress only: a warning or a failure's reason always reaches stderr.
+    options.warning = [](const std::string& line) { std::cerr << "warning: " << line << '\n'; };
 
     const analysis::RunOutcome outcome = analysis::run(deck, options, context);
 
+    if (outcome.status != "completed")
+        std::cerr << fmt::format("igacontact: {}: {}\n", outcome.status, outcome.message);
     if (!quiet) {
         if (outcome.status == "completed")
             std::cerr << fmt::format("igacontact: completed {} increment(s), {} Newton iteration(s) in {:.3g} s\n",
                                      outcome.increments, outcome.newton_iterations, outcome.wall_s);
-        else
-            std::cerr << fmt::format("igacontact: {}: {}\n", outcome.status, outcome.message);
         for (const io::Reaction& r : outcome.reactions)
             if (r.name.rfind("items/", 0) != 0)  // the items split the totals: in the results file only
                 std::cerr << fmt::format("reaction on {}: ({:.6g})\n", r.name, fmt::join(r.force, ", "));

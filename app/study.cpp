@@ -2,7 +2,7 @@
 // a uniform h-refinement study of any deck (README "Refinement study").
 //
 // Level k is an ordinary run of the same executable (/proc/self/exe) with
-// `--refine-levels k -o <deck>_study/level<k>.h5 -q` and the same --set values,
+// `--refine-levels k -o <deck>_study/level<k>.h5` and the same --set values,
 // its output in <deck>_study/level<k>.log. Up to --jobs levels run at once, a
 // level starting only while the estimated memory of the running levels fits in
 // half the machine's memory (analysis/size_estimate.hpp, times 2^(d k)). Each
@@ -85,16 +85,6 @@ struct Level {
     std::string message;
 };
 
-std::string last_line(const fs::path& file)
-{
-    std::ifstream in(file);
-    std::string line, last;
-    while (std::getline(in, line))
-        if (!line.empty())
-            last = line;
-    return last;
-}
-
 /// Starts `exe args...` in its own process group, stdin from /dev/null, stdout and
 /// stderr to `log`. Returns the pid, or -1 with errno set.
 pid_t spawn(const std::string& exe, const std::vector<std::string>& args, const fs::path& log)
@@ -166,23 +156,61 @@ std::string cell(const std::optional<double>& x, const char* format)
     return x ? fmt::format(fmt::runtime(format), *x) : std::string("-");
 }
 
+/// The verdict on one quantity's extrapolation, for the head of its block.
+std::string verdict(const io::StudyRow& r, int formal_order)
+{
+    const std::string band = r.extrapolated_rel_band ? fmt::format(" +- {:.2g} %", 100 * *r.extrapolated_rel_band) : "";
+    if (r.estimate == "not_converging")
+        return "not converging (the finest levels differ by more than the coarser ones): no estimate";
+    if (r.estimate == "zero_limit")
+        return fmt::format("extrapolated {}, but its band reaches zero: no relative error",
+                           cell(r.extrapolated, "{:.4g}"));
+    if (r.estimate == "converged")
+        return fmt::format("the two finest levels agree: {}", cell(r.extrapolated, "{:.8g}"));
+    if (r.estimate == "assumed_order")
+        return fmt::format("extrapolated {}{} (GCI, Fs = 3), order {} assumed: the levels show none",
+                           cell(r.extrapolated, "{:.6g}"), band, formal_order);
+    std::string text = fmt::format("extrapolated {}{} (GCI, Fs = 1.25), observed order {} (formal {})",
+                                   cell(r.extrapolated, "{:.6g}"), band, cell(r.observed_order, "{:.2f}"),
+                                   formal_order);
+    if (r.estimate == "not_asymptotic")
+        text += ": not in the asymptotic range, trust the band, not the digits";
+    return text;
+}
+
 /// The table on stdout: one block per quantity.
-void print_table(const std::vector<io::StudyRow>& rows, bool with_reference)
+void print_table(const std::vector<io::StudyRow>& rows, bool with_reference, int formal_order)
 {
     std::string current;
     for (const io::StudyRow& r : rows) {
         if (r.quantity != current) {
             current = r.quantity;
-            std::cout << fmt::format("\n{}  (extrapolated {}, observed order {})\n", r.quantity,
-                                     cell(r.extrapolated, "{:.8g}"), cell(r.observed_order, "{:.2f}"));
-            std::cout << fmt::format("  {:>5} {:>9} {:>9} {:>16} {:>10}", "level", "dofs", "wall s", "value",
-                                     "est. err");
+            std::cout << fmt::format("\n{}  ({})\n", r.quantity, verdict(r, formal_order));
+            std::cout << fmt::format("  {:>5} {:>9} {:>9} {:>16} {:>10} {:>5}", "level", "dofs", "wall s", "value",
+                                     "est. err", "asym.");
             std::cout << (with_reference ? fmt::format(" {:>10}\n", "true err") : "\n");
         }
-        std::cout << fmt::format("  {:>5} {:>9} {:>9.3g} {:>16.9g} {:>10}", r.level, r.dofs, r.wall_s, r.value,
-                                 cell(r.estimated_rel_error, "{:.2e}"));
+        const std::string asymptotic = r.asymptotic ? (*r.asymptotic ? "yes" : "no") : "";
+        std::cout << fmt::format("  {:>5} {:>9} {:>9.3g} {:>16.9g} {:>10} {:>5}", r.level, r.dofs, r.wall_s, r.value,
+                                 cell(r.estimated_rel_error, "{:.2e}"), asymptotic);
         std::cout << (with_reference ? fmt::format(" {:>10}\n", cell(r.true_rel_error, "{:.2e}")) : "\n");
     }
+}
+
+/// The line of a level's log that says why it failed: its last "igacontact: ..." or
+/// error line (the run prints its results path after it), else its last line.
+std::string failure_reason(const fs::path& log)
+{
+    std::ifstream in(log);
+    std::string line, last, reason;
+    while (std::getline(in, line)) {
+        if (line.empty())
+            continue;
+        last = line;
+        if (line.rfind("igacontact: ", 0) == 0 || line.find(": error: ") != std::string::npos)
+            reason = line;
+    }
+    return reason.empty() ? last : reason;
 }
 
 }  // namespace
@@ -264,8 +292,9 @@ int study_command(int argc, char** argv)
                 in_use += levels[i].memory_bytes;
             if (running.empty() || budget <= 0 || in_use + levels[next].memory_bytes <= budget) {
                 Level& l = levels[next];
+                // Not quiet: the level's log keeps the run's whole output.
                 std::vector<std::string> args = {deck_path, "--refine-levels", std::to_string(l.index), "-o",
-                                                 l.results.string(), "-q"};
+                                                 l.results.string()};
                 for (const std::string& o : overrides) {
                     args.push_back("--set");
                     args.push_back(o);
@@ -304,7 +333,7 @@ int study_command(int argc, char** argv)
             l.outcome = "completed";
         } else {
             l.outcome = interrupts.load() > 0 ? "interrupted" : "failed";
-            l.message = exited ? last_line(l.log) : fmt::format("killed by signal {}", WTERMSIG(status));
+            l.message = exited ? failure_reason(l.log) : fmt::format("killed by signal {}", WTERMSIG(status));
         }
         say(fmt::format("study: level {} {} in {:.3g} s{}", l.index, l.outcome, l.wall_s,
                         l.message.empty() ? "" : ": " + l.message));
@@ -312,7 +341,7 @@ int study_command(int argc, char** argv)
 
     // Read the completed levels.
     std::vector<analysis::StudyLevel> completed;
-    int assumed_order = 0;
+    int formal_order = 0;
     bool with_reference = false;
     for (Level& l : levels) {
         if (l.outcome != "completed")
@@ -330,7 +359,7 @@ int study_command(int argc, char** argv)
             l.message = r.message;
             continue;
         }
-        assumed_order = assumed_order == 0 ? r.min_degree : std::min(assumed_order, r.min_degree);
+        formal_order = formal_order == 0 ? r.min_degree : std::min(formal_order, r.min_degree);
         with_reference = with_reference || !r.reference_values.empty();
         completed.push_back({l.index, r.dofs, l.wall_s, std::move(r.quantities), std::move(r.reference_values)});
     }
@@ -349,13 +378,15 @@ int study_command(int argc, char** argv)
         std::cerr << "study: no level completed; nothing written\n";
         return exit_failed;
     }
-    assumed_order = std::max(assumed_order, 1);
-    const std::vector<io::StudyRow> rows = analysis::study_rows(completed, assumed_order);
+    formal_order = std::max(formal_order, 1);
+    const std::vector<io::StudyRow> rows = analysis::study_rows(completed, formal_order);
     io::write_study_csv(csv.string(), rows, with_reference);
-    print_table(rows, with_reference);
-    std::cout << fmt::format("\nRichardson from the finest consecutive levels; where no order is observed, order {} "
-                             "is assumed (the lowest degree of the patches).\n",
-                             assumed_order);
+    print_table(rows, with_reference, formal_order);
+    std::cout << fmt::format("\nRichardson from the finest consecutive levels; formal order {} (the lowest degree of "
+                             "the patches), assumed where the levels show none. +- is Roache's grid convergence "
+                             "index of the extrapolated value; asym. says whether the three levels ending at a level "
+                             "show the formal order (within 10 %).\n",
+                             formal_order);
     std::cout << "table: " << csv.string() << '\n';
 
     // The plot: scripts/plot_study.py with Debian's python3 (numpy, matplotlib).

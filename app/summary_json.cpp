@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <cstring>
+#include <string>
+#include <vector>
 
 namespace iga::app {
 
@@ -31,6 +33,14 @@ std::string json_escape(const std::string& s)
 std::string json_number(double x)
 {
     return std::isfinite(x) ? fmt::format("{:.9g}", x) : "null";
+}
+
+std::string json_string_list(const std::vector<std::string>& items)
+{
+    std::string out = "[";
+    for (std::size_t k = 0; k < items.size(); ++k)
+        out += fmt::format("{}\"{}\"", k == 0 ? "" : ", ", json_escape(items[k]));
+    return out + "]";
 }
 
 }  // namespace
@@ -61,14 +71,14 @@ std::string summary_json(const analysis::RunOutcome& r, int exit_code)
         out += fmt::format("{}\"{}\": {}", first ? "" : ", ", json_escape(key), json_number(value));
         first = false;
     }
-    out += "}}";
+    out += "}, \"warnings\": " + json_string_list(r.warnings) + "}";
     return out;
 }
 
 std::string error_summary_json(const std::string& status, const std::string& message, int exit_code)
 {
-    return fmt::format("{{\"status\": \"{}\", \"message\": \"{}\", \"exit_code\": {}}}", json_escape(status),
-                       json_escape(message), exit_code);
+    return fmt::format("{{\"status\": \"{}\", \"message\": \"{}\", \"exit_code\": {}, \"warnings\": []}}",
+                       json_escape(status), json_escape(message), exit_code);
 }
 
 }  // namespace iga::app

@@ -1,7 +1,8 @@
 #pragma once
 // `--summary json`: one JSON line on stdout for every outcome of a run, so that
-// scripts never scrape the log. Always an object with "status", "message" and
-// "exit_code":
+// scripts never scrape the log. Always an object with "status", "message",
+// "exit_code" and "warnings" (a list of strings, each a `warning: ...` line of stderr
+// without the prefix; empty for a run that did not happen):
 //   exit 0 / 1: status "completed" / "failed" (an interrupted run is "failed"), with
 //               "results", "increments", "newton_iterations", "cutbacks", "wall_s",
 //               the run's numbers and "errors" against the reference;
@@ -11,6 +12,7 @@
 #include "analysis/run.hpp"
 
 #include <string>
+#include <vector>
 
 namespace iga::app {
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Plot the contact pressure of an igacontact results file against the Hertz reference.
 
-Usage:  scripts/plot_pressure.py RESULTS.h5 [-o PNG] [--pair NAME] [--step KKKK]
+Usage:  scripts/plot_pressure.py RESULTS.h5 [-o PNG] [--pair NAME] [--step KKKK] [--radial]
 
 Reads only the documented layout (shared/spec/results.md). It plots the pair of
 /reference if there is one (or --pair), else every pair, in deck order (the order
@@ -19,6 +19,13 @@ the side's post-processed samples, the same for every pair that shares the side)
 Each pair and side is its own series, sorted by its abscissa: a side touched by
 two pairs gives two curves, never one zigzag. One-sided data (a quarter model)
 are mirrored to negative x as a lighter copy (reference plots only).
+A 3D result without a reference (a contact face, not a curve) is drawn as a
+pressure map of each face: the post-processed samples (their grid, split into
+triangles) in the reference configuration, projected onto the plane normal to the
+contact resultant (the pair's obstacle_force, else the pressure-weighted normal of
+the best-fit plane of the pressed Gauss points), zoomed to the contact zone, with
+the pressed Gauss points as dots. --radial draws instead the pressure against the
+distance r from the peak in that plane (Gauss points and samples).
 Writes RESULTS_pressure.png (or -o) with the Agg backend and prints its path.
 Needs numpy, h5py and matplotlib (/usr/bin/python3 on the project machines).
 """
@@ -44,6 +51,8 @@ def parse_args(argv):
     parser.add_argument("-o", "--output", type=pathlib.Path, help="PNG to write (default: RESULTS_pressure.png)")
     parser.add_argument("--pair", help="contact pair to plot (default: the reference's pair, else the first)")
     parser.add_argument("--step", help="increment KKKK under /steps instead of /results (the last one)")
+    parser.add_argument("--radial", action="store_true",
+                        help="3D without a reference: pressure against the distance from the peak, not a map")
     return parser.parse_args(argv)
 
 
@@ -259,15 +268,201 @@ def plot_pairs(ax, group, group_name, pairs, args, colours):
         f", /{group_name}"
 
 
+def contact_sides(group, pair):
+    return [s for s in group["contact"][pair].values() if isinstance(s, h5py.Group) and "gauss_points" in s]
+
+
+def is_3d(group, pairs):
+    for pair in pairs:
+        for side in contact_sides(group, pair):
+            return side["gauss_points"]["reference_coordinates"].shape[1] == 3
+    return False
+
+
+def contact_normal(pair_group, points, pressure, weight):
+    """Unit direction of the contact resultant: the pair's obstacle_force if stored, else the
+    normal of the plane that best fits the pressed points (weights p w; all points if fewer
+    than three are pressed): the eigenvector of their weighted covariance with the smallest
+    eigenvalue."""
+    force = attribute(pair_group.attrs, "obstacle_force")
+    if force is not None and np.linalg.norm(force) > 0:
+        return np.asarray(force, dtype=float) / np.linalg.norm(force)
+    w = np.asarray(pressure, dtype=float) * np.asarray(weight, dtype=float)
+    if np.count_nonzero(w > 0) < 3:
+        w = np.ones(len(points))
+    w = np.clip(w, 0.0, None)
+    centre = w @ points / w.sum()
+    covariance = (points - centre).T @ ((points - centre) * w[:, None])
+    return np.linalg.eigh(covariance)[1][:, 0]
+
+
+def plane_basis(normal):
+    """Two unit vectors spanning the plane normal to `normal`: e1 from the coordinate axis
+    most nearly in the plane, e2 = +-(n x e1), its largest component positive (a map seen
+    from either side of the plane reads the same way)."""
+    axis = np.eye(3)[int(np.argmin(np.abs(normal)))]
+    e1 = axis - (axis @ normal) * normal
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(normal, e1)
+    return e1, e2 if e2[np.argmax(np.abs(e2))] > 0 else -e2
+
+
+def grid_triangles(post, n_samples):
+    """Triangles (k x 3 indices) of the post-processed samples: each cell of each grid (u
+    fastest) split in two; None when the samples carry no grid shape."""
+    if "patch_grid_shape" in post:
+        shapes = np.asarray(post["patch_grid_shape"][()], dtype=int).reshape(-1, 2)
+    elif "grid_shape" in post.attrs:
+        shapes = np.asarray(post.attrs["grid_shape"], dtype=int).reshape(-1, 2)
+    else:
+        return None
+    triangles, offset = [], 0
+    for n_v, n_u in shapes:
+        if n_v >= 2 and n_u >= 2:
+            j, i = np.meshgrid(np.arange(n_v - 1), np.arange(n_u - 1), indexing="ij")
+            a = (offset + j * n_u + i).ravel()
+            triangles += [np.column_stack([a, a + 1, a + n_u + 1]), np.column_stack([a, a + n_u + 1, a + n_u])]
+        offset += n_v * n_u
+    if offset != n_samples or not triangles:
+        return None
+    return np.concatenate(triangles)
+
+
+class FaceProjection:
+    """A contact face seen along the contact resultant: in-plane coordinates of its points."""
+
+    def __init__(self, pair_group, gauss):
+        points = np.asarray(gauss["reference_coordinates"][()], dtype=float)
+        self.normal = contact_normal(pair_group, np.asarray(gauss["coordinates"][()], dtype=float),
+                                     gauss["pressure"][()], gauss["weight"][()] if "weight" in gauss
+                                     else np.ones(len(points)))
+        self.e1, self.e2 = plane_basis(self.normal)
+
+    def __call__(self, coordinates):
+        coordinates = np.asarray(coordinates, dtype=float)
+        return coordinates @ self.e1, coordinates @ self.e2
+
+
+def pressed_zone(x, y, pressure):
+    """Centre and half-width of the box around the points with p > 0 (None if none)."""
+    pressed = np.asarray(pressure) > 0
+    if not np.any(pressed):
+        return None
+    lo = np.array([x[pressed].min(), y[pressed].min()])
+    hi = np.array([x[pressed].max(), y[pressed].max()])
+    return 0.5 * (lo + hi), 0.5 * np.max(hi - lo)
+
+
+def plot_face_map(ax, fig, side, projection, title):
+    """Pressure map of one face: filled contours of the post-processed samples over their
+    grid triangles (Delaunay of the Gauss points without samples), front faces only."""
+    import matplotlib.tri as mtri
+    gauss = side["gauss_points"]
+    xg, yg = projection(gauss["reference_coordinates"][()])
+    pg = np.asarray(gauss["pressure"][()], dtype=float)
+    if "postprocessed" in side:
+        post = side["postprocessed"]
+        x, y = projection(post["reference_coordinates"][()])
+        p = np.asarray(post["pressure"][()], dtype=float)
+        triangles = grid_triangles(post, len(p))
+    else:
+        x, y, p, triangles = xg, yg, pg, None
+    if triangles is not None:
+        # Keep the triangles facing the same way as those under pressure: a face that
+        # curves beyond 90 degrees would otherwise lay its back over the contact zone.
+        area = ((x[triangles[:, 1]] - x[triangles[:, 0]]) * (y[triangles[:, 2]] - y[triangles[:, 0]]) -
+                (x[triangles[:, 2]] - x[triangles[:, 0]]) * (y[triangles[:, 1]] - y[triangles[:, 0]]))
+        pressed = np.any(p[triangles] > 0, axis=1)
+        front = np.sign(np.sum(area[pressed])) if np.any(pressed) else np.sign(np.sum(area))
+        keep = area * (front if front != 0 else 1.0) > 1e-14 * np.max(np.abs(area))
+        triangulation = mtri.Triangulation(x, y, triangles[keep])
+    else:
+        triangulation = mtri.Triangulation(x, y)
+    levels = np.linspace(0.0, max(np.max(p), np.finfo(float).tiny), 21)
+    filled = ax.tricontourf(triangulation, np.clip(p, 0.0, None), levels=levels, cmap="viridis")
+    fig.colorbar(filled, ax=ax, label="contact pressure p (post-processed)" if "postprocessed" in side
+                 else "contact pressure p (Gauss points)")
+    ax.plot(xg[pg > 0], yg[pg > 0], linestyle="none", marker=".", markersize=1.5, color="black",
+            label="Gauss points with p > 0")
+    zone = pressed_zone(x, y, p) or pressed_zone(xg, yg, pg)
+    if zone is not None:
+        centre, half = zone
+        half = ZOOM * max(half, 1e-12)
+        ax.set_xlim(centre[0] - half, centre[0] + half)
+        ax.set_ylim(centre[1] - half, centre[1] + half)
+    ax.set_aspect("equal")
+    e1, e2 = projection.e1, projection.e2
+    ax.set_xlabel("along ({:.3g}, {:.3g}, {:.3g})  (reference configuration)".format(*(e1 + 0.0)), fontsize=8)
+    ax.set_ylabel("along ({:.3g}, {:.3g}, {:.3g})".format(*(e2 + 0.0)), fontsize=8)
+    ax.set_title(title + "\nseen along the contact resultant ({:.3g}, {:.3g}, {:.3g})".format(*projection.normal),
+                 fontsize=9)
+
+
+def plot_face_radial(ax, side, projection, title, colour):
+    """Pressure against the in-plane distance r from the peak of the face."""
+    gauss = side["gauss_points"]
+    xg, yg = projection(gauss["reference_coordinates"][()])
+    pg = np.asarray(gauss["pressure"][()], dtype=float)
+    if "postprocessed" in side:
+        xs, ys = projection(side["postprocessed"]["reference_coordinates"][()])
+        ps = np.asarray(side["postprocessed"]["pressure"][()], dtype=float)
+    else:
+        xs, ys, ps = xg, yg, pg
+    peak = int(np.argmax(ps))
+    rg = np.hypot(xg - xs[peak], yg - ys[peak])
+    rs = np.hypot(xs - xs[peak], ys - ys[peak])
+    ax.plot(rs, ps, linestyle="none", marker=".", markersize=2, color=colour, alpha=0.5,
+            label="post-processed (NURBS) samples")
+    ax.plot(rg, pg, linestyle="none", marker="o", markersize=2.5, color="black", label="Gauss points")
+    pressed = np.concatenate([rg[pg > 0], rs[ps > 0]])
+    if pressed.size:
+        ax.set_xlim(0.0, ZOOM * max(np.max(pressed), 1e-12))
+    ax.set_xlabel("r, distance from the peak in the plane normal to the contact resultant (reference)", fontsize=8)
+    ax.set_ylabel("contact pressure p")
+    ax.set_title(title + "\nradial profile about the peak at ({:.4g}, {:.4g}, {:.4g})".format(
+        *np.asarray(side["postprocessed"]["reference_coordinates"][peak] if "postprocessed" in side
+                    else gauss["reference_coordinates"][peak])), fontsize=9)
+
+
+def plot_faces(h5, group, group_name, pairs, args):
+    """3D without a reference: one panel per contact face (map, or radial profile with --radial)."""
+    faces = [(pair, side) for pair in pairs for side in contact_sides(group, pair)]
+    if not faces:
+        sys.exit(f"error: no side with Gauss points in /{group_name}")
+    n_cols = min(len(faces), 2)
+    n_rows = (len(faces) + n_cols - 1) // n_cols
+    fig, axes = plt.subplots(n_rows, n_cols, figsize=(6.5 * n_cols, 5.5 * n_rows), squeeze=False)
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for k, (pair, side) in enumerate(faces):
+        ax = axes.flat[k]
+        projection = FaceProjection(group["contact"][pair], side["gauss_points"])
+        title = f"{args.results.name}: pair {pair}, {side.name.rsplit('/', 1)[-1]}, /{group_name}"
+        if args.radial:
+            plot_face_radial(ax, side, projection, title, colours[k % len(colours)])
+            ax.legend(fontsize=8)
+            ax.grid(True, alpha=0.3)
+        else:
+            plot_face_map(ax, fig, side, projection, title)
+    for ax in axes.flat[len(faces):]:
+        ax.set_visible(False)
+    fig.tight_layout()
+    return fig
+
+
 def main(argv):
     args = parse_args(argv)
     output = args.output or args.results.with_name(args.results.stem + "_pressure.png")
     with h5py.File(args.results, "r") as h5:
         group, group_name = results_group(h5, args.step)
         pairs = choose_pairs(h5, group, args.pair)
+        with_reference = len(pairs) == 1 and "reference" in h5 and pairs[0] in h5["reference"]
+        if not with_reference and is_3d(group, pairs):
+            plot_faces(h5, group, group_name, pairs, args).savefig(output, dpi=120)
+            print(output)
+            return 0
         fig, ax = plt.subplots(figsize=(8, 5))
         colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-        if len(pairs) == 1 and "reference" in h5 and pairs[0] in h5["reference"]:
+        if with_reference:
             title = plot_with_reference(ax, h5, group, group_name, pairs[0], args, colours)
         else:
             title = plot_pairs(ax, group, group_name, pairs, args, colours)

@@ -5,7 +5,37 @@
 
 namespace iga::analysis {
 
-std::optional<Extrapolation> richardson(std::span<const double> values, double assumed_order)
+std::string support_name(EstimateSupport support)
+{
+    switch (support) {
+    case EstimateSupport::asymptotic: return "asymptotic";
+    case EstimateSupport::not_asymptotic: return "not_asymptotic";
+    case EstimateSupport::assumed_order: return "assumed_order";
+    case EstimateSupport::converged: return "converged";
+    case EstimateSupport::not_converging: return "not_converging";
+    case EstimateSupport::zero_limit: return "zero_limit";
+    }
+    return "";
+}
+
+std::optional<double> observed_order(double coarse, double medium, double fine)
+{
+    const double d1 = medium - coarse, d2 = fine - medium;
+    if (d1 == 0.0 || d2 == 0.0 || (d1 > 0) != (d2 > 0) || std::abs(d2) >= std::abs(d1))
+        return std::nullopt;
+    return std::log(std::abs(d1) / std::abs(d2)) / std::log(refinement_ratio);
+}
+
+namespace {
+
+bool in_asymptotic_range(double observed, double formal)
+{
+    return std::abs(observed - formal) <= asymptotic_order_tolerance * formal;
+}
+
+}  // namespace
+
+std::optional<Extrapolation> richardson(std::span<const double> values, double formal_order)
 {
     const std::size_t n = values.size();
     if (n < 2)
@@ -13,23 +43,41 @@ std::optional<Extrapolation> richardson(std::span<const double> values, double a
     Extrapolation e;
     const double finest = values[n - 1];
     const double d2 = finest - values[n - 2];
-    if (d2 == 0.0) {
+    if (std::abs(d2) <= solver_noise * std::abs(finest)) {
+        e.support = EstimateSupport::converged;
         e.extrapolated = finest;
+        e.rel_band = finest == 0.0 ? 0.0 : std::abs(d2) / std::abs(finest);
         return e;
     }
-    e.order_used = assumed_order;
+    e.order_used = formal_order;
+    e.safety_factor = safety_factor_assumed;
+    e.support = EstimateSupport::assumed_order;
     if (n >= 3) {
         const double d1 = values[n - 2] - values[n - 3];
-        if (d1 != 0.0 && (d1 > 0) == (d2 > 0) && std::abs(d1) > std::abs(d2)) {
-            e.observed_order = std::log2(std::abs(d1) / std::abs(d2));
+        if (std::abs(d2) >= std::abs(d1)) {  // growing (or from zero): nothing to extrapolate
+            e.support = EstimateSupport::not_converging;
+            e.safety_factor = 0.0;
+            return e;
+        }
+        e.observed_order = observed_order(values[n - 3], values[n - 2], finest);
+        if (e.observed_order) {
             e.order_used = *e.observed_order;
+            e.safety_factor = safety_factor_observed;
+            e.support = in_asymptotic_range(*e.observed_order, formal_order) ? EstimateSupport::asymptotic
+                                                                              : EstimateSupport::not_asymptotic;
         }
     }
-    e.extrapolated = finest + d2 / (std::exp2(e.order_used) - 1.0);
+    const double shift = d2 / (std::pow(refinement_ratio, e.order_used) - 1.0);  // q_extr - q_{N-1}
+    e.extrapolated = finest + shift;
+    const double band = e.safety_factor * std::abs(shift);  // Roache's GCI, absolute
+    if (band >= std::abs(*e.extrapolated))
+        e.support = EstimateSupport::zero_limit;
+    else
+        e.rel_band = band / std::abs(*e.extrapolated);
     return e;
 }
 
-std::vector<io::StudyRow> study_rows(const std::vector<StudyLevel>& levels, double assumed_order)
+std::vector<io::StudyRow> study_rows(const std::vector<StudyLevel>& levels, double formal_order)
 {
     std::vector<io::StudyRow> rows;
     if (levels.empty())
@@ -77,8 +125,9 @@ std::vector<io::StudyRow> study_rows(const std::vector<StudyLevel>& levels, doub
             }
             chain.push_back(*v);
         }
-        const std::optional<Extrapolation> e = richardson(chain, assumed_order);
-        for (const StudyLevel& level : levels) {
+        const std::optional<Extrapolation> e = richardson(chain, formal_order);
+        for (std::size_t k = 0; k < levels.size(); ++k) {
+            const StudyLevel& level = levels[k];
             const auto v = value_at(level);
             if (!v)
                 continue;
@@ -89,10 +138,23 @@ std::vector<io::StudyRow> study_rows(const std::vector<StudyLevel>& levels, doub
             row.quantity = name;
             row.value = *v;
             if (e) {
+                row.estimate = support_name(e->support);
                 row.extrapolated = e->extrapolated;
                 row.observed_order = e->observed_order;
-                if (std::abs(e->extrapolated) > zero_fraction * largest)
-                    row.estimated_rel_error = std::abs(*v - e->extrapolated) / std::abs(e->extrapolated);
+                const bool relative = e->extrapolated && e->support != EstimateSupport::zero_limit &&
+                                      std::abs(*e->extrapolated) > zero_fraction * largest;
+                if (relative) {
+                    row.estimated_rel_error = std::abs(*v - *e->extrapolated) / std::abs(*e->extrapolated);
+                    row.extrapolated_rel_band = e->rel_band;
+                }
+            }
+            // The three levels ending here: in the asymptotic range or not (nothing to
+            // judge when the last two agree to the solver's noise).
+            if (k >= first + 2 && !chain.empty() &&
+                std::abs(chain[k - first] - chain[k - first - 1]) > solver_noise * std::abs(chain[k - first])) {
+                const std::size_t i = k - first;
+                const std::optional<double> p = observed_order(chain[i - 2], chain[i - 1], chain[i]);
+                row.asymptotic = p && in_asymptotic_range(*p, formal_order);
             }
             if (const auto it = level.reference_values.find(name); it != level.reference_values.end()) {
                 row.reference_value = it->second;

@@ -74,19 +74,19 @@ std::vector<RowMatrix> node_displacements(const Scene& scene, const SceneSystem&
     return out;
 }
 
-/// output.fields of every body at a converged state (`u`: node_displacements);
-/// points that could not be evaluated are reported in the log (they hold zeros).
+/// output.fields of every body at converged increment `index` (`u`: node_displacements);
+/// points that could not be evaluated hold zeros and are named in `warnings`.
 std::vector<io::BodyFields> stress_fields(const Scene& scene, const std::vector<TessellatedBody>& tessellations,
-                                          const std::vector<RowMatrix>& u, RunContext& context)
+                                          const std::vector<RowMatrix>& u, int index,
+                                          std::vector<std::string>& warnings)
 {
     std::vector<io::BodyFields> out;
     for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
         FieldsResult r = body_fields(scene.bodies[b], tessellations[b], scene.kinematics, u[b]);
         if (r.n_unevaluated > 0)
-            context.log(Verbosity::normal,
-                        fmt::format("warning: body '{}': stress not evaluable at {} tessellation point(s) "
-                                    "(det F <= 0 there); stored as 0",
-                                    scene.bodies[b].name, r.n_unevaluated));
+            warnings.push_back(fmt::format("increment {}: body '{}': stress not evaluable at {} tessellation "
+                                           "point(s) (det F <= 0 there); stored as 0",
+                                           index, scene.bodies[b].name, r.n_unevaluated));
         out.push_back(std::move(r.fields));
     }
     return out;
@@ -228,8 +228,11 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
             for (std::size_t b = 0; b < tessellations.size(); ++b)
                 step.tessellation_displacement.emplace_back(scene.bodies[b].name,
                                                             tessellation_displacement(tessellations[b], u_nodes[b]));
-        if (deck.output.fields)
-            step.fields = stress_fields(scene, tessellations, u_nodes, context);
+        if (deck.output.fields) {
+            std::vector<std::string> field_warnings;
+            step.fields = stress_fields(scene, tessellations, u_nodes, record.index, field_warnings);
+            warn(field_warnings);
+        }
         if (deck.output.every_step) {
             writer->write_step(step);
             if (deck.output.paraview)

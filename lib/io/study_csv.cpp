@@ -22,13 +22,15 @@ std::string field(const std::optional<double>& x)
 std::string study_csv(const std::vector<StudyRow>& rows, bool with_reference)
 {
     std::string out = "level,dofs,wall_s,quantity,value,extrapolated,observed_order,estimated_rel_error";
-    out += with_reference ? ",reference_value,true_rel_error\n" : "\n";
+    out += with_reference ? ",reference_value,true_rel_error" : "";
+    out += ",extrapolated_rel_band,asymptotic,estimate\n";
     for (const StudyRow& r : rows) {
         out += fmt::format("{},{},{:.4g},{},{:.10g},{},{},{}", r.level, r.dofs, r.wall_s, r.quantity, r.value,
                            field(r.extrapolated), field(r.observed_order), field(r.estimated_rel_error));
         if (with_reference)
-            out += "," + field(r.reference_value) + "," + field(r.true_rel_error);
-        out += '\n';
+            out += fmt::format(",{},{}", field(r.reference_value), field(r.true_rel_error));
+        out += fmt::format(",{},{},{}\n", field(r.extrapolated_rel_band),
+                           r.asymptotic ? (*r.asymptotic ? "1" : "0") : "", r.estimate);
     }
     return out;
 }

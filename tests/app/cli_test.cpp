@@ -387,5 +387,38 @@ TEST(Cli, SummaryJsonForEveryOutcome)
     EXPECT_NE(the_json_line(missing).find("no such deck file"), std::string::npos) << missing.out;
 }
 
+// -q silences progress, never a warning or the reason of a failure; `--summary json`
+// lists the warnings printed on stderr.
+TEST(Cli, QuietKeepsWarningsAndTheReasonOfAFailure)
+{
+    const auto dir = scratch_dir("quiet");
+    const std::string contact_deck = shell_quote(source_path("verification/bad_input/base.yaml"));
+    const std::string out = " -q -o " + shell_quote((dir / "r.h5").string());
+
+    const CliResult failed = run_cli(contact_deck + out + " --set newton.max_iterations=1 --set steps.max_cutbacks=0", dir);
+    EXPECT_EQ(failed.exit_code, 1) << failed.err;
+    EXPECT_NE(failed.err.find("igacontact: failed: "), std::string::npos) << "no reason under -q: " << failed.err;
+    EXPECT_NE(failed.err.find("Newton"), std::string::npos) << failed.err;
+
+    // A penalty of 10 (E = 1000, travel 0.01) lets the block sink through the floor:
+    // the penetration warnings, under -q as without it.
+    const CliResult soft = run_cli(contact_deck + out + " --summary json --set contact.touch.penalty=10", dir);
+    EXPECT_EQ(soft.exit_code, 0) << soft.err;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(soft.err, m, std::regex("warning: ([^\n]*)"))) << "no warning under -q: " << soft.err;
+    const std::string warning = m[1].str();
+    EXPECT_EQ(soft.err.find("results: "), std::string::npos) << "-q prints no progress: " << soft.err;
+    const std::string line = the_json_line(soft);
+    ASSERT_TRUE(std::regex_search(line, m, std::regex("\"warnings\": *\\[\"([^\"]*)"))) << line;
+    // The first list entry is the first warning line (up to the first quote, which JSON escapes).
+    EXPECT_EQ(m[1].str(), warning.substr(0, warning.find('"'))) << line;
+
+    // A clean run lists none.
+    const CliResult clean = run_cli(shell_quote(lame_deck()) + out + " --summary json", dir);
+    EXPECT_EQ(clean.exit_code, 0) << clean.err;
+    EXPECT_EQ(clean.err, "");
+    EXPECT_TRUE(std::regex_search(the_json_line(clean), std::regex("\"warnings\": *\\[\\]"))) << clean.out;
+}
+
 }  // namespace
 }  // namespace iga::test

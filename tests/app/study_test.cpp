@@ -94,13 +94,15 @@ TEST(Study, TinyHertzWritesTheDocumentedCsv)
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto rows = read_csv(dir / "tiny_study.csv");
     ASSERT_FALSE(rows.empty());
-    // The spec's columns, then the true-error columns (the deck has a reference).
+    // The spec's columns, then the true-error columns (the deck has a reference), then
+    // the band and the flags of the estimate.
     EXPECT_EQ(rows[0], (std::vector<std::string>{"level", "dofs", "wall_s", "quantity", "value", "extrapolated",
                                                  "observed_order", "estimated_rel_error", "reference_value",
-                                                 "true_rel_error"}));
+                                                 "true_rel_error", "extrapolated_rel_band", "asymptotic",
+                                                 "estimate"}));
     std::map<std::string, std::vector<std::vector<std::string>>> by_quantity;
     for (std::size_t i = 1; i < rows.size(); ++i) {
-        ASSERT_EQ(rows[i].size(), 10u) << "row " << i;
+        ASSERT_EQ(rows[i].size(), 13u) << "row " << i;
         by_quantity[rows[i][3]].push_back(rows[i]);
     }
     for (const char* q : {"normal_force:cyl_floor:cylinder.v0", "peak_pressure:cyl_floor:cylinder.v0",
@@ -130,13 +132,26 @@ TEST(Study, TinyHertzWritesTheDocumentedCsv)
     EXPECT_GT(number(peak[1][7]), number(peak[2][7]));
     const double order = number(peak[0][6]);
     EXPECT_TRUE(std::isfinite(order) && order > 0.5 && order < 3.0) << order;
+    // An observed order: the band is Roache's GCI with Fs = 1.25, |q_2 - q_extr| 1.25 times
+    // over (q_2's estimated error); the finest level says whether the order is the formal 2.
+    const double band = number(peak[0][10]);
+    constexpr double csv_digits = 1e-9;  // both written with 10 significant digits
+    EXPECT_TRUE(near_rel(band, 1.25 * number(peak[2][7]), csv_digits));
+    EXPECT_TRUE(peak[0][12] == "asymptotic" || peak[0][12] == "not_asymptotic") << peak[0][12];
+    EXPECT_EQ(peak[0][11], "");
+    EXPECT_EQ(peak[1][11], "");
+    EXPECT_EQ(peak[2][11], std::fabs(order - 2.0) <= 0.2 ? "1" : "0");
     constexpr double hertz_p0_digits = 1e-4;  // p0 = 59.1431... printed with 10 digits
     EXPECT_TRUE(near_rel(number(peak[0][8]), 59.1431, hertz_p0_digits));
     EXPECT_TRUE(std::isfinite(number(peak[0][9])));
     // The symmetry side's reaction is round-off: left out. The levels' files are in <deck>_study/.
     EXPECT_EQ(by_quantity.count("reaction:cylinder.u0:x"), 0u);
-    for (int k = 0; k < 3; ++k)
+    for (int k = 0; k < 3; ++k) {
         EXPECT_TRUE(fs::exists(dir / "tiny_study" / ("level" + std::to_string(k) + ".h5")));
+        // The level's log keeps the run's own output (stderr and stdout).
+        const std::string log = read_text(dir / "tiny_study" / ("level" + std::to_string(k) + ".log"));
+        EXPECT_NE(log.find("igacontact: completed"), std::string::npos) << "level " << k << " log: " << log;
+    }
     EXPECT_FALSE(fs::exists(dir / "tiny.h5")) << "the deck's own results file is never written";
 }
 
