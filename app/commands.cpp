@@ -22,6 +22,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <unistd.h>
 
@@ -204,8 +205,15 @@ int compare_command(int argc, char** argv)
     bool verbose = false;
     cli.add_option("reference", reference, "reference results file (REF.h5)")->required();
     cli.add_option("new", candidate, "results file to check (NEW.h5)")->required();
-    cli.add_option("--rtol", options.rtol, "relative tolerance")->capture_default_str();
-    cli.add_option("--atol", options.atol, "absolute tolerance")->capture_default_str();
+    // A tolerance below 0 (or NaN) is a usage error here, before io::compare_results asserts it.
+    const CLI::Validator non_negative(
+        [](std::string& text) {
+            const double x = std::strtod(text.c_str(), nullptr);
+            return x >= 0 ? std::string() : "must be a number >= 0, got " + text;
+        },
+        "NUMBER >= 0");
+    cli.add_option("--rtol", options.rtol, "relative tolerance")->capture_default_str()->check(non_negative);
+    cli.add_option("--atol", options.atol, "absolute tolerance")->capture_default_str()->check(non_negative);
     cli.add_option("--only", options.only, "compare only paths starting with PATH; repeatable")
         ->allow_extra_args(false);
     cli.add_flag("--all", options.include_volatile, "also compare timings, versions and wall times");
@@ -217,7 +225,7 @@ int compare_command(int argc, char** argv)
     try {
         report = io::compare_results(reference, candidate, options);
     } catch (const Error& e) {
-        std::cerr << "igacontact compare: " << e.what() << '\n';
+        std::cerr << "igacontact compare: error: " << e.what() << '\n';
         return exit_bad_input;
     }
     std::cout << io::format_report(report, verbose) << '\n';

@@ -45,7 +45,34 @@ double attribute(const io::ContactSideResult& side, const std::string& name)
     return it == side.attributes.end() ? 0.0 : it->second;
 }
 
+std::string surface_text(const io::ContactSurface& s)
+{
+    if (!s.deformable())
+        return s.body;
+    return s.body + "." + io::side_text(s.patch, s.side.value_or(Side{}), s.surface);
+}
+
 }  // namespace
+
+std::vector<std::string> duplicate_pair_warnings(const io::Deck& deck)
+{
+    std::vector<std::string> out;
+    const auto& pairs = deck.contact;
+    for (std::size_t j = 1; j < pairs.size(); ++j)
+        for (std::size_t i = 0; i < j; ++i) {
+            const io::ContactPair& a = pairs[i];
+            const io::ContactPair& b = pairs[j];
+            const bool same = (a.first == b.first && a.second == b.second) ||
+                              (a.first == b.second && a.second == b.first);
+            if (!same)
+                continue;
+            out.push_back(fmt::format("contact pairs '{}' and '{}' are both between {} and {}: each adds its own "
+                                      "contact forces, so this contact is enforced twice (remove one of them)",
+                                      a.name, b.name, surface_text(b.first), surface_text(b.second)));
+            break;  // one warning per repeated pair
+        }
+    return out;
+}
 
 std::vector<std::string> overclosure_warnings(const Scene& scene, SceneSystem& system)
 {

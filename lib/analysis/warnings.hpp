@@ -9,7 +9,9 @@
 //    the answer to mean much;
 //  - two-half-pass sides whose contact forces disagree by more than
 //    half_pass_disagreement: the two surfaces are resolved too differently
-//    (refine the coarser side), or the contact zone is barely resolved.
+//    (refine the coarser side), or the contact zone is barely resolved;
+//  - two contact pairs between the same two surfaces (in either order): each adds
+//    its own contact forces, so the contact is enforced twice (twice as stiff).
 // A body that starts entirely inside a rigid obstacle is an error, not a warning
 // (analysis/obstacles.hpp).
 
@@ -39,6 +41,9 @@ constexpr double half_pass_disagreement = 0.03;
 /// Contact forces below this fraction of E L^(d-1) (L the body size) are round-off
 /// of grazing contact, not a resolved force: no disagreement is reported for them.
 constexpr double negligible_contact_force = 1e-8;
+
+/// Warnings about contact pairs that repeat the surfaces of an earlier pair.
+std::vector<std::string> duplicate_pair_warnings(const io::Deck& deck);
 
 /// Warnings about the surfaces' overlap at load factor 0 (u = 0).
 std::vector<std::string> overclosure_warnings(const Scene& scene, SceneSystem& system);
