@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <map>
 
 namespace iga::io {
 
@@ -272,21 +273,20 @@ void Cursor::check_duplicate_keys() const
     }
     if (!is_map())
         return;
-    std::vector<std::pair<std::string, int>> seen;  // key, line of its first use
+    std::map<std::string, int> seen;  // key -> line of its first use (a map: a hostile deck may hold many keys)
     for (auto it = node_.begin(); it != node_.end(); ++it) {
         const bool command_line = command_line_ || source_->is_command_line_node(it->second);
         if (!it->first.IsScalar())
             continue;  // allow_only reports it where keys are checked
         const std::string& key = it->first.Scalar();
         const Cursor key_cursor(it->first, true, path_, it->first.Mark(), command_line, *source_, *issues_);
-        const auto first = std::find_if(seen.begin(), seen.end(), [&](const auto& s) { return s.first == key; });
-        if (first != seen.end()) {
+        if (const auto first = seen.find(key); first != seen.end()) {
             key_cursor.fail_here("duplicate key '" + key + "'" +
                                  (first->second > 0 ? " (first given at line " + std::to_string(first->second) + ")"
                                                     : std::string()));
             continue;
         }
-        seen.emplace_back(key, key_cursor.location().line);
+        seen.emplace(key, key_cursor.location().line);
         const YAML::Mark mark = it->second.IsNull() ? it->first.Mark() : it->second.Mark();
         Cursor(it->second, true, path_.empty() ? key : path_ + "." + key, mark, command_line, *source_, *issues_)
             .check_duplicate_keys();
