@@ -5,6 +5,7 @@
 #include "analysis/describe.hpp"
 #include "analysis/scene.hpp"
 #include "analysis/size_estimate.hpp"
+#include "analysis/warnings.hpp"
 #include "core/error.hpp"
 #include "core/run_context.hpp"
 #include "io/deck_reader.hpp"
@@ -172,6 +173,8 @@ int check_command(int argc, char** argv)
     const std::string bodies = analysis::describe_bodies(deck);  // also builds the geometry: may throw DeckError
     // Everything a run checks before solving (Jacobians, pairs, constraints, obstacles).
     const analysis::Scene scene = analysis::build_scene(deck);
+    for (const std::string& line : analysis::duplicate_pair_warnings(scene))  // also said by a run
+        std::cerr << "warning: " << line << '\n';
     std::cout << "# resolved deck: " << deck_path << '\n' << deck.resolved_yaml;
     if (!deck.resolved_yaml.empty() && deck.resolved_yaml.back() != '\n')
         std::cout << '\n';

@@ -23,14 +23,13 @@
 
 #include "analysis/refinement_study.hpp"
 #include "analysis/size_estimate.hpp"
+#include "core/error.hpp"
 #include "io/deck_reader.hpp"
 #include "io/study_csv.hpp"
 #include "io/study_results.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
-
-#include "core/error.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -141,8 +140,9 @@ pid_t spawn(const std::string& exe, const std::vector<std::string>& args, const 
         sigemptyset(&defaults.sa_mask);
         ::sigaction(SIGINT, &defaults, nullptr);  // default handling, whatever the study installed
         ::sigaction(SIGTERM, &defaults, nullptr);
-        const int in = ::open("/dev/null", O_RDONLY);
-        const int out = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW, 0644);
+        // Close-on-exec: only the dup2 copies (0, 1, 2) reach the level.
+        const int in = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
+        const int out = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0644);
         if (in >= 0 && out >= 0 && ::dup2(in, STDIN_FILENO) >= 0 && ::dup2(out, STDOUT_FILENO) >= 0 &&
             ::dup2(out, STDERR_FILENO) >= 0)
             ::execve(exe.c_str(), argv.data(), environ);

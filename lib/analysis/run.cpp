@@ -174,7 +174,7 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
                 options.warning(line);
         }
     };
-    warn(duplicate_pair_warnings(deck));
+    warn(duplicate_pair_warnings(scene));
     warn(overclosure_warnings(scene, system));
 
     for (const PairModel& p : scene.pairs)

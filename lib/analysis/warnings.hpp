@@ -10,8 +10,9 @@
 //  - two-half-pass sides whose contact forces disagree by more than
 //    half_pass_disagreement: the two surfaces are resolved too differently
 //    (refine the coarser side), or the contact zone is barely resolved;
-//  - two contact pairs between the same two surfaces (in either order): each adds
-//    its own contact forces, so the contact is enforced twice (twice as stiff).
+//  - two contact pairs that share a patch side on both surfaces (in either order;
+//    a named surface counts as its sides, a rigid obstacle as itself): each adds its
+//    own contact forces there, so the contact is enforced twice (twice as stiff).
 // A body that starts entirely inside a rigid obstacle is an error, not a warning
 // (analysis/obstacles.hpp).
 
@@ -42,8 +43,8 @@ constexpr double half_pass_disagreement = 0.03;
 /// of grazing contact, not a resolved force: no disagreement is reported for them.
 constexpr double negligible_contact_force = 1e-8;
 
-/// Warnings about contact pairs that repeat the surfaces of an earlier pair.
-std::vector<std::string> duplicate_pair_warnings(const io::Deck& deck);
+/// Warnings about contact pairs that act where an earlier pair acts (see above).
+std::vector<std::string> duplicate_pair_warnings(const Scene& scene);
 
 /// Warnings about the surfaces' overlap at load factor 0 (u = 0).
 std::vector<std::string> overclosure_warnings(const Scene& scene, SceneSystem& system);
