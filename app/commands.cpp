@@ -5,6 +5,7 @@
 #include "analysis/describe.hpp"
 #include "analysis/scene.hpp"
 #include "analysis/size_estimate.hpp"
+#include "analysis/warnings.hpp"
 #include "core/error.hpp"
 #include "core/run_context.hpp"
 #include "io/deck_reader.hpp"
@@ -22,6 +23,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <unistd.h>
 
@@ -172,6 +174,8 @@ int check_command(int argc, char** argv)
     const std::string bodies = analysis::describe_bodies(deck);  // also builds the geometry: may throw DeckError
     // Everything a run checks before solving (Jacobians, pairs, constraints, obstacles).
     const analysis::Scene scene = analysis::build_scene(deck);
+    for (const std::string& line : analysis::duplicate_pair_warnings(scene))  // also said by a run
+        std::cerr << "warning: " << line << '\n';
     std::cout << "# resolved deck: " << deck_path << '\n' << deck.resolved_yaml;
     if (!deck.resolved_yaml.empty() && deck.resolved_yaml.back() != '\n')
         std::cout << '\n';
@@ -205,8 +209,15 @@ int compare_command(int argc, char** argv)
     bool verbose = false;
     cli.add_option("reference", reference, "reference results file (REF.h5)")->required();
     cli.add_option("new", candidate, "results file to check (NEW.h5)")->required();
-    cli.add_option("--rtol", options.rtol, "relative tolerance")->capture_default_str();
-    cli.add_option("--atol", options.atol, "absolute tolerance")->capture_default_str();
+    // A tolerance below 0 (or NaN) is a usage error here, before io::compare_results asserts it.
+    const CLI::Validator non_negative(
+        [](std::string& text) {
+            const double x = std::strtod(text.c_str(), nullptr);
+            return x >= 0 ? std::string() : "must be a number >= 0, got " + text;
+        },
+        "NUMBER >= 0");
+    cli.add_option("--rtol", options.rtol, "relative tolerance")->capture_default_str()->check(non_negative);
+    cli.add_option("--atol", options.atol, "absolute tolerance")->capture_default_str()->check(non_negative);
     cli.add_option("--only", options.only, "compare only paths starting with PATH; repeatable")
         ->allow_extra_args(false);
     cli.add_flag("--all", options.include_volatile, "also compare timings, versions and wall times");
@@ -218,7 +229,7 @@ int compare_command(int argc, char** argv)
     try {
         report = io::compare_results(reference, candidate, options);
     } catch (const Error& e) {
-        std::cerr << "igacontact compare: " << e.what() << '\n';
+        std::cerr << "igacontact compare: error: " << e.what() << '\n';
         return exit_bad_input;
     }
     std::cout << io::format_report(report, verbose) << '\n';

@@ -6,12 +6,15 @@
 // its output in <deck>_study/level<k>.log. Up to --jobs levels run at once, a
 // level starting only while the estimated memory of the running levels fits in
 // half the machine's memory (analysis/size_estimate.hpp, times 2^(d k)). Each
-// child runs in its own process group, so a Ctrl-C reaches only this process,
+// child dies with this process (Linux: PR_SET_PDEATHSIG, also after a SIGKILL)
+// and runs in its own process group, so a Ctrl-C reaches only this process,
 // which passes one SIGINT on to the running levels (they stop after their current
 // increment, as a run does), starts no more, and still writes the table of the
 // levels that completed. A second Ctrl-C passes a second SIGINT on (the levels
 // then end at once). A failed level is reported, not fatal.
 //
+// Before anything runs, a table, plot, level results or log path that exists and is
+// not a regular file (a folder, a symbolic link, a device) is bad input (exit 2).
 // Writes <deck>_study.csv beside the deck (io/study_csv.hpp), prints the table,
 // and draws <deck>_study.png with scripts/plot_study.py (Debian's python3 with
 // matplotlib) when it can; else it says how to draw it.
@@ -20,6 +23,7 @@
 
 #include "analysis/refinement_study.hpp"
 #include "analysis/size_estimate.hpp"
+#include "core/error.hpp"
 #include "io/deck_reader.hpp"
 #include "io/study_csv.hpp"
 #include "io/study_results.hpp"
@@ -29,7 +33,9 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
+#ifdef __linux__
+#include <sys/prctl.h>
+#endif
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -86,39 +92,85 @@ struct Level {
 };
 
 /// Starts `exe args...` in its own process group, stdin from /dev/null, stdout and
-/// stderr to `log`. Returns the pid, or -1 with errno set.
+/// stderr to `log` (created afresh; a symbolic link there is not followed). On Linux
+/// the child is killed when this process dies, however it dies: a SIGKILLed study
+/// cannot pass anything on, so the kernel does (PR_SET_PDEATHSIG). Returns the pid,
+/// or -1 with errno set.
 pid_t spawn(const std::string& exe, const std::vector<std::string>& args, const fs::path& log)
 {
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-    posix_spawnattr_t attributes;
-    posix_spawnattr_init(&attributes);
-    posix_spawnattr_setpgroup(&attributes, 0);
-    // The child starts with default signal handling, whatever this process installed.
-    sigset_t defaults;
-    sigemptyset(&defaults);
-    sigaddset(&defaults, SIGINT);
-    sigaddset(&defaults, SIGTERM);
-    posix_spawnattr_setsigdefault(&attributes, &defaults);
-    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGDEF);
-    std::vector<char*> argv;
+    // Everything the child needs is built before fork(): after it, only async-signal-safe calls.
     std::vector<std::string> all = args;
     all.insert(all.begin(), exe);
+    std::vector<char*> argv;
     for (std::string& a : all)
         argv.push_back(a.data());
     argv.push_back(nullptr);
-    pid_t pid = -1;
-    const int rc = posix_spawn(&pid, exe.c_str(), &actions, &attributes, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    posix_spawnattr_destroy(&attributes);
-    if (rc != 0) {
-        errno = rc;
+    const std::string log_path = log.string();
+    const pid_t parent = ::getpid();
+    int report[2];  // the child writes errno here if exec fails; close-on-exec gives EOF on success
+    if (::pipe2(report, O_CLOEXEC) != 0)
+        return -1;
+    const pid_t pid = ::fork();
+    if (pid < 0) {
+        const int error = errno;
+        ::close(report[0]);
+        ::close(report[1]);
+        errno = error;
+        return -1;
+    }
+    if (pid == 0) {
+        ::close(report[0]);
+#ifdef __linux__
+        if (::prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || ::getppid() != parent)
+            ::_exit(127);  // the study is already gone (or cannot be followed): run nothing
+#endif
+        ::setpgid(0, 0);  // a Ctrl-C on the terminal reaches the study only, which passes it on
+        struct sigaction defaults {};
+        defaults.sa_handler = SIG_DFL;
+        sigemptyset(&defaults.sa_mask);
+        ::sigaction(SIGINT, &defaults, nullptr);  // default handling, whatever the study installed
+        ::sigaction(SIGTERM, &defaults, nullptr);
+        // Close-on-exec: only the dup2 copies (0, 1, 2) reach the level.
+        const int in = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
+        const int out = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0644);
+        if (in >= 0 && out >= 0 && ::dup2(in, STDIN_FILENO) >= 0 && ::dup2(out, STDOUT_FILENO) >= 0 &&
+            ::dup2(out, STDERR_FILENO) >= 0)
+            ::execve(exe.c_str(), argv.data(), environ);
+        const int error = errno;
+        [[maybe_unused]] const ssize_t written = ::write(report[1], &error, sizeof error);
+        ::_exit(127);
+    }
+    ::close(report[1]);
+    int child_error = 0;
+    ssize_t n = 0;
+    do
+        n = ::read(report[0], &child_error, sizeof child_error);
+    while (n < 0 && errno == EINTR);  // a Ctrl-C while the child starts
+    ::close(report[0]);
+    if (n == static_cast<ssize_t>(sizeof child_error)) {
+        ::waitpid(pid, nullptr, 0);
+        errno = child_error;
         return -1;
     }
     return pid;
+}
+
+/// Throws, as bad input located at `path`, if it exists and is not a regular file:
+/// the study writes `path` (what) and would fail after running every level.
+void check_study_file(const fs::path& path, const std::string& what)
+{
+    std::error_code ec;
+    const fs::file_status status = fs::symlink_status(path, ec);
+    if (ec || status.type() == fs::file_type::not_found || status.type() == fs::file_type::regular)
+        return;
+    const std::string kind = status.type() == fs::file_type::directory ? "a folder"
+                             : status.type() == fs::file_type::symlink ? "a symbolic link"
+                                                                        : "a device, FIFO or socket";
+    DeckIssue issue;
+    issue.where.file = path.string();
+    issue.reason = "is " + kind + ", not a regular file: the study writes " + what +
+                   " there; nothing was run. Move it away and run the study again";
+    throw DeckError(std::move(issue));
 }
 
 std::string self_executable()
@@ -245,6 +297,19 @@ int study_command(int argc, char** argv)
     const fs::path study_dir = folder / (stem + "_study");
     const fs::path csv = folder / (stem + "_study.csv");
     const fs::path png = folder / (stem + "_study.png");
+    // Every file the study writes, checked before anything runs or is created.
+    check_study_file(csv, "its table");
+    check_study_file(png, "its plot");
+    if (std::error_code e; fs::exists(study_dir, e) && !fs::is_directory(study_dir, e)) {
+        DeckIssue issue;
+        issue.where.file = study_dir.string();
+        issue.reason = "is not a folder: the study keeps the levels' results and logs there; nothing was run";
+        throw DeckError(std::move(issue));
+    }
+    for (int k = 0; k < n_levels; ++k) {
+        check_study_file(study_dir / fmt::format("level{}.h5", k), fmt::format("the results of level {}", k));
+        check_study_file(study_dir / fmt::format("level{}.log", k), fmt::format("the log of level {}", k));
+    }
     std::error_code ec;
     fs::create_directories(study_dir, ec);
     if (ec)
@@ -306,7 +371,7 @@ int study_command(int argc, char** argv)
                     l.message = std::string("cannot start ") + exe + ": " + std::strerror(errno);
                 } else {
                     running.push_back(next);
-                    say(fmt::format("study: level {} started (estimated memory {:.3g} MB)", l.index,
+                    say(fmt::format("study: level {} started (pid {}, estimated memory {:.3g} MB)", l.index, l.pid,
                                     l.memory_bytes / 1e6));
                 }
                 ++next;

@@ -174,6 +174,7 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
                 options.warning(line);
         }
     };
+    warn(duplicate_pair_warnings(scene));
     warn(release_initial_overclosure(scene, system));
 
     for (const PairModel& p : scene.pairs)

@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
+#include <set>
 
 namespace iga::analysis {
 
@@ -45,7 +47,56 @@ double attribute(const io::ContactSideResult& side, const std::string& name)
     return it == side.attributes.end() ? 0.0 : it->second;
 }
 
+/// The pieces a contact surface covers: "body.patch_side" per side of a deformable
+/// surface (a named surface counts as its sides), the body's name for a rigid one.
+std::set<std::string> surface_pieces(const Scene& scene, const PairModel& pair, int k)
+{
+    const int body = pair.body[static_cast<std::size_t>(k)];
+    if (body < 0)
+        return {pair.label[static_cast<std::size_t>(k)]};
+    std::set<std::string> out;
+    for (const std::string& piece : pair.piece_label[static_cast<std::size_t>(k)])
+        out.insert(scene.bodies[static_cast<std::size_t>(body)].name + "." + piece);
+    return out;
+}
+
+/// A piece both sets hold, or "" if none.
+std::string common_piece(const std::set<std::string>& a, const std::set<std::string>& b)
+{
+    for (const std::string& x : a)
+        if (b.count(x))
+            return x;
+    return {};
+}
+
 }  // namespace
+
+std::vector<std::string> duplicate_pair_warnings(const Scene& scene)
+{
+    std::vector<std::string> out;
+    const auto& pairs = scene.pairs;
+    std::vector<std::array<std::set<std::string>, 2>> pieces;
+    for (const PairModel& p : pairs)
+        pieces.push_back({surface_pieces(scene, p, 0), surface_pieces(scene, p, 1)});
+    for (std::size_t j = 1; j < pairs.size(); ++j)
+        for (std::size_t i = 0; i < j; ++i) {
+            const auto& a = pieces[i];
+            const auto& b = pieces[j];
+            // The same two pieces in either order: both pairs act there.
+            std::string first = common_piece(a[0], b[0]), second = common_piece(a[1], b[1]);
+            if (first.empty() || second.empty()) {
+                first = common_piece(a[0], b[1]);
+                second = common_piece(a[1], b[0]);
+            }
+            if (first.empty() || second.empty())
+                continue;
+            out.push_back(fmt::format("contact pairs '{}' and '{}' both act between {} and {}: each adds its own "
+                                      "contact forces, so this contact is enforced twice (remove one of them)",
+                                      pairs[i].name, pairs[j].name, first, second));
+            break;  // one warning per repeating pair
+        }
+    return out;
+}
 
 std::vector<std::string> release_initial_overclosure(Scene& scene, SceneSystem& system)
 {

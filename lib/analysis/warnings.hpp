@@ -10,7 +10,10 @@
 //    the answer to mean much;
 //  - two-half-pass sides whose contact forces disagree by more than
 //    half_pass_disagreement: the two surfaces are resolved too differently
-//    (refine the coarser side), or the contact zone is barely resolved.
+//    (refine the coarser side), or the contact zone is barely resolved;
+//  - two contact pairs that share a patch side on both surfaces (in either order;
+//    a named surface counts as its sides, a rigid obstacle as itself): each adds its
+//    own contact forces there, so the contact is enforced twice (twice as stiff).
 // A body that starts entirely inside a rigid obstacle is an error, not a warning
 // (analysis/obstacles.hpp).
 
@@ -40,6 +43,9 @@ constexpr double half_pass_disagreement = 0.03;
 /// Contact forces below this fraction of E L^(d-1) (L the body size) are round-off
 /// of grazing contact, not a resolved force: no disagreement is reported for them.
 constexpr double negligible_contact_force = 1e-8;
+
+/// Warnings about contact pairs that act where an earlier pair acts (see above).
+std::vector<std::string> duplicate_pair_warnings(const Scene& scene);
 
 /// The surfaces' overlap at load factor 0 (u = 0): every Gauss point deeper than
 /// overclosure_tolerance of the model size gets it as its initial overlap, released

@@ -371,21 +371,34 @@ std::optional<RigidPlane> read_plane(const Cursor& plane, int dim)
     const auto n = normal->to_numbers(dim);
     if (!n)
         return r;
-    double norm2 = 0.0;
+    double largest = 0.0;
     for (double x : *n)
-        norm2 += x * x;
-    const double norm = std::sqrt(norm2);
-    if (!(norm > 0)) {
+        largest = std::max(largest, std::abs(x));
+    if (!(largest > 0)) {
         normal->fail("must have non-zero length");
         return r;
     }
+    double norm2 = 0.0;
+    for (double x : *n)
+        norm2 += x * x;
+    // The sum of squares overflows beyond about 1e154 and underflows below 1e-154:
+    // there, divide by the largest entry first (every finite non-zero normal is valid).
+    const bool representable = std::isfinite(norm2) && norm2 >= std::numeric_limits<double>::min();
+    double scale = 1.0;
+    if (!representable) {
+        scale = largest;
+        norm2 = 0.0;
+        for (double x : *n)
+            norm2 += (x / scale) * (x / scale);
+    }
+    const double norm = std::sqrt(norm2);  // of n / scale
     r.normal = *n;
     // A normal of unit length up to round-off is kept as written, so that the
     // resolved deck reads back bit-identical (renormalizing may move the last bit).
     constexpr double unit_length_slack = 4 * std::numeric_limits<double>::epsilon();
-    if (std::abs(norm - 1.0) > unit_length_slack)
+    if (!representable || std::abs(norm - 1.0) > unit_length_slack)
         for (double& x : r.normal)
-            x /= norm;
+            x = x / scale / norm;
     return r;
 }
 

@@ -523,9 +523,9 @@ Deck read_tree(const Cursor& root, const std::string& file_label, const std::str
 Deck read_deck_text(const std::string& yaml_text, const std::string& file_label, const std::string& deck_dir,
                     const std::vector<std::string>& set_overrides)
 {
-    YAML::Node root;
+    std::vector<YAML::Node> documents;
     try {
-        root = YAML::Load(yaml_text);
+        documents = YAML::LoadAll(yaml_text);
     } catch (const YAML::Exception& e) {
         const bool located = e.mark.line >= 0;
         throw DeckError(DeckIssue{{file_label, located ? e.mark.line + 1 : 0, located ? e.mark.column + 1 : 0},
@@ -533,10 +533,21 @@ Deck read_deck_text(const std::string& yaml_text, const std::string& file_label,
                                   "",
                                   "invalid YAML: " + e.msg});
     }
+    if (documents.size() > 1) {  // a reader that kept the first would drop the rest without a word
+        const YAML::Mark mark = documents[1].Mark();
+        const bool located = mark.line >= 0;
+        throw DeckError(DeckIssue{{file_label, located ? mark.line + 1 : 0, located ? mark.column + 1 : 0},
+                                  "",
+                                  "",
+                                  "a second YAML document ('---'): a deck is one document"});
+    }
+    YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
     DeckSource source(file_label);
     IssueList issues;
     apply_overrides(root, set_overrides, source, issues);
-    Deck deck = read_tree(Cursor(root, source, issues), file_label, deck_dir);
+    const Cursor root_cursor(root, source, issues);
+    root_cursor.check_duplicate_keys();  // anywhere, also inside --set values
+    Deck deck = read_tree(root_cursor, file_label, deck_dir);
     issues.throw_if_any();
     deck.source_file = file_label;
     deck.resolved_yaml = write_resolved_yaml(deck);

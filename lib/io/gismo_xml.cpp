@@ -11,8 +11,10 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <optional>
+#include <set>
 #include <string_view>
 
 namespace iga::io {
@@ -306,33 +308,22 @@ std::optional<NurbsData> read_geometry(const XMLElement* g, const std::string& p
     if (!knot_vectors)
         return std::nullopt;
 
+    // The knot vectors imply the control point count; the file must hold that many
+    // numbers. Nothing of that size is allocated before the count is checked against
+    // what <coefs> actually holds (a few knots can imply billions of control points).
     NurbsData nurbs;
     std::size_t n_cp = 1;
+    bool n_cp_overflows = false;
     std::string product;
     for (const auto& [degree, knots] : *knot_vectors) {
-        const std::size_t n_basis = knots.size() - static_cast<std::size_t>(degree) - 1;
-        n_cp *= n_basis;
+        const std::size_t n_basis = knots.size() - static_cast<std::size_t>(degree) - 1;  // >= p + 1: checked
+        if (n_cp > std::numeric_limits<std::size_t>::max() / n_basis)
+            n_cp_overflows = true;
+        else
+            n_cp *= n_basis;
         product += (product.empty() ? "" : " x ") + std::to_string(n_basis);
         nurbs.degrees.push_back(degree);
         nurbs.knots.push_back(knots);
-    }
-
-    const std::size_t before = issues.count();
-    std::vector<double> w(n_cp, 1.0);
-    if (weights) {
-        const auto values = numbers(weights, path + ".weights", issues);
-        if (values && values->size() != n_cp)
-            issues.add(weights->GetLineNum(), path + ".weights", "",
-                       fmt::format("expected {} weights ({} control points from the knot vectors), got {}", n_cp,
-                                   product, values->size()));
-        else if (values)
-            for (std::size_t i = 0; i < n_cp; ++i) {
-                const Number& v = (*values)[i];
-                if (!(v.value > 0))
-                    issues.add(v.word.line, path + ".weights", std::string(v.word.text),
-                               fmt::format("weight {} (control point {}) must be > 0", i + 1, i + 1));
-                w[i] = v.value;
-            }
     }
 
     const XMLElement* coefs = g->FirstChildElement("coefs");
@@ -355,12 +346,34 @@ std::optional<NurbsData> read_geometry(const XMLElement* g, const std::string& p
     if (!values)
         return std::nullopt;
     const std::size_t d = static_cast<std::size_t>(*geo_dim);
-    if (values->size() != n_cp * d) {
+    if (n_cp_overflows || n_cp > values->size() / d || values->size() != n_cp * d) {
         issues.add(coefs->GetLineNum(), path + ".coefs", "",
-                   fmt::format("expected {} numbers ({} control points from the knot vectors, {} coordinates each), "
-                               "got {}",
-                               n_cp * d, product, d, values->size()));
+                   n_cp_overflows
+                       ? fmt::format("the knot vectors give {} control points, more than any file holds; got {} "
+                                     "numbers",
+                                     product, values->size())
+                       : fmt::format("expected {} numbers ({} control points from the knot vectors, {} coordinates "
+                                     "each), got {}",
+                                     n_cp * d, product, d, values->size()));
         return std::nullopt;
+    }
+
+    const std::size_t before = issues.count();
+    std::vector<double> w(n_cp, 1.0);  // n_cp <= the numbers in the file: checked above
+    if (weights) {
+        const auto weight_values = numbers(weights, path + ".weights", issues);
+        if (weight_values && weight_values->size() != n_cp)
+            issues.add(weights->GetLineNum(), path + ".weights", "",
+                       fmt::format("expected {} weights ({} control points from the knot vectors), got {}", n_cp,
+                                   product, weight_values->size()));
+        else if (weight_values)
+            for (std::size_t i = 0; i < n_cp; ++i) {
+                const Number& v = (*weight_values)[i];
+                if (!(v.value > 0))
+                    issues.add(v.word.line, path + ".weights", std::string(v.word.text),
+                               fmt::format("weight {} (control point {}) must be > 0", i + 1, i + 1));
+                w[i] = v.value;
+            }
     }
     static constexpr const char* axis = "xyz";
     for (std::size_t i = 0; i < n_cp; ++i) {
@@ -392,9 +405,12 @@ struct GeometryEntry {
     std::string path;  ///< Geometry(id=...) for messages
 };
 
-/// The patch ids the <MultiPatch> lists, in its order, each with the line that names it,
+/// The patch ids the <MultiPatch> lists (`file_ids`: the Geometry ids of the file), in its
+/// order, each with the line that names it,
 /// or nullopt after recording why not.
-std::optional<std::vector<std::pair<int, int>>> multipatch_ids(const XMLElement* mp, int dim, Issues& issues)
+std::optional<std::vector<std::pair<int, int>>> multipatch_ids(const XMLElement* mp, int dim,
+                                                               const std::map<int, std::size_t>& file_ids,
+                                                               Issues& issues)
 {
     const std::size_t before = issues.count();
     if (mp->Attribute("parDim"))
@@ -431,14 +447,22 @@ std::optional<std::vector<std::pair<int, int>>> multipatch_ids(const XMLElement*
                        "id_range takes two ids, first <= last (both included)");
             return std::nullopt;
         }
-        for (int id = listed[0].first; id <= listed[1].first; ++id)
-            ids.emplace_back(id, patches->GetLineNum());
+        // 64-bit: `last` may be INT_MAX, where an int counter would overflow. A range
+        // longer than the file's list of ids stops at its first id not in the file
+        // (reported by the caller): nothing of the range's size is built.
+        const long long first = listed[0].first, last = listed[1].first;
+        const bool too_long = last - first + 1 > static_cast<long long>(file_ids.size());
+        for (long long id = first; id <= last; ++id) {
+            ids.emplace_back(static_cast<int>(id), patches->GetLineNum());
+            if (too_long && file_ids.count(static_cast<int>(id)) == 0)
+                break;
+        }
     } else {
         if (listed.empty())
             issues.add(patches->GetLineNum(), "MultiPatch.patches", "", "id_index lists no Geometry id");
+        std::set<int> seen;  // a set: a long list must not take quadratic time
         for (const auto& [id, w] : listed) {
-            if (std::find_if(ids.begin(), ids.end(), [id = id](const auto& seen) { return seen.first == id; }) !=
-                ids.end())
+            if (!seen.insert(id).second)
                 issues.add(w.line, "MultiPatch.patches", std::string(w.text), "Geometry id listed twice");
             ids.emplace_back(id, w.line);
         }
@@ -446,6 +470,25 @@ std::optional<std::vector<std::pair<int, int>>> multipatch_ids(const XMLElement*
     if (issues.count() != before)
         return std::nullopt;
     return ids;
+}
+
+/// Why `path` cannot be read as a file, checked before opening it (a FIFO would
+/// block the reader); "" for a regular file.
+std::string not_a_file(const std::string& path)
+{
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::file_status status = fs::status(path, ec);  // follows symbolic links
+    switch (status.type()) {
+    case fs::file_type::regular: return {};
+    case fs::file_type::not_found: return "no such file";
+    case fs::file_type::directory: return "it is a folder, not a file";
+    case fs::file_type::fifo: return "it is a FIFO (named pipe), not a file";
+    case fs::file_type::character:
+    case fs::file_type::block: return "it is a device, not a file";
+    case fs::file_type::socket: return "it is a socket, not a file";
+    default: return ec ? ec.message() : std::string("not a regular file");
+    }
 }
 
 std::string describe_parse_error(const XMLDocument& doc)
@@ -468,9 +511,8 @@ std::string describe_parse_error(const XMLDocument& doc)
 std::vector<ImportedPatch> read_gismo_xml(const std::string& path, int dimension)
 {
     Issues issues(path);
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) {
-        issues.add(0, "", "", "cannot read the G+Smo XML file: no such file");
+    if (const std::string problem = not_a_file(path); !problem.empty()) {
+        issues.add(0, "", "", "cannot read the G+Smo XML file: " + problem);
         issues.throw_if_any();
     }
     XMLDocument doc;  // whitespace preserved: line numbers inside texts stay exact
@@ -524,7 +566,7 @@ std::vector<ImportedPatch> read_gismo_xml(const std::string& path, int dimension
             issues.add(second->GetLineNum(), "MultiPatch", "",
                        fmt::format("a second <MultiPatch> (the first is at line {}): a body reads one multi-patch",
                                    mp->GetLineNum()));
-        if (const auto ids = multipatch_ids(mp, dimension, issues)) {
+        if (const auto ids = multipatch_ids(mp, dimension, by_id, issues)) {
             std::vector<std::string> known;
             for (const auto& [id, position] : by_id)
                 known.push_back(std::to_string(id));

@@ -42,6 +42,23 @@ bool is_folder(const std::string& path)
     return fs::is_directory(path, error);
 }
 
+/// What an existing path that is neither a regular file nor a folder is ("" otherwise):
+/// writing there would replace a device, a FIFO or a socket by a regular file.
+std::string special_kind(const std::string& path)
+{
+    std::error_code error;
+    const fs::file_status status = fs::status(path, error);  // follows symbolic links
+    if (error)
+        return {};
+    switch (status.type()) {
+    case fs::file_type::character: return "a character device";
+    case fs::file_type::block: return "a block device";
+    case fs::file_type::fifo: return "a FIFO (named pipe)";
+    case fs::file_type::socket: return "a socket";
+    default: return {};
+    }
+}
+
 }  // namespace
 
 bool same_file(const std::string& a, const std::string& b)
@@ -57,8 +74,15 @@ bool same_file(const std::string& a, const std::string& b)
 
 std::vector<std::string> input_files(const Deck& deck)
 {
-    // Files named inside the deck (G+Smo geometry) join this list when the reader has them.
-    return {deck.source_file};
+    std::vector<std::string> files{deck.source_file};
+    // geometry.file is written relative to the deck's folder (io/deck.hpp).
+    const fs::path deck_dir = fs::path(deck.source_file).parent_path();
+    for (const Body& body : deck.bodies)
+        if (!body.geometry_file.empty()) {
+            const fs::path file(body.geometry_file);
+            files.push_back((file.is_absolute() ? file : deck_dir / file).lexically_normal().string());
+        }
+    return files;
 }
 
 OutputOrigin output_origin(bool o_option_given, const std::vector<std::string>& set_overrides)
@@ -98,6 +122,9 @@ void check_output_paths(const Deck& deck, const std::vector<std::string>& inputs
     if (is_folder(results))
         refuse("cannot create results file " + results + ": '" + results + "' is a folder, not a file" +
                (o_option ? " (the -o option)" : ""));
+    if (const std::string kind = special_kind(results); !kind.empty())
+        refuse("cannot create results file " + results + ": '" + results + "' is " + kind +
+               ", not a regular file; nothing was written. Choose another results file");
     for (const std::string& input : inputs)
         if (same_file(results, input))
             refuse(results_file + " would replace " + input_role(input) + choose);
@@ -106,6 +133,9 @@ void check_output_paths(const Deck& deck, const std::vector<std::string>& inputs
     const std::string xdmf = xdmf_path(results);
     if (is_folder(xdmf))
         refuse("the ParaView index " + xdmf + " (output.paraview) of " + results_file + " is a folder, not a file");
+    if (const std::string kind = special_kind(xdmf); !kind.empty())
+        refuse("the ParaView index " + xdmf + " (output.paraview) of " + results_file + " is " + kind +
+               ", not a regular file" + choose);
     for (const std::string& input : inputs)
         if (same_file(xdmf, input))
             refuse("the ParaView index " + xdmf + " (output.paraview) of " + results_file + " would replace " +

@@ -5,7 +5,8 @@
 // finish() renames onto it, and with output.paraview the XDMF index beside it
 // (xdmf_path). Before anything is built or written, check_output_paths refuses,
 // as bad input (DeckError, exit 2), a results or XDMF path that is an input of the
-// run (the deck itself; later, geometry files the deck reads) or a folder. Paths
+// run (the deck itself, the G+Smo XML geometry files it reads), a folder, or an
+// existing device, FIFO or socket (the rename would replace it by a file). Paths
 // are compared as files, not as strings: std::filesystem::equivalent when both
 // exist (symlinks, hard links, "./deck.yaml" vs "deck.yaml"), else the same
 // normalized absolute path with the symlinks of its existing part resolved.
@@ -23,7 +24,8 @@ std::string xdmf_path(const std::string& results_file);
 /// True if the two paths name the same file (see the header paragraph).
 bool same_file(const std::string& a, const std::string& b);
 
-/// The files a deck makes a run read: the deck itself (Deck::source_file).
+/// The files a deck makes a run read: the deck itself (Deck::source_file) and each
+/// body's geometry.file, resolved against the deck's folder.
 std::vector<std::string> input_files(const Deck& deck);
 
 /// Where output.file came from, for the location of the message.
@@ -38,7 +40,7 @@ OutputOrigin output_origin(bool o_option_given, const std::vector<std::string>& 
 
 /// Throws DeckError, located at output.file in the deck, at "<command line>" for --set,
 /// or naming the -o option, if the results file or (with output.paraview) its XDMF
-/// index is one of `inputs` or a folder. Touches nothing.
+/// index is one of `inputs`, a folder or an existing non-regular file. Touches nothing.
 void check_output_paths(const Deck& deck, const std::vector<std::string>& inputs, OutputOrigin origin);
 
 }  // namespace iga::io

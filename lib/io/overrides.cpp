@@ -245,13 +245,20 @@ void apply_overrides(YAML::Node& root, const std::vector<std::string>& set_overr
             continue;
         }
         const std::string text = argument.substr(equals + 1);
-        YAML::Node value;
+        std::vector<YAML::Node> documents;
         try {
-            value = YAML::Load(text);
+            documents = YAML::LoadAll(text);
         } catch (const YAML::Exception& e) {
             issues.add(DeckIssue{command_line, path, text, "not valid YAML (" + e.msg + ")"});
             continue;
         }
+        if (documents.size() > 1) {
+            issues.add(DeckIssue{command_line, path, text,
+                                 "holds more than one YAML document ('---' or '...' on a line of its own): a value "
+                                 "is one document"});
+            continue;
+        }
+        const YAML::Node value = documents.empty() ? YAML::Node() : documents.front();
         if (!root.IsDefined() || root.IsNull())
             root = YAML::Node(YAML::NodeType::Map);
         if (!root.IsMap()) {

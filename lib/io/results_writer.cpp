@@ -58,6 +58,9 @@ std::string folder_problem(const std::string& path)
     // Found here, not at the final rename: else a whole solve would be lost to it.
     if (fs::is_directory(path, error))
         return "'" + path + "' is a folder, not a file";
+    // The final rename would replace a device, FIFO or socket by a regular file.
+    if (fs::exists(path, error) && !fs::is_regular_file(path, error))
+        return "'" + path + "' is a device, FIFO or socket, not a regular file";
     return {};
 }
 

@@ -38,16 +38,21 @@ std::string study_csv(const std::vector<StudyRow>& rows, bool with_reference)
 void write_study_csv(const std::string& path, const std::vector<StudyRow>& rows, bool with_reference)
 {
     const std::string temporary = path + ".tmp-" + std::to_string(::getpid());
+    std::error_code ec;
     {
         std::ofstream out(temporary, std::ios::binary);
         out << study_csv(rows, with_reference);
-        if (!out)
+        if (!out) {
+            std::filesystem::remove(temporary, ec);  // nothing left behind
             throw Error("cannot write " + temporary);
+        }
     }
-    std::error_code ec;
     std::filesystem::rename(temporary, path, ec);
-    if (ec)
-        throw Error("cannot rename " + temporary + " to " + path + ": " + ec.message());
+    if (ec) {
+        const std::string why = ec.message();
+        std::filesystem::remove(temporary, ec);
+        throw Error("cannot rename " + temporary + " to " + path + ": " + why);
+    }
 }
 
 }  // namespace iga::io

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <map>
 
 namespace iga::io {
 
@@ -246,7 +247,6 @@ bool Cursor::allow_only(std::initializer_list<std::string_view> keys) const
     if (!expect_map())
         return false;
     const std::vector<std::string> known(keys.begin(), keys.end());
-    std::vector<std::pair<std::string, int>> seen;  // key, line of its first use
     for (auto it = node_.begin(); it != node_.end(); ++it) {
         const bool command_line = command_line_ || source_->is_command_line_node(it->second);
         const Cursor key_cursor(it->first, true, path_, it->first.Mark(), command_line, *source_, *issues_);
@@ -259,17 +259,38 @@ bool Cursor::allow_only(std::initializer_list<std::string_view> keys) const
             const std::string hint = did_you_mean(key, known);
             key_cursor.fail_here("unknown key '" + key + "'" +
                                  (hint.empty() ? " (known keys: " + join_names(known) + ")" : hint));
-            continue;
         }
-        const auto first = std::find_if(seen.begin(), seen.end(), [&](const auto& s) { return s.first == key; });
-        if (first != seen.end())
+    }
+    return true;
+}
+
+void Cursor::check_duplicate_keys() const
+{
+    if (is_list()) {
+        for (const Cursor& c : items())
+            c.check_duplicate_keys();
+        return;
+    }
+    if (!is_map())
+        return;
+    std::map<std::string, int> seen;  // key -> line of its first use (a map: a hostile deck may hold many keys)
+    for (auto it = node_.begin(); it != node_.end(); ++it) {
+        const bool command_line = command_line_ || source_->is_command_line_node(it->second);
+        if (!it->first.IsScalar())
+            continue;  // allow_only reports it where keys are checked
+        const std::string& key = it->first.Scalar();
+        const Cursor key_cursor(it->first, true, path_, it->first.Mark(), command_line, *source_, *issues_);
+        if (const auto first = seen.find(key); first != seen.end()) {
             key_cursor.fail_here("duplicate key '" + key + "'" +
                                  (first->second > 0 ? " (first given at line " + std::to_string(first->second) + ")"
                                                     : std::string()));
-        else
-            seen.emplace_back(key, key_cursor.location().line);
+            continue;
+        }
+        seen.emplace(key, key_cursor.location().line);
+        const YAML::Mark mark = it->second.IsNull() ? it->first.Mark() : it->second.Mark();
+        Cursor(it->second, true, path_.empty() ? key : path_ + "." + key, mark, command_line, *source_, *issues_)
+            .check_duplicate_keys();
     }
-    return true;
 }
 
 std::optional<std::string> Cursor::scalar(const char* expected) const
@@ -304,9 +325,15 @@ std::optional<int> Cursor::to_integer() const
     if (!text)
         return std::nullopt;
     const auto value = parse_number(*text);
-    // Accept 3 and 3.0; reject 2.5, NaN, and anything an int cannot hold.
-    if (!value || !(std::abs(*value) <= std::numeric_limits<int>::max()) || *value != std::floor(*value)) {
+    // Accept 3 and 3.0; reject 2.5, NaN and infinity; an integer an int cannot hold is out of range.
+    if (!value || !std::isfinite(*value) || *value != std::floor(*value)) {
         fail("expected an integer");
+        return std::nullopt;
+    }
+    constexpr int limit = std::numeric_limits<int>::max();
+    if (std::abs(*value) > limit) {
+        fail(*value > 0 ? "out of range: an integer here is at most " + std::to_string(limit)
+                        : "out of range: an integer here is at least -" + std::to_string(limit));
         return std::nullopt;
     }
     return static_cast<int>(*value);

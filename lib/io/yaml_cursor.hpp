@@ -109,8 +109,12 @@ public:
     /// Checks that this is a list (records an issue if not).
     bool expect_list() const;
     /// Checks that this is a map whose keys are all in `keys`: records an issue
-    /// for each unknown key (with "did you mean") and each duplicate key.
+    /// for each unknown key (with "did you mean").
     bool allow_only(std::initializer_list<std::string_view> keys) const;
+    /// Records an issue at every key that repeats an earlier key of the same map, in
+    /// this node and everything below it (YAML readers keep the first and drop the
+    /// rest without a word; yaml-cpp keeps both, so they can be found here).
+    void check_duplicate_keys() const;
     /// The scalar keys of this map, in file order (empty for anything else).
     std::vector<std::string> keys() const;
 

@@ -80,6 +80,34 @@ TEST(Warnings, HalfPassDisagreementIsReported)
     EXPECT_NE(all.find("half passes disagree"), std::string::npos) << coarse.status << ": " << all;
 }
 
+TEST(Warnings, RepeatedContactPairIsReported)
+{
+    // The same two surfaces twice (the second in the other order), and a named surface
+    // against one of its own sides: each pair adds its own contact forces, so the
+    // contact is enforced twice. Said in the run's warnings.
+    const auto dir = scratch_dir("warnings_repeated_pair");
+    const auto outcome = run_deck(source_path("verification/bad_input/base.yaml"),
+                                  {"contact=[{name: touch, between: [block.v0, floor], penalty: 1.0e4}, "
+                                   "{name: again, between: [floor, block.v0], penalty: 1.0e4}]"},
+                                  dir / "run.h5");
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    const std::string expected = "contact pairs 'touch' and 'again' both act between block.v0 and floor";
+    EXPECT_NE(joined(outcome.warnings).find(expected), std::string::npos) << joined(outcome.warnings);
+    EXPECT_NE(Results(dir / "run.h5").text("/", "warnings").find(expected), std::string::npos);
+    const auto named = run_deck(source_path("verification/bad_input/base.yaml"),
+                                {"bodies.block.surfaces={bottom: [v0]}",
+                                 "contact=[{name: touch, between: [block.bottom, floor], penalty: 1.0e4}, "
+                                 "{name: again, between: [block.v0, floor], penalty: 1.0e4}]"},
+                                dir / "named.h5");
+    EXPECT_NE(joined(named.warnings).find(expected), std::string::npos) << joined(named.warnings);
+    // Two different sides of one body against the floor are two pairs, not a repeat.
+    const auto distinct = run_deck(source_path("verification/bad_input/base.yaml"),
+                                   {"contact=[{name: touch, between: [block.v0, floor], penalty: 1.0e4}, "
+                                    "{name: other, between: [block.u1, floor], penalty: 1.0e4}]"},
+                                   dir / "distinct.h5");
+    EXPECT_EQ(joined(distinct.warnings).find("both act between"), std::string::npos) << joined(distinct.warnings);
+}
+
 TEST(Warnings, FlippedPlaneIsAnError)
 {
     io::Deck deck = io::read_deck(source_path("inputs/hertz.yaml"), {"bodies.floor.rigid.plane.normal=[0, -1]"});

@@ -14,6 +14,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -224,6 +225,58 @@ TEST(Study, SigintKeepsTheFinishedLevels)
     for (std::size_t i = 1; i < rows.size(); ++i)
         EXPECT_TRUE(rows[i][0] == "0" || rows[i][0] == "1" || rows[i][0] == "2") << rows[i][0];
     EXPECT_TRUE(fs::exists(dir / "stretch_study" / "level3.h5"));
+}
+
+/// True while `pid` runs: it exists and is not a zombie (a dead child not yet reaped).
+bool running(pid_t pid)
+{
+    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+    std::string line;
+    if (!std::getline(stat, line))
+        return false;
+    const auto paren = line.rfind(')');  // "pid (name) S ...": the state follows the name
+    return paren != std::string::npos && paren + 2 < line.size() && line[paren + 2] != 'Z';
+}
+
+TEST(Study, LevelsDieWithAKilledStudy)
+{
+    // SIGKILL cannot be caught or passed on: the running level must still end with
+    // the study (its own process group keeps it from the terminal's Ctrl-C, so
+    // nothing else would stop it). 100000 increments keep level 0 busy for minutes.
+    const fs::path dir = scratch_dir("study_sigkill");
+    const fs::path deck = dir / "stretch.yaml";
+    fs::copy_file(std::string(IGA_SOURCE_DIR) + "/inputs/block_stretch_finite_2d.yaml", deck);
+    const fs::path err = dir / "stderr.txt";
+    const pid_t study = ::fork();
+    if (study == 0) {
+        std::freopen(err.c_str(), "w", stderr);
+        std::freopen((dir / "stdout.txt").c_str(), "w", stdout);
+        const std::string exe = cli_path(), deck_arg = deck.string();
+        ::execl(exe.c_str(), exe.c_str(), "study", deck_arg.c_str(), "--levels", "1", "--set", "steps.count=100000",
+                "--set", "steps.adaptive=false", static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    ASSERT_GT(study, 0);
+    const std::string started = "level 0 started (pid ";
+    const auto deadline = std::chrono::steady_clock::now() + 60s;
+    std::string log;
+    while (std::chrono::steady_clock::now() < deadline && log.find(started) == std::string::npos) {
+        std::this_thread::sleep_for(20ms);
+        log = read_text(err);
+    }
+    const auto at = log.find(started);
+    const pid_t level = at == std::string::npos ? -1 : std::atoi(log.c_str() + at + started.size());
+    ::kill(study, SIGKILL);
+    ::waitpid(study, nullptr, 0);
+    ASSERT_GT(level, 0) << log;
+    constexpr auto grace = 5s;  // the kernel signals at once; this only absorbs a loaded machine
+    const auto until = std::chrono::steady_clock::now() + grace;
+    while (running(level) && std::chrono::steady_clock::now() < until)
+        std::this_thread::sleep_for(20ms);
+    const bool survived = running(level);
+    if (survived)
+        ::kill(level, SIGKILL);  // leave nothing running
+    EXPECT_FALSE(survived) << "level 0 (pid " << level << ") kept running after the study was killed";
 }
 
 }  // namespace

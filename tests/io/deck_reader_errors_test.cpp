@@ -171,6 +171,45 @@ TEST(DeckReaderErrors, DuplicateKeysAndNames)
                   "materials)"}));
 }
 
+/// Duplicate keys anywhere (any map, flow or block, any depth, also in --set values),
+/// and YAML documents after the first: a YAML reader keeps one value and drops the
+/// rest without a word (a surface given twice acted on half of itself).
+TEST(DeckReaderErrors, DuplicateKeysAnywhereAndSecondDocuments)
+{
+    const std::string shape = "    shape: {type: rectangle, corner: [0, 0], size: [2, 1]}\n";
+    struct Row {
+        const char* name;
+        std::string deck;
+        std::vector<std::string> sets;
+        std::string expected;
+    };
+    const std::vector<Row> rows = {
+        {"surface twice, flow map", replaced(minimal_deck, shape, shape + "    surfaces: {bottom: [v0], bottom: [u1]}\n"),
+         {}, "hertz.yaml:12:30: error: bodies.block.surfaces: duplicate key 'bottom' (first given at line 12)"},
+        {"surface twice, block map",
+         replaced(minimal_deck, shape, shape + "    surfaces:\n      bottom: [v0]\n      bottom: [u1]\n"), {},
+         "hertz.yaml:14:7: error: bodies.block.surfaces: duplicate key 'bottom' (first given at line 13)"},
+        {"surface twice, --set value", minimal_deck, {"bodies.block.surfaces={bottom: [v0], bottom: [u1]}"},
+         "<command line>: error: bodies.block.surfaces: duplicate key 'bottom'"},
+        {"known key twice, deep in a flow map",
+         replaced(minimal_deck, "normal: [0, 1]}", "normal: [0, 1], normal: [0, -1]}"), {},
+         "hertz.yaml:13:52: error: bodies.floor.rigid.plane: duplicate key 'normal' (first given at line 13)"},
+        {"known key twice, --set value", minimal_deck, {"steps={count: 2, count: 3}"},
+         "<command line>: error: steps: duplicate key 'count'"},
+        {"second document in the deck", minimal_deck + "---\nsteps: {count: 3}\n", {},
+         "hertz.yaml:23:1: error: a second YAML document ('---'): a deck is one document"},
+        {"second document in a --set value", minimal_deck, {"steps.count=3\n---\n4"},
+         "<command line>: error: steps.count = 3\n---\n4: holds more than one YAML document ('---' or '...' on a "
+         "line of its own): a value is one document"},
+        {"integer out of range", minimal_deck, {"steps.count=3e9"},
+         "<command line>: error: steps.count = 3e9: out of range: an integer here is at most 2147483647"},
+    };
+    for (const Row& row : rows) {
+        SCOPED_TRACE(row.name);
+        EXPECT_EQ(issue_of(row.deck, row.sets), row.expected);
+    }
+}
+
 // ---------------------------------------------------------------------------
 // References between sections
 

@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -157,6 +158,22 @@ TEST(DeckReader, NormalizesTheRigidPlaneNormal)
     const Deck d = read(replaced(minimal_deck, "normal: [0, 1]", "normal: [3, 4]"));
     // 3/5 and 4/5 are each one correctly rounded division.
     EXPECT_EQ(d.bodies[1].plane->normal, (std::vector<double>{3.0 / 5.0, 4.0 / 5.0}));
+}
+
+TEST(DeckReader, NormalizesHugeAndTinyNormals)
+{
+    // Any finite non-zero normal is valid, also where the sum of squares over- or
+    // underflows (beyond ~1e154, below ~1e-154): it is scaled by its largest entry first.
+    EXPECT_EQ(read(replaced(minimal_deck, "normal: [0, 1]", "normal: [0, 1e300]")).bodies[1].plane->normal,
+              (std::vector<double>{0.0, 1.0}));
+    constexpr double two_roundings = 4 * std::numeric_limits<double>::epsilon();  // x / scale, then / norm
+    for (const char* normal : {"normal: [3e300, 4e300]", "normal: [3e-200, 4e-200]", "normal: [-3e-310, 4e-310]"}) {
+        SCOPED_TRACE(normal);
+        const std::vector<double> n = read(replaced(minimal_deck, "normal: [0, 1]", normal)).bodies[1].plane->normal;
+        ASSERT_EQ(n.size(), 2u);
+        EXPECT_NEAR(std::abs(n[0]), 0.6, two_roundings);
+        EXPECT_NEAR(n[1], 0.8, two_roundings);
+    }
 }
 
 TEST(DeckReader, OmittedOptionalSectionsTakeTheDocumentedDefaults)

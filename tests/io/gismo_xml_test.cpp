@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -307,6 +309,25 @@ std::string broken(const std::string& from, const std::string& to, const std::st
     return out;
 }
 
+/// A TensorBSpline3 whose degree-1 knot vectors (0 0 1 2 ... 3000 3000) give 3001
+/// functions each, and one control point in <coefs> (on line 8).
+std::string huge_knot_volume()
+{
+    std::string knots = "0";
+    for (int i = 0; i <= 3000; ++i)
+        knots.append(" ").append(std::to_string(i));
+    knots.append(" 3000");
+    std::string out = "<xml>\n <Geometry type=\"TensorBSpline3\" id=\"0\">\n  <Basis type=\"TensorBSplineBasis3\">\n";
+    for (int dir = 0; dir < 3; ++dir)
+        out.append("   <Basis type=\"BSplineBasis\" index=\"")
+            .append(std::to_string(dir))
+            .append("\"><KnotVector degree=\"1\">")
+            .append(knots)
+            .append("</KnotVector></Basis>\n");
+    out.append("  </Basis>\n  <coefs geoDim=\"3\">0 0 0</coefs>\n </Geometry>\n</xml>\n");
+    return out;
+}
+
 struct MalformedCase {
     const char* name;
     std::string text;  ///< file content; empty: no file at all
@@ -415,6 +436,22 @@ std::vector<MalformedCase> malformed_cases()
          2, ":18: error: MultiPatch.parDim = 3: a multi-patch of 3-parameter patches, but analysis.dimension is 2"},
         {"multipatch_no_patches", broken("", "", " <MultiPatch parDim=\"2\">\n </MultiPatch>\n"), 2,
          ":18: error: MultiPatch: missing <patches type=\"id_range\">"},
+        // An id_range ending at INT_MAX (an int counter never passes it), and one of two
+        // billion ids in a file of one Geometry (reported at its first missing id).
+        {"multipatch_range_to_int_max",
+         broken("", "",
+                " <MultiPatch parDim=\"2\">\n  <patches type=\"id_range\">2147483647 2147483647</patches>\n "
+                "</MultiPatch>\n"),
+         2, ":19: error: MultiPatch.patches = 2147483647: no <Geometry id=\"2147483647\"> in the file (Geometry ids: 0)"},
+        {"multipatch_range_two_billion",
+         broken("", "",
+                " <MultiPatch parDim=\"2\">\n  <patches type=\"id_range\">0 2000000000</patches>\n </MultiPatch>\n"),
+         2, ":19: error: MultiPatch.patches = 1: no <Geometry id=\"1\"> in the file (Geometry ids: 0)"},
+        // Three knot vectors of 3003 knots imply 3001^3 = 2.7e10 control points (216 GB
+        // of weights alone); <coefs> holds one: the count is checked before allocating.
+        {"knots_imply_billions_of_control_points", huge_knot_volume(), 3,
+         ":8: error: Geometry(id=0).coefs: expected 81081027003 numbers (3001 x 3001 x 3001 control points from "
+         "the knot vectors, 3 coordinates each), got 3"},
     };
 }
 
@@ -430,6 +467,20 @@ TEST(GismoXml, MalformedFilesAreLocatedErrors)
         // One problem, one line: the reader does not pile follow-up errors on the first.
         EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     }
+}
+
+TEST(GismoXml, APathThatIsNotAFileSaysWhatItIs)
+{
+    const fs::path folder = fs::path(write_file("placeholder", "")).parent_path();
+    const std::string dir = (folder / "geom.xml").string();
+    fs::create_directories(dir);
+    EXPECT_EQ(error_of(dir, 2), dir + ": error: cannot read the G+Smo XML file: it is a folder, not a file");
+    const std::string fifo = (folder / "pipe.xml").string();
+    fs::remove(fifo);
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    // Refused before it is opened: opening a FIFO for reading would block.
+    EXPECT_EQ(error_of(fifo, 2), fifo + ": error: cannot read the G+Smo XML file: it is a FIFO (named pipe), not a file");
+    fs::remove(fifo);
 }
 
 TEST(GismoXml, IndependentProblemsAreAllReported)

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -90,6 +91,49 @@ TEST_F(OutputPathsTest, ResultsOnTheDeckOrAFolderAreRefused)
     } catch (const DeckError& e) {
         EXPECT_NE(std::string(e.what()).find("given with the -o option"), std::string::npos) << e.what();
     }
+}
+
+TEST_F(OutputPathsTest, GeometryFilesOfTheDeckAreInputs)
+{
+    // geometry.file is relative to the deck's folder; an absolute one is kept.
+    Deck deck = deck_writing(path("deck.h5"));
+    deck.bodies.resize(3);
+    deck.bodies[0].geometry_file = "sub/../geom.xml";
+    deck.bodies[2].geometry_file = "/abs/other.xml";
+    const std::vector<std::string> inputs = input_files(deck);
+    ASSERT_EQ(inputs.size(), 3u);
+    EXPECT_EQ(inputs[0], path("deck.yaml"));
+    EXPECT_EQ(inputs[1], path("geom.xml"));
+    EXPECT_EQ(inputs[2], "/abs/other.xml");
+    std::ofstream(path("geom.xml")) << "<xml/>\n";
+    try {
+        check_output_paths(deck_writing(path("./geom.xml")), inputs, OutputOrigin::o_option);
+        ADD_FAILURE() << "no DeckError";
+    } catch (const DeckError& e) {
+        EXPECT_NE(std::string(e.what()).find("would replace an input file of the deck (" + path("geom.xml") + ")"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+TEST_F(OutputPathsTest, ExistingNonRegularFilesAreRefused)
+{
+    // A FIFO (and likewise a device such as /dev/null, which a test must not touch):
+    // the final rename would replace it by a regular file.
+    ASSERT_EQ(::mkfifo(path("pipe.h5").c_str(), 0600), 0);
+    try {
+        check_output_paths(deck_writing(path("pipe.h5")), {path("deck.yaml")}, OutputOrigin::deck);
+        ADD_FAILURE() << "no DeckError";
+    } catch (const DeckError& e) {
+        EXPECT_NE(std::string(e.what()).find("is a FIFO (named pipe), not a regular file"), std::string::npos)
+            << e.what();
+    }
+    fs::create_symlink("/dev/null", path("null.h5"));
+    EXPECT_THROW(check_output_paths(deck_writing(path("null.h5")), {path("deck.yaml")}, OutputOrigin::deck), DeckError);
+    Deck paraview = deck_writing(path("run.h5"));
+    paraview.output.paraview = true;
+    ASSERT_EQ(::mkfifo(path("run.xdmf").c_str(), 0600), 0);
+    EXPECT_THROW(check_output_paths(paraview, {path("deck.yaml")}, OutputOrigin::deck), DeckError);
 }
 
 TEST_F(OutputPathsTest, XdmfIndexOnTheDeckIsRefusedOnlyWithParaview)
