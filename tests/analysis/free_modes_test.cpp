@@ -156,7 +156,7 @@ TEST(FreeModes, SidewaysLoadStopsAtOnce)
 {
     const auto dir = scratch_dir("free_modes_block_push");
     const auto file = dir / "block.h5";
-    const CliResult cli = run_cli(shell_quote(block_deck()) + " -q -o " + shell_quote(file.string()) +
+    const CliResult cli = run_cli(shell_quote(block_deck()) + " -o " + shell_quote(file.string()) +
                                       " --set 'loads.1.force=[0.1, 0]'",
                                   dir);
     EXPECT_EQ(cli.exit_code, 1) << cli.err;
