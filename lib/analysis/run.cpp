@@ -2,6 +2,7 @@
 
 #include "analysis/contact_penalty.hpp"
 #include "analysis/fields.hpp"
+#include "analysis/free_modes.hpp"
 #include "analysis/output.hpp"
 #include "analysis/scene.hpp"
 #include "analysis/system.hpp"
@@ -92,6 +93,20 @@ std::vector<io::BodyFields> stress_fields(const Scene& scene, const std::vector<
     return out;
 }
 
+/// " (loads.0 and loads.2 act on it)": the deck's load items on the bodies of a group.
+std::string load_items_text(const io::Deck& deck, const Scene& scene, const FreeModeGroup& group)
+{
+    std::vector<std::string> items;
+    for (std::size_t k = 0; k < deck.loads.size(); ++k)
+        for (int b : group.bodies)
+            if (deck.loads[k].body == scene.bodies[static_cast<std::size_t>(b)].name)
+                items.push_back(fmt::format("loads.{}", k));
+    std::string out;
+    for (std::size_t k = 0; k < items.size(); ++k)
+        out += (k == 0 ? "" : k + 1 == items.size() ? " and " : ", ") + items[k];
+    return items.empty() ? std::string() : fmt::format(" ({} act{} on it)", out, items.size() == 1 ? "s" : "");
+}
+
 }  // namespace
 
 RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& context)
@@ -177,6 +192,28 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     warn(duplicate_pair_warnings(scene));
     warn(release_initial_overclosure(scene, system));
 
+    // Free rigid-body modes (analysis/free_modes.hpp): named in a warning; loads
+    // along one stop the run before any increment, else weak springs hold them.
+    const std::vector<FreeModeGroup> free_modes = find_free_modes(scene);
+    for (const FreeModeGroup& group : free_modes)
+        warn({fmt::format("{}: no constraint or contact holds it; weak springs (stiffness {:.3g} per node, "
+                          "{:g} of E L^(d-2) in all) fix its rigid position",
+                          free_mode_text(group), group.spring_stiffness, weak_spring_factor)});
+    std::optional<std::string> driven_mode = driven_free_mode(scene, free_modes, reference_loads(scene));
+    if (driven_mode) {
+        for (const FreeModeGroup& group : free_modes)
+            if (driven_mode->find(group.label + " can") != std::string::npos) {
+                *driven_mode += load_items_text(deck, scene, group);
+                break;
+            }
+    } else {
+        std::vector<NodeSpring> springs;
+        for (const FreeModeGroup& group : free_modes)
+            for (NodeSpring& spring : weak_springs(scene, group))
+                springs.push_back(std::move(spring));
+        system.set_weak_springs(std::move(springs));
+    }
+
     for (const PairModel& p : scene.pairs)
         if (p.penalty_auto)
             context.log(Verbosity::normal,
@@ -256,9 +293,12 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         last_step = std::move(step);
     };
 
-    const solver::SteppingResult result =
-        solver::run_load_steps(nonlinear, u, stepping_settings(deck.steps), newton_settings(deck.newton), linear,
-                               callbacks, &context);
+    solver::SteppingResult result;
+    if (driven_mode)
+        result.message = *driven_mode;  // not completed, no increment
+    else
+        result = solver::run_load_steps(nonlinear, u, stepping_settings(deck.steps), newton_settings(deck.newton),
+                                        linear, callbacks, &context);
 
     context.add_count("symbolic_factorizations", linear.n_symbolic());
     context.add_count("numeric_factorizations", linear.n_numeric());
@@ -274,6 +314,17 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
 
     warn(uzawa.notes());
     RunOutcome outcome;
+    if (last_step && !free_modes.empty()) {  // the springs' energy at the last converged state
+        const double spring = system.spring_energy(u, last_step->load_factor);
+        const double strain = system.strain_energy(u, last_step->load_factor);
+        const bool negligible = spring <= negligible_spring_energy * strain;
+        warn({fmt::format("weak springs on free modes: energy {:.3g}, {} the strain energy {:.3g} ({})", spring,
+                          strain > 0.0 ? fmt::format("{:.3g} of", spring / strain) : std::string("against"), strain,
+                          negligible ? "negligible"
+                                     : fmt::format("NOT negligible, above {:g}: the springs carry load and the "
+                                                   "result depends on them",
+                                                   negligible_spring_energy))});
+    }
     if (last_step) {
         warn(contact_warnings(deck, scene, *last_step));
         outcome.reactions = last_step->reactions;

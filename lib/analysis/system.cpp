@@ -305,6 +305,21 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
             reaction_norm2 += r_full(k) * r_full(k);
     f_int_norm = r_full.norm();
 
+    // Weak springs on free rigid-body modes (free dofs only, in every element block).
+    for (const NodeSpring& spring : springs_) {
+        const int n = static_cast<int>(spring.dofs.size());
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) {
+                const double s = spring.stiffness(i, j);
+                if (s == 0.0)
+                    continue;
+                r_full(spring.dofs[static_cast<std::size_t>(i)]) += s * u_full(spring.dofs[static_cast<std::size_t>(j)]);
+                if (need_tangent)
+                    out.tangent.coeffRef(dofs.free_index(spring.dofs[static_cast<std::size_t>(i)]),
+                                         dofs.free_index(spring.dofs[static_cast<std::size_t>(j)])) += s;
+            }
+    }
+
     // External loads: dead ones scale with lambda; follower pressures depend on u.
     r_full -= load_factor * scene_.f_ext;
     double external_norm = load_factor * scene_.f_ext.norm();
@@ -357,6 +372,29 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
         out.ok = false;
         out.message = "the residual is not finite";
     }
+}
+
+double SceneSystem::spring_energy(const Vector& u_free, double load_factor) const
+{
+    const Vector u_full = scene_.dofs->expand(u_free, load_factor);
+    double energy = 0.0;
+    for (const NodeSpring& spring : springs_) {
+        VecN u(static_cast<Index>(spring.dofs.size()));
+        for (std::size_t i = 0; i < spring.dofs.size(); ++i)
+            u(static_cast<Index>(i)) = u_full(spring.dofs[i]);
+        energy += 0.5 * u.dot(spring.stiffness * u);
+    }
+    return energy;
+}
+
+double SceneSystem::strain_energy(const Vector& u_free, double load_factor)
+{
+    const Vector u_full = scene_.dofs->expand(u_free, load_factor);
+    Vector f_int = Vector::Zero(scene_.dofs->n_full());
+    SparseMatrix unused;
+    solver::Evaluation scratch;
+    assemble_elements(u_full, false, f_int, unused, scratch);
+    return 0.5 * u_full.dot(f_int);
 }
 
 void SceneSystem::register_couplings(const std::vector<contact::PairEvaluation>& contact, RunContext* context)

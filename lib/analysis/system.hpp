@@ -14,7 +14,12 @@
 // force_scale (the scale of the relative residual) = max(||lambda f_ext||,
 // ||reactions||, ||contact forces||, ||f_int||): the forces in play, so that
 // displacement-driven scenes converge relative to their reactions.
+//
+// Weak springs (analysis/free_modes.hpp), when set, add S_a u_a to the residual
+// and S_a to the tangent at their nodes (free dofs only: a free mode does not
+// move a prescribed dof); they are not counted in the force scale.
 
+#include "analysis/free_modes.hpp"
 #include "analysis/scene.hpp"
 #include "assembly/sparse_pattern.hpp"
 #include "assembly/thread_team.hpp"
@@ -59,6 +64,14 @@ public:
 
     int last_active() const { return last_active_; }
 
+    /// Weak springs on free rigid-body modes, added to every later evaluation.
+    void set_weak_springs(std::vector<NodeSpring> springs) { springs_ = std::move(springs); }
+    /// 1/2 sum_a u_a^T S_a u_a over the weak springs at a state.
+    double spring_energy(const Vector& u_free, double load_factor) const;
+    /// 1/2 u . f_int(u) over all dofs: the strain energy under small kinematics, its
+    /// secant estimate under finite kinematics (the scale the spring energy is judged by).
+    double strain_energy(const Vector& u_free, double load_factor);
+
 private:
     void evaluate_into(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out,
                        RunContext* context, Vector* r_full_out,
@@ -80,6 +93,7 @@ private:
     std::optional<SparseMatrix> full_stiffness_;   // small kinematics: elastic K over all (full) dofs
     std::vector<Vector> element_force_;            // finite kinematics: f_int per block (reused storage)
     int last_active_ = 0;
+    std::vector<NodeSpring> springs_;
 };
 
 }  // namespace iga::analysis
