@@ -14,6 +14,14 @@
 // force_scale (the scale of the relative residual) = max(||lambda f_ext||,
 // ||reactions||, ||contact forces||, ||f_int||): the forces in play, so that
 // displacement-driven scenes converge relative to their reactions.
+//
+// residual_floor (the round-off of ||r||, solver/newton.hpp) = eps_mach times the
+// norm over the free dofs of the sum of the absolute values of every term summed
+// into r (|K0| |u| for small kinematics, where a rigid motion cancels K0 u but not
+// its round-off; |f_e| per element for finite kinematics; |lambda f_ext|; |r_c|),
+// plus the round-off of the contact pressures from their gaps (eps_mach eps |x| W
+// per active Gauss point: a gap is a difference of coordinates). docs/theory.md,
+// "When Newton has converged".
 
 #include "analysis/scene.hpp"
 #include "assembly/sparse_pattern.hpp"
@@ -66,7 +74,7 @@ private:
     /// Extends the pattern by the couplings of these evaluations that it lacks.
     void register_couplings(const std::vector<contact::PairEvaluation>& contact, RunContext* context);
     void assemble_elements(const Vector& u_full, bool need_tangent, Vector& r_full, SparseMatrix& K,
-                           solver::Evaluation& out);
+                           solver::Evaluation& out, Vector& magnitude);
 
     Scene& scene_;
     RunContext& context_;
