@@ -21,10 +21,8 @@ constexpr double armijo = 1e-4;
 // Convergence at round-off (see the header): ||r|| within round_off_margin of the
 // system's round-off estimate Evaluation::residual_floor, and a Newton correction
 // below correction_tolerance of the displacement. The estimate is eps_mach times
-// sums of |terms|; the actual round-off of r, and of the solve that made the state,
-// is that times a modest factor (measured: ||r|| / floor up to XX on the hard cases
-// and Hertz). A correction of 1e-9 of u is far below any discretisation error, and
-// far above the round-off of u itself (1e-16).
+// sums of |terms| (round_off_margin in newton.hpp). A correction of 1e-9 of u is far
+// below any discretisation error, and far above the round-off of u itself (1e-16).
 constexpr double correction_tolerance = 1e-9;
 // Levenberg-Marquardt: mu = 1e-10 perturbs K at the level of its round-off for
 // a well-scaled K; x100 per retry up to mu = 1 (6 tries).
