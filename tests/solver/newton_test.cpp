@@ -10,8 +10,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -532,34 +530,24 @@ TEST(Newton, ZeroForceSolutionConvergesAtRoundOff)
 }
 
 // ---------------------------------------------------------------------------
-// The round-off floor. r(u) = k (u - u*) - f + noise(u): one spring, and noise of
-// amplitude q that depends on the last bits of u the way assembly round-off does
-// (a hash of u's bit pattern), so that no Newton step can remove it. The system
-// reports `reported_floor` as its round-off estimate.
-struct NoisySpring {
+// The round-off floor. One spring, r(u) = k (u - u*), whose residual can only be
+// computed to a resolution q, the way a sum with round-off q can: the value is
+// rounded to the middle of its q-wide bin, so |r| >= q/2 whatever u, and no
+// Newton step can reduce it further. The system reports `reported_floor` as its
+// round-off estimate. Force scale 1.
+struct QuantizedSpring {
     double k = 1.0;
     double u_star = 1.0;
-    double f = 1.0;  // the force in play: force scale 1
     double q = 0.0;
     double reported_floor = 0.0;
-
-    static double hash_unit(double u)  // in [-1, 1), deterministic in the bits of u (splitmix64)
-    {
-        std::uint64_t z = 0;
-        std::memcpy(&z, &u, sizeof z);
-        z += 0x9e3779b97f4a7c15ULL;
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-        z ^= z >> 31;
-        return static_cast<double>(z >> 11) * 0x1.0p-52 - 1.0;
-    }
 
     NonlinearSystem system()
     {
         NonlinearSystem s;
         s.evaluate = [this](const Vector& u, double, bool need_tangent, Evaluation& out) {
-            out.residual = Vector::Constant(1, k * (u(0) - u_star) + q * hash_unit(u(0)));
-            out.force_scale = f;
+            const double exact = k * (u(0) - u_star);
+            out.residual = Vector::Constant(1, q * (std::floor(exact / q) + 0.5));
+            out.force_scale = 1.0;
             out.residual_floor = reported_floor;
             if (need_tangent)
                 out.tangent = sparse(Matrix::Constant(1, 1, k));
@@ -568,12 +556,12 @@ struct NoisySpring {
     }
 };
 
-// Noise 1e-10 of the force: the relative residual cannot fall below ~1e-10, above
-// the tolerance 1e-12 by more than the factor 1e3 the previous round-off rule allowed.
-// Told that floor, Newton converges once the correction (~q/k = 1e-10 of u) settles.
+// Resolution 1e-10 of the force: the relative residual cannot fall below 5e-11, above
+// the tolerance 1e-14 by more than the factor 1e3 the previous round-off rule allowed.
+// Told that floor, Newton converges once the correction (q/2k = 5e-11 of u) settles.
 TEST(Newton, ResidualAtItsRoundOffFloorConverges)
 {
-    NoisySpring spring;
+    QuantizedSpring spring;
     spring.q = 1e-10;
     spring.reported_floor = spring.q;
     NonlinearSystem system = spring.system();
@@ -584,16 +572,16 @@ TEST(Newton, ResidualAtItsRoundOffFloorConverges)
     const NewtonReport report = solve_newton(system, 1.0, u, settings, solver, nullptr);
     ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
     EXPECT_NE(report.message.find("round-off floor"), std::string::npos) << report.message;
-    // The state is the solution to the noise over the stiffness, q / k.
-    EXPECT_TRUE(test::near(u(0), spring.u_star, 2.0 * spring.q / spring.k)) << u(0) - spring.u_star;
+    // The state is the solution to the resolution over the stiffness, q / k.
+    EXPECT_TRUE(test::near(u(0), spring.u_star, spring.q / spring.k)) << u(0) - spring.u_star;
 }
 
-// The same noise, but the system says its round-off is 1e6 times smaller: the
-// residual 1e-10 is then an unconverged state, however small the Newton step, and
+// The same spring, but the system says its round-off is 1e6 times smaller: the
+// residual 5e-11 is then an unconverged state, however small the Newton step, and
 // is not accepted (the previous rule, 1e3 x tolerance with a small step, took it).
 TEST(Newton, LargeResidualWithSmallStepIsNotAccepted)
 {
-    NoisySpring spring;
+    QuantizedSpring spring;
     spring.q = 1e-10;
     spring.reported_floor = 1e-6 * spring.q;
     NonlinearSystem system = spring.system();
