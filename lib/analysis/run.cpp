@@ -1,6 +1,7 @@
 #include "analysis/run.hpp"
 
 #include "analysis/contact_penalty.hpp"
+#include "analysis/failure_advice.hpp"
 #include "analysis/fields.hpp"
 #include "analysis/free_modes.hpp"
 #include "analysis/output.hpp"
@@ -14,6 +15,7 @@
 #include "io/output_paths.hpp"
 #include "io/results_writer.hpp"
 #include "io/xdmf_writer.hpp"
+#include "solver/failure_cause.hpp"
 #include "solver/linear.hpp"
 #include "solver/load_stepping.hpp"
 #include "version.hpp"
@@ -335,31 +337,9 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     outcome.warnings = warnings;
     outcome.status = result.completed ? "completed" : "failed";
     outcome.message = result.message;
-    // Name the cause of a failure with contact. A residual that alternates between two
-    // levels is an active-set (or projection) flip-flop, whatever the penalty. Else the
-    // usual cause of a stiff failure: a penalty so large against E that the residual's
-    // round-off floor (about eps * penalty / E relative) exceeds the tolerance.
-    if (!result.completed && scene.has_contact() &&
-        result.last_failure.trend == solver::ResidualTrend::two_state_cycle) {
-        outcome.message += ". The Newton residual cycles between two states: an active-set (or projection) "
-                           "flip-flop, Gauss points entering and leaving contact (or switching the segment they "
-                           "project onto) on alternate iterations. Use smaller increments (a larger steps.count) "
-                           "or a smaller penalty (about 1e2-1e3 E/h is plenty)";
-    } else if (!result.completed && scene.has_contact() &&
-               result.last_failure.status != solver::NewtonStatus::converged) {  // not an outer-loop rejection
-        double E_min = std::numeric_limits<double>::infinity(), penalty_max = 0.0;
-        for (const BodyModel& b : scene.bodies)
-            E_min = std::min(E_min, b.material.E);
-        for (const PairModel& p : scene.pairs)
-            penalty_max = std::max(penalty_max, p.pair.settings().penalty);
-        const double floor = std::numeric_limits<double>::epsilon() * penalty_max / E_min;
-        if (floor > 0.01 * deck.newton.tolerance)
-            outcome.message += fmt::format(
-                ". The penalty is {:.3g} times E: in double precision the round-off of the contact forces "
-                "(about {:.1g} of the elastic stiffness) swamps the Newton tolerance {:.1g}. Use a smaller penalty "
-                "(about 1e2-1e3 E/h is plenty) or a looser newton.tolerance",
-                penalty_max / E_min, floor, deck.newton.tolerance);
-    }
+    // Name the cause of a Newton failure, read from its history, and what to change.
+    if (!result.completed && result.last_failure.status != solver::NewtonStatus::converged)
+        outcome.message += failure_advice(solver::failure_cause(result.last_failure), failure_context(scene));
     outcome.results_file = deck.output.file;
     outcome.increments = static_cast<int>(result.increments.size());
     outcome.newton_iterations = result.total_iterations;

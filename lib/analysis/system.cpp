@@ -6,12 +6,32 @@
 #include <fmt/format.h>
 
 #include <atomic>
+#include <cmath>
+#include <limits>
 #include <cstdint>
 #include <mutex>
 
 namespace iga::analysis {
 
 namespace {
+
+/// The round-off of a pair's contact forces that |r_c| does not show: the gap of an
+/// active Gauss point is a difference of coordinates of size |x|, so its pressure
+/// <lambda + eps g_N> carries an error of about eps_mach (|lambda| + eps |x|), and
+/// W times that lands on the point's dofs. Independent errors add in quadrature.
+double contact_gap_round_off(const contact::PairEvaluation& c, double penalty)
+{
+    double sum2 = 0.0;
+    for (const contact::CarrierResult& carrier : c.carriers)
+        for (Index g = 0; g < carrier.pressure.size(); ++g) {
+            if (!(carrier.pressure(g) > 0.0))
+                continue;
+            const double lambda = carrier.multiplier.size() > g ? std::abs(carrier.multiplier(g)) : 0.0;
+            const double error = carrier.weight(g) * (lambda + penalty * carrier.coordinates.row(g).norm());
+            sum2 += error * error;
+        }
+    return std::numeric_limits<double>::epsilon() * std::sqrt(sum2);
+}
 
 Matrix local_displacement(const Vector& u_full, const std::vector<int>& dofs, int d)
 {
@@ -133,7 +153,7 @@ RowMatrix SceneSystem::side_displacement(const Vector& u_full, int p, int k) con
 }
 
 void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vector& r_full, SparseMatrix& K,
-                                    solver::Evaluation& out)
+                                    solver::Evaluation& out, Vector& magnitude)
 {
     const assembly::SparsePattern& pattern = *scene_.pattern;
     const int d = scene_.dim;
@@ -203,6 +223,10 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
 
     if (small) {
         r_full += *full_stiffness_ * u_full;
+        // |K0| |u|: a rigid motion makes K0 u cancel to zero, but not its round-off.
+        for (Index j = 0; j < full_stiffness_->outerSize(); ++j)
+            for (SparseMatrix::InnerIterator it(*full_stiffness_, j); it; ++it)
+                magnitude(it.row()) += std::abs(it.value() * u_full(j));
         if (need_tangent)
             K = *small_stiffness_;
     } else {
@@ -243,8 +267,10 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
         for (int block = 0; block < scene_.n_element_blocks; ++block) {
             const std::vector<int>& dofs = dofs_of(block);
             const Vector& f = element_force_[static_cast<std::size_t>(block)];
-            for (std::size_t k = 0; k < dofs.size(); ++k)
+            for (std::size_t k = 0; k < dofs.size(); ++k) {
                 r_full(dofs[k]) += f(static_cast<Index>(k));
+                magnitude(dofs[k]) += std::abs(f(static_cast<Index>(k)));
+            }
         }
     }
 }
@@ -295,9 +321,12 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
             out.tangent.coeffs().setZero();
     }
 
+    // Per dof, the sum of the absolute values of the terms summed into r: machine
+    // epsilon times its norm is the round-off floor of ||r|| (solver::Evaluation).
+    Vector magnitude = Vector::Zero(dofs.n_full());
     {
         ScopedTimer timer(context, "elements");
-        assemble_elements(u_full, need_tangent, r_full, out.tangent, out);
+        assemble_elements(u_full, need_tangent, r_full, out.tangent, out, magnitude);
     }
     double f_int_norm = 0.0, reaction_norm2 = 0.0;
     for (Index k = 0; k < r_full.size(); ++k)
@@ -322,6 +351,7 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
 
     // External loads: dead ones scale with lambda; follower pressures depend on u.
     r_full -= load_factor * scene_.f_ext;
+    magnitude += load_factor * scene_.f_ext.cwiseAbs();
     double external_norm = load_factor * scene_.f_ext.norm();
     for (const FollowerPressure& follower : scene_.followers) {
         for (std::size_t e = 0; e < follower.side.elements.size(); ++e) {
@@ -329,8 +359,10 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
             const Matrix u_local = local_displacement(u_full, element_dofs, d);
             const mechanics::LocalForceTangent f = mechanics::follower_pressure(
                 follower.side.elements[e], d, follower.pressure, scene_.kinematics, u_local);
-            for (std::size_t k = 0; k < element_dofs.size(); ++k)
+            for (std::size_t k = 0; k < element_dofs.size(); ++k) {
                 r_full(element_dofs[k]) -= load_factor * f.f_ext(static_cast<Index>(k));
+                magnitude(element_dofs[k]) += load_factor * std::abs(f.f_ext(static_cast<Index>(k)));
+            }
             external_norm += load_factor * f.f_ext.norm();
             if (need_tangent && f.df_ext_du.size() > 0)
                 pattern.add(follower.first_block + static_cast<int>(e), Matrix(-load_factor * f.df_ext_du),
@@ -340,6 +372,7 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
 
     // Contact pairs: residuals, and each coupling's block into its pattern block.
     double contact_norm = 0.0;
+    double gap_round_off = 0.0;  // already times machine epsilon
     int active = 0;
     if (scene_.has_contact()) {
         ScopedTimer timer(context, "contact");
@@ -352,9 +385,12 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
                 continue;
             }
             active += c.n_active;
-            for (std::size_t k = 0; k < pair.local_to_full.size(); ++k)
+            for (std::size_t k = 0; k < pair.local_to_full.size(); ++k) {
                 r_full(pair.local_to_full[k]) += c.residual(static_cast<Index>(k));
+                magnitude(pair.local_to_full[k]) += std::abs(c.residual(static_cast<Index>(k)));
+            }
             contact_norm += c.residual.norm();
+            gap_round_off += contact_gap_round_off(c, pair.pair.settings().penalty);
             if (need_tangent)
                 for (const contact::LocalBlock& block : c.tangent)
                     pattern.add(pair.blocks.at(block.element), block.K, out.tangent);
@@ -368,6 +404,7 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
     if (contact_out)
         *contact_out = std::move(contact);
     out.force_scale = std::max({external_norm, std::sqrt(reaction_norm2), contact_norm, f_int_norm});
+    out.residual_floor = std::numeric_limits<double>::epsilon() * dofs.restrict(magnitude).norm() + gap_round_off;
     if (!out.residual.allFinite() && out.ok) {
         out.ok = false;
         out.message = "the residual is not finite";

@@ -18,6 +18,14 @@
 // Weak springs (analysis/free_modes.hpp), when set, add S_a u_a to the residual
 // and S_a to the tangent at their nodes (free dofs only: a free mode does not
 // move a prescribed dof); they are not counted in the force scale.
+//
+// residual_floor (the round-off of ||r||, solver/newton.hpp) = eps_mach times the
+// norm over the free dofs of the sum of the absolute values of every term summed
+// into r (|K0| |u| for small kinematics, where a rigid motion cancels K0 u but not
+// its round-off; |f_e| per element for finite kinematics; |lambda f_ext|; |r_c|),
+// plus the round-off of the contact pressures from their gaps (eps_mach eps |x| W
+// per active Gauss point: a gap is a difference of coordinates). docs/theory.md,
+// "When Newton has converged".
 
 #include "analysis/free_modes.hpp"
 #include "analysis/scene.hpp"
@@ -79,7 +87,7 @@ private:
     /// Extends the pattern by the couplings of these evaluations that it lacks.
     void register_couplings(const std::vector<contact::PairEvaluation>& contact, RunContext* context);
     void assemble_elements(const Vector& u_full, bool need_tangent, Vector& r_full, SparseMatrix& K,
-                           solver::Evaluation& out);
+                           solver::Evaluation& out, Vector& magnitude);
 
     Scene& scene_;
     RunContext& context_;

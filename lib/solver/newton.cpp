@@ -1,6 +1,7 @@
 #include "solver/newton.hpp"
 
 #include "core/error.hpp"
+#include "solver/failure_cause.hpp"
 
 #include <algorithm>
 #include <cfloat>
@@ -17,20 +18,12 @@ namespace {
 // usual value (Nocedal & Wright §3.1): any real descent passes, a flat or
 // rising residual does not.
 constexpr double armijo = 1e-4;
-// Stagnation at round-off: a residual within 1e3 of the target and a Newton
-// correction below 1e-9 of the displacement itself cannot be improved by more
-// iterations. With a penalty 1e5 times E the residual's round-off floor,
-// eps * eps_N * W * |u| / force scale, sits near 1e-10: the increment criterion
-// decides there (measured on the Hertz deck at eps_N = 1e8: floor 2e-10, corrections 1e-12 for u ~ 1e-2).
-constexpr double stagnation_residual_factor = 1e3;
-constexpr double stagnation_step = 1e-9;
-// No force at all: when the solution is a stress-free rigid motion imposed by
-// Dirichlet values (a block slid along a plane at gap 0, a body lifted off), every
-// force, and so the force scale, is round-off of K u and the relative residual
-// stays O(1). A force scale and residual below 1e3 eps max|K_ij| ||u||_inf sqrt(n)
-// (the assembly's round-off in r = K u) with a correction at round-off of u is
-// that state: converged.
-constexpr double zero_force_factor = 1e3 * DBL_EPSILON;
+// Convergence at round-off (see the header): ||r|| within round_off_margin of the
+// system's round-off estimate Evaluation::residual_floor, and a Newton correction
+// below correction_tolerance of the displacement. The estimate is eps_mach times
+// sums of |terms| (round_off_margin in newton.hpp). A correction of 1e-9 of u is far
+// below any discretisation error, and far above the round-off of u itself (1e-16).
+constexpr double correction_tolerance = 1e-9;
 // Levenberg-Marquardt: mu = 1e-10 perturbs K at the level of its round-off for
 // a well-scaled K; x100 per retry up to mu = 1 (6 tries).
 constexpr double first_mu = 1e-10;
@@ -277,17 +270,9 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
     auto finish = [&](NewtonStatus status, std::string message) {
         if (status != NewtonStatus::converged)
             u = u_start;
-        if (status == NewtonStatus::max_iterations || status == NewtonStatus::diverged) {
-            report.trend = residual_trend(report.residual_history);
-            if (report.trend == ResidualTrend::two_state_cycle) {
-                const CycleLevels levels = cycle_levels(report.residual_history);
-                message += "; the relative residual alternates between " + format_g(levels.high) + " and " +
-                           format_g(levels.low) + " (a two-state cycle)";
-            } else if (report.trend == ResidualTrend::stagnation) {
-                message += "; the relative residual stagnates";
-            }
-        }
         report.status = status;
+        if (!system.linear && status == NewtonStatus::max_iterations)
+            message += "; " + cause_text(report);
         report.message = std::move(message);
         return report;
     };
@@ -302,6 +287,7 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         return finish(NewtonStatus::diverged, "residual is not finite at the start state");
     double rel = relative(r_norm, current.force_scale);
     report.residual_history.push_back(rel);
+    report.floor_history.push_back(relative(current.residual_floor, current.force_scale));
     report.residual_norm = rel;
     if (rel <= settings.tolerance)
         return finish(NewtonStatus::converged, "converged at the start state (relative residual " + format_g(rel) +
@@ -337,9 +323,17 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         report.residual_norm = rel;
         if (rel <= settings.tolerance)
             return finish(NewtonStatus::converged, "linear solve, relative residual " + format_g(rel));
-        if (rel <= stagnation_residual_factor * settings.tolerance)
-            return finish(NewtonStatus::converged,
-                          "linear solve, relative residual " + format_g(rel) + " at round-off" + tolerance_text());
+        // The round-off of r + K du: that of r plus eps_mach |K| |du|.
+        Vector magnitude = Vector::Zero(du.size());
+        for (Index j = 0; j < current.tangent.outerSize(); ++j)
+            for (SparseMatrix::InnerIterator it(current.tangent, j); it; ++it)
+                magnitude(it.row()) += std::abs(it.value() * du(j));
+        const double floor = current.residual_floor + DBL_EPSILON * magnitude.norm();
+        report.floor_history.push_back(relative(floor, current.force_scale));
+        if (current.residual_floor > 0 && algebraic.norm() <= round_off_margin * floor)
+            return finish(NewtonStatus::converged, "linear solve, relative residual " + format_g(rel) +
+                                                       " at its round-off floor " +
+                                                       format_g(report.floor_history.back()) + tolerance_text());
         return finish(NewtonStatus::max_iterations, "linear solve left a relative residual " + format_g(rel) +
                                                         tolerance_text() + ": the tangent is singular or ill-conditioned");
     }
@@ -354,7 +348,6 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         }
 
         Vector du;
-        const double tangent_max = current.tangent.nonZeros() > 0 ? current.tangent.coeffs().cwiseAbs().maxCoeff() : 0.0;
         const StepResult step = newton_step(current.tangent, current.residual, solver, context, du);
         if (step.status != LinearStatus::ok)
             return finish(NewtonStatus::singular,
@@ -364,6 +357,7 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
                               "; last relative residual " + format_g(rel) + tolerance_text());
         if (step.regularized)
             ++report.regularized_iterations;
+        report.last_step_regularized = step.regularized;
         if (system.max_step > 0) {
             const double size = du.lpNorm<Eigen::Infinity>();
             if (size > system.max_step)
@@ -458,7 +452,8 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
             }
         }
 
-        const double step_size = alpha * du.lpNorm<Eigen::Infinity>();
+        const double correction = du.lpNorm<Eigen::Infinity>();  // the full Newton correction (capped)
+        const double step_size = alpha * correction;
         u = std::move(u_new);
         std::swap(current, *chosen);
         have_tangent = chosen_has_tangent;
@@ -469,10 +464,13 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         r_norm = current.residual.norm();
         rel = relative(r_norm, current.force_scale);
         report.residual_history.push_back(rel);
+        report.floor_history.push_back(relative(current.residual_floor, current.force_scale));
+        report.norm_ratio = r_norm / r_initial;
         report.residual_norm = rel;
         if (context)
             context->log(Verbosity::verbose, "  newton " + std::to_string(iteration) + ": relative residual " +
-                                                 format_g(rel) + ", step " + format_g(step_size) +
+                                                 format_g(rel) + " (floor " + format_g(report.floor_history.back()) +
+                                                 "), step " + format_g(step_size) +
                                                  (alpha < 1.0 ? ", alpha " + format_g(alpha) : std::string()) +
                                                  (step.regularized ? ", regularized mu " + format_g(step.mu)
                                                                    : std::string()));
@@ -483,18 +481,15 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         if (rel <= settings.tolerance)
             return finish(NewtonStatus::converged, "converged in " + std::to_string(iteration) +
                                                        " iterations, relative residual " + format_g(rel));
-        if (rel <= stagnation_residual_factor * settings.tolerance &&
-            step_size <= stagnation_step * u.lpNorm<Eigen::Infinity>())
+        const double u_size = u.lpNorm<Eigen::Infinity>();
+        report.correction = u_size > 0 ? correction / u_size : std::numeric_limits<double>::infinity();
+        if (r_norm <= round_off_margin * current.residual_floor && correction <= correction_tolerance * u_size)
             return finish(NewtonStatus::converged, "converged in " + std::to_string(iteration) +
-                                                       " iterations at round-off, relative residual " +
-                                                       format_g(rel) + tolerance_text());
-        const double round_off_force = zero_force_factor * tangent_max * u.lpNorm<Eigen::Infinity>() *
-                                       std::sqrt(static_cast<double>(u.size()));
-        if (step_size <= stagnation_step * u.lpNorm<Eigen::Infinity>() && current.force_scale <= round_off_force &&
-            r_norm <= round_off_force)
-            return finish(NewtonStatus::converged, "converged in " + std::to_string(iteration) +
-                                                       " iterations: no force acts (force scale " +
-                                                       format_g(current.force_scale) + " is round-off of K u)");
+                                                       " iterations at round-off: relative residual " + format_g(rel) +
+                                                       tolerance_text() + " within " + format_g(round_off_margin) +
+                                                       " of its round-off floor " +
+                                                       format_g(report.floor_history.back()) + ", correction " +
+                                                       format_g(report.correction) + " of u");
     }
     return finish(NewtonStatus::max_iterations, "no convergence in " + std::to_string(settings.max_iterations) +
                                                     " iterations; last relative residual " + format_g(rel) +

@@ -11,11 +11,18 @@
 // ed., §3.1 (Armijo backtracking) and §11.2 (Levenberg-Marquardt), applied to
 // the merit function ||r||; physics.md §7.2 and §7.5 (why contact needs them).
 //
-// Convergence (relative residual, scale = max(force_scale, DBL_MIN)):
-//   ||r|| / scale <= tolerance, or
-//   ||r|| / scale <= 1e3 tolerance and ||step||_inf <= 1e-9 ||u||_inf:
-//   stagnation at round-off, when the residual of a stiff (penalty) system
-//   cannot drop further because ||K|| ||u|| eps is already near the target.
+// Convergence: the residual is small against the forces in play, or it is at its
+// own round-off floor and the displacement no longer moves:
+//   ||r|| <= tolerance * force_scale, or
+//   ||r|| <= round_off_margin * residual_floor and ||du||_inf <= 1e-9 ||u||_inf,
+// force_scale and residual_floor from the system (Evaluation), du the last full
+// Newton correction. The second test (FEBio and Abaqus combine a force with a
+// displacement criterion the same way) ends a solve whose residual cannot reach
+// the tolerance in double precision: a soft penalty whose reaction is tiny against
+// the internal forces, a stiff penalty whose gaps carry eps * penalty * |x|, a
+// stress-free rigid motion where every force is round-off. A residual far above
+// its floor is never accepted, however small the step (docs/theory.md, "When Newton
+// has converged").
 //
 // Singular tangent (a body held only by contact at first touch, a frictionless
 // rigid-body mode): when the factorization or the solve reports singular, solve
@@ -49,16 +56,15 @@
 // cuts the increment back). Counted in NewtonReport::inadmissible_trials. With
 // line_search off, an inadmissible full step ends the solve at once.
 //
-// Failure diagnosis: on max_iterations or diverged, the residual history is
-// classified (solver/residual_trend.hpp): a two-state cycle (active-set or
-// projection flip-flop) or a stagnation; the message says which.
+// Failure diagnosis: on any failure the report is classified (solver/failure_cause.hpp:
+// free mode, inadmissible state, growth, cycle, round-off floor, stagnation, slow)
+// and the message ends with what holds.
 //
 // On any failure status, u is restored to its value on entry.
 
 #include "core/run_context.hpp"
 #include "core/types.hpp"
 #include "solver/linear.hpp"
-#include "solver/residual_trend.hpp"
 
 #include <functional>
 #include <string>
@@ -73,6 +79,10 @@ struct Evaluation {
     /// Norm of the forces in play (e.g. ||f_ext|| + ||reactions||), the scale of
     /// the relative residual. Zero only when no force acts at all.
     double force_scale = 0;
+    /// Estimated round-off of ||residual|| (absolute): machine epsilon times the norm
+    /// of the per-dof sums of |term| over the terms summed into r (a residual this
+    /// small cannot be reduced in double precision). 0: unknown, no floor is used.
+    double residual_floor = 0;
     /// false: the evaluation itself failed (a projection failed, a non-positive
     /// Jacobian); Newton reports evaluation_failed with this message.
     bool ok = true;
@@ -100,6 +110,12 @@ struct NewtonSettings {
     double divergence_factor = 1e8;  ///< ||r|| > this * ||r_0|| (or not finite): diverged
 };
 
+/// ||r|| within this factor of Evaluation::residual_floor is round-off. The estimate,
+/// eps_mach times sums of |terms|, already bounds what was measured where Newton
+/// stalls (||r|| / floor = 0.3-0.6 on the soft-penalty deck and Hertz, 0.01 at
+/// penalty 1e12 E); 10 allows for sums whose errors add up less kindly, and no more.
+inline constexpr double round_off_margin = 10.0;
+
 enum class NewtonStatus { converged, max_iterations, diverged, singular, evaluation_failed };
 
 const char* status_name(NewtonStatus status);
@@ -111,11 +127,17 @@ struct NewtonReport {
     /// Relative residual at each accepted state, starting with the initial one
     /// (size iterations + 1 unless the run stopped on a failed evaluation).
     std::vector<double> residual_history;
+    /// Relative round-off floor (residual_floor / force_scale) at the same states.
+    std::vector<double> floor_history;
+    /// Last full Newton correction over the displacement, ||du||_inf / ||u||_inf.
+    double correction = 0;
+    bool last_step_regularized = false;  ///< the last step needed K + mu D
+    /// ||r|| at the last accepted state over ||r|| at the start (absolute, unlike the
+    /// relative history, whose force scale grows with a diverging residual).
+    double norm_ratio = 1;
     int regularized_iterations = 0;  ///< steps that needed K + mu D
     int line_search_cuts = 0;        ///< backtracking halvings over all steps
     int inadmissible_trials = 0;     ///< trial states rejected because their evaluation failed
-    /// Shape of the residual history when the solve failed (max_iterations, diverged); else none.
-    ResidualTrend trend = ResidualTrend::none;
     std::string message;             ///< why it stopped, human readable
 };
 

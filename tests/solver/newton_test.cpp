@@ -514,6 +514,9 @@ TEST(Newton, ZeroForceSolutionConvergesAtRoundOff)
         const Vector f_full = K_full * u_full;        // internal forces, reaction at node 0
         out.residual = f_full.tail(n_nodes - 1);
         out.force_scale = f_full.norm();              // no external load: only f_int and the reaction
+        // Its round-off: eps_mach |K| |u| on the free rows (the system's contract).
+        out.residual_floor =
+            std::numeric_limits<double>::epsilon() * (K_full.cwiseAbs() * u_full.cwiseAbs()).tail(n_nodes - 1).norm();
         if (need_tangent)
             out.tangent = sparse(K_full.bottomRightCorner(n_nodes - 1, n_nodes - 1));
     };
@@ -524,6 +527,72 @@ TEST(Newton, ZeroForceSolutionConvergesAtRoundOff)
     ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
     for (int i = 0; i < n_nodes - 1; ++i)
         EXPECT_TRUE(test::near(u(i), lambda * d, solution_tolerance)) << i;
+}
+
+// ---------------------------------------------------------------------------
+// The round-off floor. One spring, r(u) = k (u - u*), whose residual can only be
+// computed to a resolution q, the way a sum with round-off q can: the value is
+// rounded to the middle of its q-wide bin, so |r| >= q/2 whatever u, and no
+// Newton step can reduce it further. The system reports `reported_floor` as its
+// round-off estimate. Force scale 1.
+struct QuantizedSpring {
+    double k = 1.0;
+    double u_star = 1.0;
+    double q = 0.0;
+    double reported_floor = 0.0;
+
+    NonlinearSystem system()
+    {
+        NonlinearSystem s;
+        s.evaluate = [this](const Vector& u, double, bool need_tangent, Evaluation& out) {
+            const double exact = k * (u(0) - u_star);
+            out.residual = Vector::Constant(1, q * (std::floor(exact / q) + 0.5));
+            out.force_scale = 1.0;
+            out.residual_floor = reported_floor;
+            if (need_tangent)
+                out.tangent = sparse(Matrix::Constant(1, 1, k));
+        };
+        return s;
+    }
+};
+
+// Resolution 1e-10 of the force: the relative residual cannot fall below 5e-11, above
+// the tolerance 1e-14 by more than the factor 1e3 the previous round-off rule allowed.
+// Told that floor, Newton converges once the correction (q/2k = 5e-11 of u) settles.
+TEST(Newton, ResidualAtItsRoundOffFloorConverges)
+{
+    QuantizedSpring spring;
+    spring.q = 1e-10;
+    spring.reported_floor = spring.q;
+    NonlinearSystem system = spring.system();
+    NewtonSettings settings;
+    settings.tolerance = 1e-14;
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    Vector u = Vector::Zero(1);
+    const NewtonReport report = solve_newton(system, 1.0, u, settings, solver, nullptr);
+    ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
+    EXPECT_NE(report.message.find("round-off floor"), std::string::npos) << report.message;
+    // The state is the solution to the resolution over the stiffness, q / k.
+    EXPECT_TRUE(test::near(u(0), spring.u_star, spring.q / spring.k)) << u(0) - spring.u_star;
+}
+
+// The same spring, but the system says its round-off is 1e6 times smaller: the
+// residual 5e-11 is then an unconverged state, however small the Newton step, and
+// is not accepted (the previous rule, 1e3 x tolerance with a small step, took it).
+TEST(Newton, LargeResidualWithSmallStepIsNotAccepted)
+{
+    QuantizedSpring spring;
+    spring.q = 1e-10;
+    spring.reported_floor = 1e-6 * spring.q;
+    NonlinearSystem system = spring.system();
+    NewtonSettings settings;
+    settings.tolerance = 1e-12;
+    settings.max_iterations = 8;
+    LinearSolver solver(LinearSolver::Kind::cholesky);
+    Vector u = Vector::Zero(1);
+    const NewtonReport report = solve_newton(system, 1.0, u, settings, solver, nullptr);
+    EXPECT_EQ(report.status, NewtonStatus::max_iterations) << report.message;
+    EXPECT_TRUE(u.isZero(0.0)) << "a failed solve restores u";
 }
 
 }  // namespace

@@ -1,0 +1,81 @@
+#include "analysis/failure_advice.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <limits>
+
+namespace iga::analysis {
+
+namespace {
+
+/// A penalty above 1e6 E makes the tangent's condition number, and so the amplified
+/// round-off, the likely reason (README "What accuracy costs": 1e2-1e3 E/h is plenty).
+constexpr double stiff_penalty_ratio = 1e6;
+
+std::string penalty_facts(const FailureContext& c)
+{
+    std::string text = fmt::format("the penalty is {:.3g} times E", c.penalty_over_modulus);
+    if (c.penalty_raised > 1)
+        text += fmt::format(" (the augmented Lagrangian raised it {:.3g}-fold)", c.penalty_raised);
+    return text;
+}
+
+}  // namespace
+
+FailureContext failure_context(const Scene& scene)
+{
+    FailureContext c;
+    c.has_contact = scene.has_contact();
+    if (!c.has_contact)
+        return c;
+    double E_min = std::numeric_limits<double>::infinity(), penalty_max = 0;
+    for (const BodyModel& b : scene.bodies)
+        E_min = std::min(E_min, b.material.E);
+    for (const PairModel& p : scene.pairs) {
+        penalty_max = std::max(penalty_max, p.pair.settings().penalty);
+        if (p.initial_penalty > 0)
+            c.penalty_raised = std::max(c.penalty_raised, p.pair.settings().penalty / p.initial_penalty);
+    }
+    c.penalty_over_modulus = penalty_max / E_min;
+    return c;
+}
+
+std::string failure_advice(solver::FailureCause cause, const FailureContext& c)
+{
+    const std::string smaller_steps = "smaller increments (a larger steps.count)";
+    const std::string smaller_penalty = "a smaller penalty (about 1e2-1e3 E/h is plenty; penalty: auto)";
+    switch (cause) {
+    case solver::FailureCause::none: return {};
+    case solver::FailureCause::free_mode:
+        return ". Singular tangent: a body may be unconstrained (held by nothing, or only by frictionless "
+               "contact that is not yet closed). Constrain every rigid-body motion the loads can excite";
+    case solver::FailureCause::inadmissible:
+        return ". A trial state could not be evaluated (an inverted element, det F <= 0, or a failed contact "
+               "projection). Use " + smaller_steps;
+    case solver::FailureCause::growth:
+        return ". Newton diverged: use " + smaller_steps +
+               (c.has_contact ? ", or " + smaller_penalty + "; " + penalty_facts(c) : std::string());
+    case solver::FailureCause::round_off_floor:
+        if (c.has_contact && c.penalty_over_modulus > stiff_penalty_ratio)
+            return ". The residual is at its round-off floor and " + penalty_facts(c) +
+                   ": the stiff tangent turns that round-off into corrections that do not settle. Use " +
+                   smaller_penalty + " or a looser newton.tolerance";
+        return ". The residual is at its round-off floor but the corrections do not settle (an "
+               "ill-conditioned tangent" +
+               (c.has_contact ? "; " + penalty_facts(c) : std::string()) +
+               "). Use a looser newton.tolerance, or reduce the stiffness contrast";
+    case solver::FailureCause::cycle:
+        return ". The Newton residual cycles between two states: an active-set (or projection) flip-flop, "
+               "Gauss points entering and leaving contact (or switching the segment they project onto) on "
+               "alternate iterations. Use " + smaller_steps + " or " + smaller_penalty;
+    case solver::FailureCause::stagnation:
+        return ". The residual stagnates above its round-off floor: the tangent does not fit the residual "
+               "(e.g. an active set that changes under the step). Use " + smaller_steps;
+    case solver::FailureCause::slow:
+        return ". Newton was still converging: raise newton.max_iterations or use " + smaller_steps;
+    }
+    return {};
+}
+
+}  // namespace iga::analysis
