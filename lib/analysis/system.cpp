@@ -430,7 +430,8 @@ double SceneSystem::strain_energy(const Vector& u_free, double load_factor)
     Vector f_int = Vector::Zero(scene_.dofs->n_full());
     SparseMatrix unused;
     solver::Evaluation scratch;
-    assemble_elements(u_full, false, f_int, unused, scratch);
+    Vector magnitude = Vector::Zero(scene_.dofs->n_full());  // the round-off estimate, unused here
+    assemble_elements(u_full, false, f_int, unused, scratch, magnitude);
     return 0.5 * u_full.dot(f_int);
 }
 
