@@ -14,6 +14,9 @@
 // force_scale (the scale of the relative residual) = max(||lambda f_ext||,
 // ||reactions||, ||contact forces||, ||f_int||): the forces in play, so that
 // displacement-driven scenes converge relative to their reactions.
+//
+// Stopping: Newton's evaluations (context given) poll the context's stop request
+// per contact pair and per element block and throw Interrupted (core/stop.hpp).
 
 #include "analysis/scene.hpp"
 #include "assembly/sparse_pattern.hpp"
@@ -66,7 +69,7 @@ private:
     /// Extends the pattern by the couplings of these evaluations that it lacks.
     void register_couplings(const std::vector<contact::PairEvaluation>& contact, RunContext* context);
     void assemble_elements(const Vector& u_full, bool need_tangent, Vector& r_full, SparseMatrix& K,
-                           solver::Evaluation& out);
+                           solver::Evaluation& out, const StopRequest& stop);
 
     Scene& scene_;
     RunContext& context_;

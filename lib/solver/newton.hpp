@@ -53,7 +53,9 @@
 // classified (solver/residual_trend.hpp): a two-state cycle (active-set or
 // projection flip-flop) or a stagnation; the message says which.
 //
-// On any failure status, u is restored to its value on entry.
+// On any failure status, u is restored to its value on entry. A stop request
+// (context->stop(), core/stop.hpp) throws Interrupted out of the solve, leaving u
+// at the last trial state: the caller restores what it needs.
 
 #include "core/run_context.hpp"
 #include "core/types.hpp"
