@@ -1,0 +1,66 @@
+// Set-up of a multi-patch body (analysis::build_body_patches: refinement, gluing,
+// the thin-patch, overlap and connectivity checks), the part of a run before any
+// element geometry, which must grow about linearly with the patches and elements:
+//   disc/L   inputs/disc_on_plane_2d.yaml (five patches, graded knots) with every
+//            span halved L times (--refine-levels L);
+//   strip/N  N unit squares in a row, glued side by side.
+// Run: bin/setup_benchmark
+//
+// Measured on the project machine (2 cores shared with other jobs, Release, GCC 12):
+//   see the figures in the commit that added this file (docs/deck.md, multi-patch);
+//   before the spatial searches the overlap check was quadratic in the elements
+//   (disc: 0.03 / 0.39 / 6.0 / ~100 s at L = 0 .. 3) and the interface search in the
+//   patches (strip: 19 s for 2000).
+
+#include "analysis/multipatch.hpp"
+#include "io/deck_reader.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+using namespace iga;
+
+void disc(benchmark::State& state)
+{
+    const io::Deck deck = io::read_deck(std::string(IGA_SOURCE_DIR) + "/inputs/disc_on_plane_2d.yaml");
+    const io::Body& body = *deck.find_body("disc");
+    std::size_t elements = 0;
+    for (auto _ : state) {
+        const analysis::BodyPatches built = analysis::build_body_patches(deck, body, static_cast<int>(state.range(0)));
+        elements = 0;
+        for (const nurbs::Patch& p : built.patches)
+            elements += p.elements().size();
+    }
+    state.counters["elements"] = static_cast<double>(elements);
+}
+
+void strip(benchmark::State& state)
+{
+    const int n = static_cast<int>(state.range(0));
+    std::string text = "format: 1\nanalysis: {dimension: 2, plane: strain}\nmaterials: [{name: m, E: 1.0, nu: 0.3}]\n"
+                       "bodies:\n  - name: strip\n    material: m\n    patches:\n";
+    for (int k = 0; k < n; ++k)
+        text += fmt::format("      - {{name: p{}, nurbs: {{degrees: [1, 1], knots: [[0, 0, 1, 1], [0, 0, 1, 1]], "
+                            "control_points: [[{}, 0, 1], [{}, 0, 1], [{}, 1, 1], [{}, 1, 1]]}}}}\n",
+                            k, k, k + 1, k, k + 1);
+    const std::filesystem::path file = std::filesystem::temp_directory_path() / fmt::format("strip_{}.yaml", n);
+    std::ofstream(file) << text;
+    const io::Deck deck = io::read_deck(file.string());
+    std::filesystem::remove(file);
+    std::size_t interfaces = 0;
+    for (auto _ : state)
+        interfaces = analysis::build_body_patches(deck, deck.bodies.front()).topology.interfaces.size();
+    state.counters["interfaces"] = static_cast<double>(interfaces);
+}
+
+}  // namespace
+
+BENCHMARK(disc)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+BENCHMARK(strip)->Arg(200)->Arg(2000)->Arg(20000)->Unit(benchmark::kMillisecond);
