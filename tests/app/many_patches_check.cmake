@@ -3,7 +3,7 @@
 # and connectivity checks, scene) must finish within the test's TIMEOUT (it was
 # quadratic in the patches: 19 s for 2000), and glue every neighbour pair:
 # N patches, N - 1 interfaces, 2 (N + 1) distinct control points.
-# Usage: cmake -DAPP=igacontact -DN=2000 -DWORK=dir -P many_patches_check.cmake
+# Usage: cmake -DAPP=igacontact -DN=5000 -DWORK=dir -P many_patches_check.cmake
 file(MAKE_DIRECTORY ${WORK})
 set(deck ${WORK}/strip.yaml)
 math(EXPR last "${N} - 1")
