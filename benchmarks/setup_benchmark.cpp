@@ -6,11 +6,17 @@
 //   strip/N  N unit squares in a row, glued side by side.
 // Run: bin/setup_benchmark
 //
-// Measured on the project machine (2 cores shared with other jobs, Release, GCC 12):
-//   see the figures in the commit that added this file (docs/deck.md, multi-patch);
-//   before the spatial searches the overlap check was quadratic in the elements
-//   (disc: 0.03 / 0.39 / 6.0 / ~100 s at L = 0 .. 3) and the interface search in the
-//   patches (strip: 19 s for 2000).
+// Measured on the project machine (2 cores shared with other jobs, Release, GCC 12),
+// CPU time per build, before (quadratic overlap check and interface search) and after
+// (bounding-box tree of all elements, hash of side corners):
+//   case         elements / patches   before     after
+//   disc/0          8 474             63 ms      33 ms
+//   disc/1         34 076            847 ms     130 ms
+//   disc/2        136 664           13.2 s      543 ms
+//   disc/3        547 376          (~200 s)     2.5 s
+//   strip/200         200            269 ms     2.7 ms
+//   strip/2000       2000           26.8 s       29 ms
+//   strip/20000     20000          (~45 min)    0.30 s
 
 #include "analysis/multipatch.hpp"
 #include "io/deck_reader.hpp"
