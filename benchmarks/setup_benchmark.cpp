@@ -13,10 +13,10 @@
 //   disc/0          8 474             63 ms      33 ms
 //   disc/1         34 076            847 ms     130 ms
 //   disc/2        136 664           13.2 s      543 ms
-//   disc/3        547 376          (~200 s)     2.5 s
+//   disc/3        547 376     ~200 s (extrap.)  2.5 s
 //   strip/200         200            269 ms     2.7 ms
 //   strip/2000       2000           26.8 s       29 ms
-//   strip/20000     20000          (~45 min)    0.30 s
+//   strip/20000     20000     ~45 min (extrap.) 0.30 s
 
 #include "analysis/multipatch.hpp"
 #include "io/deck_reader.hpp"
