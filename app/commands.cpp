@@ -36,7 +36,8 @@ std::atomic<bool> interrupt_requested{false};
 extern "C" void on_interrupt(int signal)
 {
     interrupt_requested.store(true);
-    // The run stops cleanly at the next increment; a second Ctrl-C ends it at once
+    // The run stops cleanly within one element block or Newton trial (core/stop.hpp),
+    // abandoning the increment in progress; a second Ctrl-C ends it at once
     // (the temporary results file is flushed after each increment, so stays readable).
     std::signal(signal, SIG_DFL);
 }
@@ -129,6 +130,7 @@ int run_command(int argc, char** argv)
     std::signal(SIGTERM, on_interrupt);
     analysis::RunOptions options;
     options.stop_requested = [] { return interrupt_requested.load(); };
+    context.set_stop(StopRequest(&interrupt_requested));  // polled inside set-up, assembly and Newton
     options.threads = threads;
     options.refine_levels = refine_levels;
     if (terminal)

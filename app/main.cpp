@@ -13,6 +13,7 @@
 #include "summary_json.hpp"
 
 #include "core/error.hpp"
+#include "core/stop.hpp"
 #include "version.hpp"
 
 #include <exception>
@@ -40,6 +41,11 @@ int main(int argc, char** argv)
     } catch (const UsageError& e) {
         std::cerr << "igacontact: error: " << e.what() << "\nRun 'igacontact --help' for usage.\n";
         return fail("bad_input", e.what(), exit_bad_input);
+    } catch (const iga::Interrupted& e) {
+        // A stop during set-up (inside the increments the run writes its file and returns).
+        const std::string message = std::string(e.what()) + " during set-up, before any results were written";
+        std::cerr << "igacontact: failed: " << message << '\n';
+        return fail("failed", message, exit_failed);
     } catch (const iga::DeckError& e) {
         std::cerr << e.what() << '\n';
         return fail("bad_input", e.what(), exit_bad_input);

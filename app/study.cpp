@@ -348,7 +348,7 @@ int study_command(int argc, char** argv)
             for (std::size_t i : running)
                 ::kill(levels[i].pid, SIGINT);
             if (interrupts_passed_on == 0)
-                say("study: interrupted: stopping the running level(s) after their current increment");
+                say("study: interrupted: stopping the running level(s); each keeps its converged increments");
             interrupts_passed_on = seen;
         }
         if (seen == 0 && next < levels.size() && static_cast<int>(running.size()) < jobs) {

@@ -1,12 +1,15 @@
 #include "analysis/multipatch.hpp"
 
 #include "analysis/geometry.hpp"
+#include "contact/search.hpp"
 #include "io/locate.hpp"
 #include "nurbs/refine.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <optional>
 
 namespace iga::analysis {
 namespace {
@@ -34,20 +37,81 @@ std::string point_text(const VecN& x)
     return out + ")";
 }
 
-/// The element centres of `a` that lie inside `b`: the first one, if any.
-std::optional<VecN> point_inside(const nurbs::Patch& a, const nurbs::Patch& b)
+/// A point of one patch inside another.
+struct Overlap {
+    std::size_t a, b;  ///< patch with the point, patch that holds it
+    VecN x;
+};
+
+/// The first element centre (patch order, then element order) that lies inside
+/// another patch, if any. Every element of every patch is boxed by its Bezier
+/// control points (the convex hull holds the element), the boxes go into one
+/// bounding-volume tree (contact/search.hpp), and a centre is inverted only into
+/// the elements whose box holds it, Newton starting in that element: O(n log n)
+/// for n elements, where testing every centre against every patch was O(n^2).
+std::optional<Overlap> overlapping_point(const std::vector<nurbs::Patch>& patches, double tolerance,
+                                         const StopRequest& stop)
 {
-    const RowMatrix& P = b.control_points();
-    const VecN lo = P.colwise().minCoeff().transpose(), hi = P.colwise().maxCoeff().transpose();
-    for (const nurbs::Element& e : a.elements()) {
-        VecN xi(a.n_par());
-        for (int k = 0; k < a.n_par(); ++k)
-            xi(k) = 0.5 * (e.lower[static_cast<std::size_t>(k)] + e.upper[static_cast<std::size_t>(k)]);
-        const VecN x = nurbs::evaluate(a, xi, 0).x;
-        if ((x.array() < lo.array()).any() || (x.array() > hi.array()).any())
-            continue;  // outside b's control hull box, so outside b
-        if (nurbs::invert_point(b, x, overlap_parameter_margin))
-            return x;
+    struct Owner {
+        std::size_t patch;
+        nurbs::Element element;
+    };
+    std::vector<Owner> owners;
+    std::vector<contact::Box> boxes;
+    for (std::size_t p = 0; p < patches.size(); ++p) {
+        stop.check();
+        const nurbs::Patch& patch = patches[p];
+        std::array<std::vector<Eigen::MatrixXd>, 3> extraction;
+        for (int k = 0; k < patch.n_par(); ++k)
+            extraction[static_cast<std::size_t>(k)] = nurbs::bezier_extraction(patch.knots(k));
+        for (const nurbs::Element& e : patch.elements()) {
+            // Inflated by the coincidence tolerance: a centre on a box face (round-off) is still found.
+            boxes.push_back(contact::bounding_box(nurbs::bezier_control_points(patch, e, extraction)).inflated(tolerance));
+            owners.push_back({p, e});
+        }
+    }
+    const contact::ElementSearch search(std::move(boxes));
+    std::vector<int> hits;
+    for (std::size_t p = 0; p < patches.size(); ++p) {
+        const nurbs::Patch& a = patches[p];
+        for (const nurbs::Element& e : a.elements()) {
+            stop.check();
+            VecN xi(a.n_par());
+            for (int k = 0; k < a.n_par(); ++k)
+                xi(k) = 0.5 * (e.lower[static_cast<std::size_t>(k)] + e.upper[static_cast<std::size_t>(k)]);
+            const VecN x = nurbs::evaluate(a, xi, 0).x;
+            search.candidates(x, hits);
+            for (const int h : hits) {
+                const Owner& o = owners[static_cast<std::size_t>(h)];
+                if (o.patch != p && nurbs::invert_point(patches[o.patch], x, overlap_parameter_margin, o.element))
+                    return Overlap{p, o.patch, x};
+            }
+        }
+    }
+    return std::nullopt;
+}
+
+/// The parametric direction in which a patch is thinner than `tolerance` (its two
+/// sides across that direction coincide corner by corner), if any.
+std::optional<int> thin_direction(const nurbs::Patch& patch, double tolerance)
+{
+    const int n = patch.n_par();
+    for (int k = 0; k < n; ++k) {
+        double gap = 0.0;
+        for (int c = 0; c < (1 << n); ++c) {  // the corners with index 0 in direction k
+            if ((c >> k) & 1)
+                continue;
+            std::array<int, 3> lo{0, 0, 0};
+            for (int j = 0; j < n; ++j)
+                lo[static_cast<std::size_t>(j)] = ((c >> j) & 1) ? patch.n_basis(j) - 1 : 0;
+            std::array<int, 3> hi = lo;
+            hi[static_cast<std::size_t>(k)] = patch.n_basis(k) - 1;
+            gap = std::max(gap, (patch.control_points().row(patch.control_point_index(lo)) -
+                                 patch.control_points().row(patch.control_point_index(hi)))
+                                    .norm());
+        }
+        if (gap <= tolerance)
+            return k;
     }
     return std::nullopt;
 }
@@ -78,7 +142,7 @@ std::vector<BodySide> resolve_sides(const io::Body& body, const std::vector<std:
     return out;
 }
 
-BodyPatches build_body_patches(const io::Deck& deck, const io::Body& body, int halvings)
+BodyPatches build_body_patches(const io::Deck& deck, const io::Body& body, int halvings, const StopRequest& stop)
 {
     IGA_CHECK(!body.rigid, "build_body_patches called for the rigid body '" + body.name + "'");
     const int d = deck.analysis.dimension;
@@ -92,6 +156,7 @@ BodyPatches build_body_patches(const io::Deck& deck, const io::Body& body, int h
         out.names.emplace_back();
     } else {
         for (const io::PatchData& data : body.patches) {
+            stop.check();
             try {
                 out.patches.push_back(nurbs::halve_spans(refined(refined(raw_patch(data.nurbs, d), body.refine), data.refine), halvings));
             } catch (const Error& e) {
@@ -115,8 +180,17 @@ BodyPatches build_body_patches(const io::Deck& deck, const io::Body& body, int h
         hi = hi.cwiseMax(p.control_points().colwise().maxCoeff().transpose());
     }
     const double tolerance = glue_relative_tolerance * (hi - lo).norm();
+    // A patch thinner than the tolerance would be glued on both sides at once, its
+    // neighbours also to each other: refuse it here, where it can be named.
+    for (std::size_t p = 0; p < out.patches.size(); ++p)
+        if (const std::optional<int> k = thin_direction(out.patches[p], tolerance))
+            throw body_error(deck, patch_path(body, out.names[p]),
+                             fmt::format("patch '{}' is thinner than the gluing tolerance ({:.3g} = {:g} x the body "
+                                         "size) in direction {}: its two sides across it coincide, so it cannot be "
+                                         "glued; remove the patch or make it thicker",
+                                         out.names[p], tolerance, glue_relative_tolerance, "uvw"[*k]));
     try {
-        out.topology = nurbs::glue_patches(out.patches, tolerance);
+        out.topology = nurbs::glue_patches(out.patches, tolerance, stop);
     } catch (const nurbs::NonMatchingInterface& e) {
         throw body_error(deck, patch_path(body, out.names[static_cast<std::size_t>(e.patch_a)]),
                          fmt::format("non-matching interface: side {} of patch '{}' and side {} of patch '{}' share "
@@ -127,30 +201,29 @@ BodyPatches build_body_patches(const io::Deck& deck, const io::Body& body, int h
         throw body_error(deck, patch_path(body, ""), std::string("cannot glue the patches: ") + e.what());
     }
 
-    for (std::size_t a = 0; a < out.patches.size(); ++a)
-        for (std::size_t b = 0; b < out.patches.size(); ++b) {
-            if (a == b)
-                continue;
-            if (const auto x = point_inside(out.patches[a], out.patches[b]))
-                throw body_error(deck, patch_path(body, out.names[a]),
-                                 fmt::format("overlapping patches: patch '{}' has the point {} inside patch '{}' "
-                                             "(patches of a body may share sides, not volume)",
-                                             out.names[a], point_text(*x), out.names[b]));
-        }
+    if (const auto overlap = overlapping_point(out.patches, tolerance, stop))
+        throw body_error(deck, patch_path(body, out.names[overlap->a]),
+                         fmt::format("overlapping patches: patch '{}' has the point {} inside patch '{}' "
+                                     "(patches of a body may share sides, not volume)",
+                                     out.names[overlap->a], point_text(overlap->x), out.names[overlap->b]));
 
     // Connected through interfaces.
+    std::vector<std::vector<int>> neighbours(out.patches.size());
+    for (const nurbs::Interface& i : out.topology.interfaces) {
+        neighbours[static_cast<std::size_t>(i.patch_a)].push_back(i.patch_b);
+        neighbours[static_cast<std::size_t>(i.patch_b)].push_back(i.patch_a);
+    }
     std::vector<char> reached(out.patches.size(), 0);
     std::vector<int> queue{0};
     reached[0] = 1;
     while (!queue.empty()) {
         const int p = queue.back();
         queue.pop_back();
-        for (const nurbs::Interface& i : out.topology.interfaces)
-            for (const auto& [from, to] : {std::pair{i.patch_a, i.patch_b}, std::pair{i.patch_b, i.patch_a}})
-                if (from == p && !reached[static_cast<std::size_t>(to)]) {
-                    reached[static_cast<std::size_t>(to)] = 1;
-                    queue.push_back(to);
-                }
+        for (const int to : neighbours[static_cast<std::size_t>(p)])
+            if (!reached[static_cast<std::size_t>(to)]) {
+                reached[static_cast<std::size_t>(to)] = 1;
+                queue.push_back(to);
+            }
     }
     for (std::size_t p = 0; p < out.patches.size(); ++p)
         if (!reached[p])

@@ -14,11 +14,14 @@
 // cannot be matched (non-matching interface), a patch with points inside
 // another (overlapping patches), patches not connected through interfaces (a
 // side half shared with another patch is not an interface, so such patches are
-// reported here), a named surface side that is an interface.
+// reported here), a named surface side that is an interface, a patch thinner
+// than the tolerance (its opposite sides coincide: it would be glued on both).
 // Coincidence tolerance: glue_relative_tolerance times the body's bounding-box
-// diagonal.
+// diagonal. Every check is near-linear in the number of patches and elements
+// (the overlap test inverts a point only into the elements whose box holds it).
 
 #include "core/side.hpp"
+#include "core/stop.hpp"
 #include "io/deck.hpp"
 #include "nurbs/patch.hpp"
 #include "nurbs/topology.hpp"
@@ -48,8 +51,9 @@ struct BodyPatches {
 
 /// The patches of deformable deck body `body` (precondition: !body.rigid), refined
 /// (then every span halved `halvings` times: RunOptions::refine_levels), glued and
-/// checked; throws a located DeckError.
-BodyPatches build_body_patches(const io::Deck& deck, const io::Body& body, int halvings = 0);
+/// checked; throws a located DeckError, and Interrupted once `stop` is requested.
+BodyPatches build_body_patches(const io::Deck& deck, const io::Body& body, int halvings = 0,
+                               const StopRequest& stop = {});
 
 /// The patch sides a reference names (the reader checked the names): a named
 /// surface's sides, or the one side `patch.side` / `side`.

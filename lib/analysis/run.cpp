@@ -114,7 +114,13 @@ std::string load_items_text(const io::Deck& deck, const Scene& scene, const Free
 RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& context)
 {
     ScopedTimer total(nullptr, "total");
-    Scene scene = build_scene(deck, options.refine_levels);
+    Scene scene = [&] {
+        ScopedTimer t(&context, "setup");
+        Scene built = build_scene(deck, options.refine_levels, context.stop());
+        context.log(Verbosity::verbose, fmt::format("  set-up (patches, gluing and checks, element geometry, "
+                                                    "pattern): {:.3g} s", t.elapsed()));
+        return built;
+    }();
     assembly::limit_library_threads();  // CHOLMOD's OpenMP loops inline: nothing spins
     SceneSystem system(scene, context, options.threads);
 

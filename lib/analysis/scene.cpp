@@ -131,7 +131,7 @@ std::vector<int> coupling_full_dofs(const PairModel& pair, const contact::Coupli
     return full;
 }
 
-Scene build_scene(const io::Deck& deck, int refine_levels)
+Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& stop)
 {
     check_size(deck);  // refuse an absurd model before allocating any of it
     Scene scene;
@@ -148,7 +148,7 @@ Scene build_scene(const io::Deck& deck, int refine_levels)
             continue;
         }
         scene.body_of_deck.push_back(static_cast<int>(scene.bodies.size()));
-        BodyPatches built = build_body_patches(deck, body, refine_levels);
+        BodyPatches built = build_body_patches(deck, body, refine_levels, stop);
         BodyModel model;
         model.name = body.name;
         model.multi_patch = body.multi_patch();
@@ -159,6 +159,7 @@ Scene build_scene(const io::Deck& deck, int refine_levels)
             nurbs::Patch& patch = built.patches[p];
             const std::vector<int>& node = built.topology.node[p];
             const std::string path = "bodies." + body.name + (body.multi_patch() ? ".patches." + built.names[p] : "");
+            stop.check();
             std::vector<mechanics::ElementGeometry> elements;
             try {
                 elements = mechanics::patch_geometry(patch, body.quadrature.element);

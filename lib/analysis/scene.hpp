@@ -20,6 +20,7 @@
 #include "assembly/dof_map.hpp"
 #include "assembly/sparse_pattern.hpp"
 #include "contact/contact_pair.hpp"
+#include "core/stop.hpp"
 #include "io/deck.hpp"
 #include "mechanics/element_geometry.hpp"
 #include "mechanics/loads.hpp"
@@ -134,7 +135,8 @@ std::vector<int> coupling_full_dofs(const PairModel& pair, const contact::Coupli
 /// Builds the scene. Geometry problems (a refinement that cannot be applied, a
 /// non-positive Jacobian) are reported as DeckError naming the body.
 /// `refine_levels` > 0 halves every knot span of every body that many times after
-/// the deck's refinement (RunOptions::refine_levels).
-Scene build_scene(const io::Deck& deck, int refine_levels = 0);
+/// the deck's refinement (RunOptions::refine_levels). `stop` is polled per patch
+/// (and inside the gluing): a requested stop throws Interrupted.
+Scene build_scene(const io::Deck& deck, int refine_levels = 0, const StopRequest& stop = {});
 
 }  // namespace iga::analysis

@@ -1,5 +1,6 @@
 #include "analysis/size_estimate.hpp"
 
+#include "contact/contact_pair.hpp"
 #include "io/locate.hpp"
 
 #include <fmt/format.h>
@@ -98,7 +99,18 @@ double product(const std::vector<Direction>& dirs, const std::function<double(co
 /// A contact side of a deformable body: its directions and the fixed one.
 struct SideSize {
     double spans = 0, control_points = 0, max_degree = 0;
+    double element_points = 0;  ///< control points of one side element, prod (p_i + 1), the largest
 };
+
+/// Entries (i, j) of one direction's Gram pattern: basis functions i and j share a
+/// span. With simple interior knots function i meets i - p .. i + p, so the count is
+/// n (2p + 1) - p (p + 1) for n functions (the p (p + 1) pairs that would reach past
+/// either end removed); repeated knots (elevation) only remove pairs.
+double overlapping_pairs(const Direction& dir)
+{
+    const double n = dir.control_points(), p = dir.degree;
+    return std::max(n, n * (2 * p + 1) - p * (p + 1));
+}
 
 /// A contact surface of a deformable body: its patch sides together (a named
 /// surface, `patch.side` or a side), the largest degree along any of them.
@@ -132,6 +144,7 @@ std::optional<SideSize> side_size(const io::Deck& deck, const io::ContactSurface
         const int fixed = side_direction(side.side);
         s.spans += product(dirs, [](const Direction& d) { return d.spans(); }, fixed);
         s.control_points += product(dirs, [](const Direction& d) { return d.control_points(); }, fixed);
+        s.element_points = std::max(s.element_points, product(dirs, [](const Direction& d) { return d.degree + 1; }, fixed));
         for (std::size_t i = 0; i < dirs.size(); ++i)
             if (static_cast<int>(i) != fixed)
                 s.max_degree = std::max(s.max_degree, dirs[i].degree);
@@ -263,7 +276,7 @@ SizeEstimate estimate_size(const io::Deck& deck)
                 n_gauss > 0 ? std::pow(static_cast<double>(n_gauss), static_cast<double>(dirs.size())) : n_local;
             s.elements = product(dirs, [](const Direction& x) { return x.spans(); });
             s.dofs = d * product(dirs, [](const Direction& x) { return x.control_points(); });
-            const double nonzeros = s.dofs * d * product(dirs, [](const Direction& x) { return 2 * x.degree + 1; });
+            const double nonzeros = d * d * product(dirs, overlapping_pairs);
             b.dofs += s.dofs;
             b.elements += s.elements;
             b.nonzeros += nonzeros;
@@ -288,9 +301,8 @@ SizeEstimate estimate_size(const io::Deck& deck)
     }
     e.bytes += 2 * 12 * e.nonzeros;  // tangent and (at least as large) factor
     for (const io::ContactPair& pair : deck.contact) {
-        double pair_dofs = 0;
-        for (const io::ContactSurface* surface : {&pair.first, &pair.second}) {
-            const std::optional<SideSize> side = side_size(deck, *surface);
+        const std::optional<SideSize> sides[2] = {side_size(deck, pair.first), side_size(deck, pair.second)};
+        for (const std::optional<SideSize>& side : sides) {
             if (!side)
                 continue;
             const double per_span = pair.quadrature > 0 ? pair.quadrature : side->max_degree + 2;
@@ -299,9 +311,37 @@ SizeEstimate estimate_size(const io::Deck& deck)
             e.contact_gauss_points += gauss;
             e.samples += samples;
             e.bytes += gauss * 64 * d + samples * (2 * d + 1) * 8 * 4;
-            pair_dofs += side->control_points * d;
         }
-        e.bytes += pair_dofs * pair_dofs * 16;  // the pair's dense connectivity block
+        // Couplings (contact/contact_pair.hpp): one pattern block per (slave element,
+        // master element) pair the search admits in the reference configuration.
+        // Against a rigid obstacle, one per side element (its dofs already coupled by
+        // the element). Between two deformable sides, assumed to face each other: each
+        // slave element meets the master elements within the search margin (a tenth of
+        // the larger side: contact_pair.hpp), w = 2 + 0.2 n per direction for n master
+        // spans per direction, and each slave control point then w + p_m + p_s master
+        // control points per direction; both half passes find the same blocks.
+        double couplings = 0, block_dofs = 0, cross = 0;
+        if (sides[0] && sides[1]) {
+            const double q = d - 1;  // side directions
+            auto pass = [&](const SideSize& slave, const SideSize& master, double& blocks, double& entries) {
+                const double w = 2 + 2 * contact::auto_search_fraction * std::pow(master.spans, 1 / q);
+                blocks = slave.spans * std::pow(w, q);
+                entries = slave.control_points * std::pow(w + master.max_degree + slave.max_degree, q);
+            };
+            double blocks_12 = 0, entries_12 = 0, blocks_21 = 0, entries_21 = 0;
+            pass(*sides[0], *sides[1], blocks_12, entries_12);
+            pass(*sides[1], *sides[0], blocks_21, entries_21);
+            const bool both = pair.formulation == io::Formulation::two_half_pass;
+            couplings = both ? std::max(blocks_12, blocks_21) : blocks_12;
+            block_dofs = d * (sides[0]->element_points + sides[1]->element_points);
+            cross = 2 * d * d * (both ? std::max(entries_12, entries_21) : entries_12);
+        } else if (const std::optional<SideSize>& side = sides[0] ? sides[0] : sides[1]) {
+            couplings = side->spans;
+            block_dofs = d * side->element_points;
+        }
+        e.contact_couplings += couplings;
+        e.nonzeros += cross;
+        e.bytes += couplings * 4 * block_dofs * block_dofs + 2 * 12 * cross;  // positions; tangent and factor
     }
     return e;
 }

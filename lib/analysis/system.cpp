@@ -153,7 +153,8 @@ RowMatrix SceneSystem::side_displacement(const Vector& u_full, int p, int k) con
 }
 
 void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vector& r_full, SparseMatrix& K,
-                                    solver::Evaluation& out, Vector& magnitude)
+                                    solver::Evaluation& out, Vector& magnitude,
+                                    const StopRequest& stop)
 {
     const assembly::SparsePattern& pattern = *scene_.pattern;
     const int d = scene_.dim;
@@ -191,6 +192,7 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
         const assembly::SparsePattern full_pattern(unconstrained, std::move(blocks));
         SparseMatrix K0 = full_pattern.make_matrix();
         for (int block = 0; block < scene_.n_element_blocks; ++block) {  // once per run: not worth threads
+            stop.check();
             const mechanics::ElementGeometry& geometry = element_of(block);
             full_pattern.add(block,
                              mechanics::element_response(geometry, body_of(block).material, scene_.kinematics,
@@ -238,6 +240,7 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
             [&](int block) {
                 if (block >= scene_.n_element_blocks)
                     return;
+                stop.check();  // every block after a stop throws: for_each_block rethrows once all have returned
                 const std::vector<int>& dofs = dofs_of(block);
                 Vector& f = element_force_[static_cast<std::size_t>(block)];
                 const Matrix u_local = local_displacement(u_full, dofs, d);
@@ -305,10 +308,13 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
     if (scene_.has_contact()) {  // no pairs: not even a timer runs
         ScopedTimer timer(context, "contact");
         contact.reserve(scene_.pairs.size());
-        for (std::size_t p = 0; p < scene_.pairs.size(); ++p)
+        for (std::size_t p = 0; p < scene_.pairs.size(); ++p) {
+            if (context)
+                context->stop().check();
             contact.push_back(scene_.pairs[p].pair.evaluate(side_displacement(u_full, static_cast<int>(p), 0),
                                                             side_displacement(u_full, static_cast<int>(p), 1),
                                                             need_tangent, context, load_factor));
+        }
         if (need_tangent)
             register_couplings(contact, context);
     }
@@ -326,7 +332,10 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
     Vector magnitude = Vector::Zero(dofs.n_full());
     {
         ScopedTimer timer(context, "elements");
-        assemble_elements(u_full, need_tangent, r_full, out.tangent, out, magnitude);
+        // Polled per element block only for Newton's evaluations (context given): the
+        // output's evaluations of a converged state always finish.
+        assemble_elements(u_full, need_tangent, r_full, out.tangent, out, magnitude,
+                          context ? context->stop() : StopRequest{});
     }
     double f_int_norm = 0.0, reaction_norm2 = 0.0;
     for (Index k = 0; k < r_full.size(); ++k)
@@ -431,7 +440,7 @@ double SceneSystem::strain_energy(const Vector& u_free, double load_factor)
     SparseMatrix unused;
     solver::Evaluation scratch;
     Vector magnitude = Vector::Zero(scene_.dofs->n_full());  // the round-off estimate, unused here
-    assemble_elements(u_full, false, f_int, unused, scratch, magnitude);
+    assemble_elements(u_full, false, f_int, unused, scratch, magnitude, StopRequest{});
     return 0.5 * u_full.dot(f_int);
 }
 

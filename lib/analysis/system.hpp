@@ -26,6 +26,9 @@
 // plus the round-off of the contact pressures from their gaps (eps_mach eps |x| W
 // per active Gauss point: a gap is a difference of coordinates). docs/theory.md,
 // "When Newton has converged".
+//
+// Stopping: Newton's evaluations (context given) poll the context's stop request
+// per contact pair and per element block and throw Interrupted (core/stop.hpp).
 
 #include "analysis/free_modes.hpp"
 #include "analysis/scene.hpp"
@@ -87,7 +90,8 @@ private:
     /// Extends the pattern by the couplings of these evaluations that it lacks.
     void register_couplings(const std::vector<contact::PairEvaluation>& contact, RunContext* context);
     void assemble_elements(const Vector& u_full, bool need_tangent, Vector& r_full, SparseMatrix& K,
-                           solver::Evaluation& out, Vector& magnitude);
+                           solver::Evaluation& out, Vector& magnitude,
+                           const StopRequest& stop);
 
     Scene& scene_;
     RunContext& context_;

@@ -21,9 +21,6 @@
 namespace iga::contact {
 namespace {
 
-/// Fraction of the larger side's reference size used as the automatic search
-/// margin: far above any sensible penalty penetration, small enough to prune.
-constexpr double auto_search_fraction = 0.1;
 /// Control points closer than this fraction of the coordinates' magnitude count
 /// as coincident (a few hundred ulps): such a side is collapsed.
 constexpr double collapsed_relative_tolerance = 1e-13;

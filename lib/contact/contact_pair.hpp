@@ -84,6 +84,10 @@
 
 namespace iga::contact {
 
+/// Fraction of the larger side's reference size used as the automatic search
+/// margin: far above any sensible penalty penetration, small enough to prune.
+inline constexpr double auto_search_fraction = 0.1;
+
 enum class Formulation { two_half_pass, single_pass };
 
 struct PairSettings {

@@ -31,17 +31,29 @@ ElementSearch::ElementSearch(const nurbs::Patch& side, const SearchOptions& opti
     const std::vector<nurbs::Element> elements = side.elements();
     IGA_CHECK(!elements.empty(), "contact: side without elements");
     element_boxes_.reserve(elements.size());
-    std::vector<VecN> centres;
-    centres.reserve(elements.size());
     for (const nurbs::Element& element : elements) {
         const Box tight = bounding_box(nurbs::bezier_control_points(side, element, extraction));
         const double margin = std::max(options.span_fraction * tight.diagonal(), options.distance);
         element_boxes_.push_back(tight.inflated(margin));
-        centres.push_back(0.5 * (element_boxes_.back().lower + element_boxes_.back().upper));
     }
-    order_.resize(elements.size());
+    build_tree();
+}
+
+ElementSearch::ElementSearch(std::vector<Box> boxes) : element_boxes_(std::move(boxes))
+{
+    IGA_CHECK(!element_boxes_.empty(), "contact: element search over no boxes");
+    build_tree();
+}
+
+void ElementSearch::build_tree()
+{
+    std::vector<VecN> centres;
+    centres.reserve(element_boxes_.size());
+    for (const Box& box : element_boxes_)
+        centres.push_back(0.5 * (box.lower + box.upper));
+    order_.resize(element_boxes_.size());
     std::iota(order_.begin(), order_.end(), 0);
-    nodes_.reserve(2 * elements.size() / leaf_size + 2);
+    nodes_.reserve(2 * element_boxes_.size() / leaf_size + 2);
     build(0, static_cast<int>(order_.size()), centres);
 }
 

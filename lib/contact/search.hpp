@@ -53,6 +53,9 @@ class ElementSearch {
 public:
     /// Boxes of every element of `side` (n_par = 1 or 2, current control points).
     ElementSearch(const nurbs::Patch& side, const SearchOptions& options);
+    /// The same tree over boxes given by the caller (at least one), indexed by their
+    /// position: e.g. every element of every patch of a body (analysis/multipatch.cpp).
+    explicit ElementSearch(std::vector<Box> boxes);
 
     /// Element indices (ascending) whose inflated box contains x.
     std::vector<int> candidates(const VecN& x) const;
@@ -75,6 +78,7 @@ private:
         int count = 0;       ///< > 0 for a leaf
         int children[2]{-1, -1};
     };
+    void build_tree();
     int build(int first, int count, std::vector<VecN>& centres);
     template <class Test> void query(const Test& hits, std::vector<int>& out) const;
 

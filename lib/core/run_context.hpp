@@ -3,7 +3,10 @@
 // (no globals). Timers accumulate wall seconds under names that become the
 // attributes of /timings in the results file (total, assembly, contact_search,
 // projection, linear_solve, output, ...). Counters (candidates, projections,
-// ...) accumulate integers the same way.
+// ...) accumulate integers the same way. The stop request (core/stop.hpp) is
+// polled by the loops that receive the context.
+
+#include "core/stop.hpp"
 
 #include <chrono>
 #include <functional>
@@ -30,6 +33,9 @@ public:
     }
     Verbosity verbosity() const { return verbosity_; }
 
+    void set_stop(StopRequest stop) { stop_ = stop; }
+    const StopRequest& stop() const { return stop_; }
+
     void add_time(const std::string& name, double seconds) { timers_[name] += seconds; }
     void add_count(const std::string& name, long long n) { counters_[name] += n; }
     const std::map<std::string, double>& timers() const { return timers_; }
@@ -50,6 +56,7 @@ private:
     Verbosity verbosity_ = Verbosity::normal;
     std::map<std::string, double> timers_;
     std::map<std::string, long long> counters_;
+    StopRequest stop_;
 };
 
 /// Adds the wall time of its scope to a named timer of a RunContext (if any).

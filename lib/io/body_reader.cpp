@@ -308,11 +308,15 @@ void check_insert(const Cursor& c, const std::vector<double>& values, const std:
         int multiplicity = static_cast<int>(std::count(knots.begin(), knots.end(), v));
         if (multiplicity > 0)
             multiplicity += elevate;  // elevation keeps the continuity, so interior knots repeat more
-        else if (spans > 0)
-            for (int i = 1; i < spans; ++i)
-                // The grid value refine_uniform inserts; a relative 1e-12 absorbs its round-off.
-                if (std::abs(front + i * (back - front) / spans - v) <= 1e-12 * (back - front))
+        else if (spans > 0) {
+            // The grid values refine_uniform inserts, front + i (back - front) / spans for
+            // 0 < i < spans: only the nearest few can be v (a loop over all of them took
+            // minutes for spans: [1e8, 1e8]). A relative 1e-12 absorbs their round-off.
+            const double nearest = std::round((v - front) / (back - front) * spans);
+            for (double i = nearest - 1; i <= nearest + 1; ++i)
+                if (i >= 1 && i < spans && std::abs(front + i * (back - front) / spans - v) <= 1e-12 * (back - front))
                     multiplicity = 1;
+        }
         multiplicity += static_cast<int>(std::count(values.begin(), values.end(), v));
         if (multiplicity > degree + elevate)
             c.item(k).fail(fmt::format("the knot would appear {} times, more than the degree {}", multiplicity,

@@ -10,6 +10,8 @@
 #include <limits>
 #include <numeric>
 #include <optional>
+#include <tuple>
+#include <unordered_map>
 
 namespace iga::nurbs {
 namespace {
@@ -183,6 +185,70 @@ struct Candidate {
     std::vector<SideOrientation> fits;  ///< orientations whose corners coincide
 };
 
+/// A non-collapsed side of a patch, extracted once.
+struct SideRecord {
+    int patch;
+    Side name;
+    std::array<int, 2> grid;
+    SidePatch side;
+};
+
+/// Corner control points of a side grid (2 for a curve, 4 for a surface).
+std::vector<int> corner_indices(const std::array<int, 2>& n, int q)
+{
+    if (q == 1)
+        return {0, n[0] - 1};
+    return {0, n[0] - 1, n[0] * (n[1] - 1), n[0] * n[1] - 1};
+}
+
+/// Cell size of the corner hash, as a fraction of the largest coordinate, when no
+/// tolerance is given (exact coincidence): any size works, a small one keeps cells sparse.
+constexpr double coincidence_cell = 1e-9;
+
+using CellKey = std::array<long long, 3>;
+
+struct CellKeyHash {
+    std::size_t operator()(const CellKey& k) const
+    {
+        std::size_t h = 0;
+        for (const long long v : k)
+            h = h * 1000003u ^ std::hash<long long>()(v);
+        return h;
+    }
+};
+
+/// Cells of size h >= the coincidence tolerance: two points within h of each
+/// other lie in the same cell or in neighbouring ones (3^d cells around a point).
+class PointHash {
+public:
+    explicit PointHash(double h) : h_(h) {}
+    CellKey key(const Eigen::Ref<const Eigen::RowVectorXd>& x) const
+    {
+        CellKey k{0, 0, 0};
+        for (Index i = 0; i < x.size() && i < 3; ++i)  // clamped far inside the range of long long
+            k[static_cast<std::size_t>(i)] = static_cast<long long>(std::clamp(std::floor(x(i) / h_), -1e18, 1e18));
+        return k;
+    }
+    template <class Visit>
+    void for_each_neighbour(const Eigen::Ref<const Eigen::RowVectorXd>& x, const Visit& visit) const
+    {
+        const CellKey centre = key(x);
+        const int d = static_cast<int>(std::min<Index>(x.size(), 3));
+        int n_cells = 1;
+        for (int i = 0; i < d; ++i)
+            n_cells *= 3;
+        for (int c = 0; c < n_cells; ++c) {
+            CellKey k = centre;
+            for (int i = 0, r = c; i < d; ++i, r /= 3)
+                k[static_cast<std::size_t>(i)] += r % 3 - 1;
+            visit(k);
+        }
+    }
+
+private:
+    double h_;
+};
+
 int find_root(std::vector<int>& parent, int i)
 {
     while (parent[i] != i)
@@ -204,7 +270,7 @@ bool Topology::is_interface(int p, Side side) const
     });
 }
 
-Topology glue_patches(std::vector<Patch>& patches, double tolerance)
+Topology glue_patches(std::vector<Patch>& patches, double tolerance, const StopRequest& stop)
 {
     const int n_patches = static_cast<int>(patches.size());
     Topology topo;
@@ -214,34 +280,69 @@ Topology glue_patches(std::vector<Patch>& patches, double tolerance)
     const int q = n_par - 1;
     IGA_CHECK(n_par >= 2, "glue_patches: patches need at least 2 parametric directions");
 
-    // Candidates from the corners (refinement keeps the corner control points).
+    // Candidates from the corners (refinement keeps the corner control points):
+    // every side's corners go into a hash of cells of size >= tolerance, and side a
+    // meets only the sides with a corner in the cells around its first corner
+    // (every orientation maps that corner onto a corner of the other side).
+    std::vector<SideRecord> sides;
+    for (int p = 0; p < n_patches; ++p) {
+        stop.check();
+        for (int s = 0; s < 2 * n_par; ++s) {
+            SidePatch side = extract_side(patches[p], static_cast<Side>(s));
+            if (is_collapsed(side, tolerance))
+                continue;
+            sides.push_back({p, static_cast<Side>(s), grid_size(patches[p], static_cast<Side>(s)), std::move(side)});
+        }
+    }
+    double extent = 0.0;
+    for (const Patch& patch : patches)
+        extent = std::max(extent, patch.control_points().cwiseAbs().maxCoeff());
+    const PointHash hash(tolerance > 0.0 ? tolerance : coincidence_cell * std::max(extent, 1.0));
+    std::unordered_map<CellKey, std::vector<int>, CellKeyHash> corners;  // cell -> sides with a corner there
+    for (std::size_t k = 0; k < sides.size(); ++k)
+        for (const int c : corner_indices(sides[k].grid, q))
+            corners[hash.key(sides[k].side.patch.control_points().row(c))].push_back(static_cast<int>(k));
     std::vector<Candidate> candidates;
-    for (int pa = 0; pa < n_patches; ++pa)
-        for (int pb = pa + 1; pb < n_patches; ++pb)
-            for (int ia = 0; ia < 2 * n_par; ++ia)
-                for (int ib = 0; ib < 2 * n_par; ++ib) {
-                    const Side sa = static_cast<Side>(ia), sb = static_cast<Side>(ib);
-                    const SidePatch a = extract_side(patches[pa], sa), b = extract_side(patches[pb], sb);
-                    if (is_collapsed(a, tolerance) || is_collapsed(b, tolerance))
-                        continue;
-                    Candidate c{pa, sa, pb, sb, {}};
-                    for (const SideOrientation& o : orientations(q))
-                        if (corners_match(a, b, grid_size(patches[pa], sa), grid_size(patches[pb], sb), o, q,
-                                          tolerance))
-                            c.fits.push_back(o);
-                    if (!c.fits.empty())
-                        candidates.push_back(std::move(c));
-                }
+    std::vector<int> near;
+    for (std::size_t ka = 0; ka < sides.size(); ++ka) {
+        stop.check();
+        const SideRecord& a = sides[ka];
+        near.clear();
+        hash.for_each_neighbour(a.side.patch.control_points().row(0), [&](const CellKey& cell) {
+            if (const auto it = corners.find(cell); it != corners.end())
+                for (const int kb : it->second)
+                    if (sides[static_cast<std::size_t>(kb)].patch > a.patch)
+                        near.push_back(kb);
+        });
+        std::sort(near.begin(), near.end());
+        near.erase(std::unique(near.begin(), near.end()), near.end());
+        for (const int kb : near) {
+            const SideRecord& b = sides[static_cast<std::size_t>(kb)];
+            Candidate c{a.patch, a.name, b.patch, b.name, {}};
+            for (const SideOrientation& o : orientations(q))
+                if (corners_match(a.side, b.side, a.grid, b.grid, o, q, tolerance))
+                    c.fits.push_back(o);
+            if (!c.fits.empty())
+                candidates.push_back(std::move(c));
+        }
+    }
+    // Patch order, then side order: the order the pairwise search gave.
+    std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+        return std::tuple(x.pa, x.sa, x.pb, x.sb) < std::tuple(y.pa, y.sa, y.pb, y.sb);
+    });
 
     for (int sweep = 0; sweep < max_sweeps; ++sweep) {
         bool changed = false;
-        for (const Candidate& c : candidates)
+        for (const Candidate& c : candidates) {
+            stop.check();
             changed = conform(patches[c.pa], c.sa, patches[c.pb], c.sb, c.fits.front()) || changed;
+        }
         if (!changed)
             break;
     }
 
     for (const Candidate& c : candidates) {
+        stop.check();
         const SidePatch a = extract_side(patches[c.pa], c.sa), b = extract_side(patches[c.pb], c.sb);
         const auto na = grid_size(patches[c.pa], c.sa), nb = grid_size(patches[c.pb], c.sb);
         std::string why;
@@ -292,29 +393,32 @@ Topology glue_patches(std::vector<Patch>& patches, double tolerance)
     return topo;
 }
 
-std::optional<VecN> invert_point(const Patch& patch, const VecN& x, double parameter_margin)
+namespace {
+
+/// Element centre and four points near its corners (0.9 / 0.1 mixes): Newton's starts.
+void nearest_sample(const Patch& patch, const Element& e, const VecN& x, VecN& best_xi, double& best)
 {
     const int n = patch.n_par();
-    IGA_CHECK(n == patch.dim(), "invert_point: the patch must be a solid (n_par = dim)");
+    for (int corner = 0; corner < (1 << n) + 1; ++corner) {
+        VecN xi(n);
+        for (int k = 0; k < n; ++k)
+            xi(k) = corner == (1 << n) ? 0.5 * (e.lower[k] + e.upper[k])
+                                       : ((corner >> k) & 1 ? 0.9 * e.upper[k] + 0.1 * e.lower[k]
+                                                            : 0.9 * e.lower[k] + 0.1 * e.upper[k]);
+        const double dist = (evaluate(patch, xi, 0).x - x).norm();
+        if (dist < best) {
+            best = dist;
+            best_xi = xi;
+        }
+    }
+}
+
+/// Newton from xi for the parameter point whose image is x (see invert_point).
+std::optional<VecN> invert_from(const Patch& patch, const VecN& x, double parameter_margin, VecN xi)
+{
+    const int n = patch.n_par();
     const RowMatrix& P = patch.control_points();
     const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
-    // Start: the nearest of the element centres and corners.
-    VecN best_xi(n);
-    double best = std::numeric_limits<double>::infinity();
-    for (const Element& e : patch.elements())
-        for (int corner = 0; corner < (1 << n) + 1; ++corner) {
-            VecN xi(n);
-            for (int k = 0; k < n; ++k)
-                xi(k) = corner == (1 << n) ? 0.5 * (e.lower[k] + e.upper[k])
-                                           : ((corner >> k) & 1 ? 0.9 * e.upper[k] + 0.1 * e.lower[k]
-                                                                : 0.9 * e.lower[k] + 0.1 * e.upper[k]);
-            const double dist = (evaluate(patch, xi, 0).x - x).norm();
-            if (dist < best) {
-                best = dist;
-                best_xi = xi;
-            }
-        }
-    VecN xi = best_xi;
     constexpr int max_iterations = 40;
     constexpr double relative_accuracy = 1e-11;  // of the patch size: converged far below any tolerance used
     for (int it = 0; it < max_iterations; ++it) {
@@ -340,6 +444,27 @@ std::optional<VecN> invert_point(const Patch& patch, const VecN& x, double param
         }
     }
     return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<VecN> invert_point(const Patch& patch, const VecN& x, double parameter_margin)
+{
+    IGA_CHECK(patch.n_par() == patch.dim(), "invert_point: the patch must be a solid (n_par = dim)");
+    VecN best_xi(patch.n_par());
+    double best = std::numeric_limits<double>::infinity();
+    for (const Element& e : patch.elements())
+        nearest_sample(patch, e, x, best_xi, best);
+    return invert_from(patch, x, parameter_margin, best_xi);
+}
+
+std::optional<VecN> invert_point(const Patch& patch, const VecN& x, double parameter_margin, const Element& start)
+{
+    IGA_CHECK(patch.n_par() == patch.dim(), "invert_point: the patch must be a solid (n_par = dim)");
+    VecN best_xi(patch.n_par());
+    double best = std::numeric_limits<double>::infinity();
+    nearest_sample(patch, start, x, best_xi, best);
+    return invert_from(patch, x, parameter_margin, best_xi);
 }
 
 }  // namespace iga::nurbs

@@ -16,6 +16,11 @@
 // (a side with a collapsed edge), the first in the order above whose control
 // points all coincide is taken.
 //
+// The search is near-linear in the number of patches: the corners of every side
+// go into a hash of cells at least the tolerance wide, and a side is compared
+// only with the sides that have a corner in the 3^d cells around its first
+// corner. Candidates are kept in (patch, side, patch, side) order.
+//
 // Conforming refinement. Along an interface, direction k of side a and its image
 // direction of side b must carry the same degree and the same knots in
 // normalized parameters t = (u - u_front) / (u_back - u_front) (reversed: 1 - t).
@@ -30,6 +35,7 @@
 
 #include "core/error.hpp"
 #include "core/side.hpp"
+#include "core/stop.hpp"
 #include "nurbs/patch.hpp"
 
 #include <array>
@@ -76,13 +82,17 @@ struct Topology {
 /// Finds the interfaces of `patches` (all with the same n_par >= 2 and dimension),
 /// refines the patches in place until they conform across them, and numbers the
 /// nodes. `tolerance`: absolute distance under which two control points coincide.
-/// Throws NonMatchingInterface.
-Topology glue_patches(std::vector<Patch>& patches, double tolerance);
+/// Throws NonMatchingInterface, and Interrupted once `stop` is requested (polled per
+/// patch and per interface candidate).
+Topology glue_patches(std::vector<Patch>& patches, double tolerance, const StopRequest& stop = {});
 
 /// Parameter point of `patch` (solid: n_par = dim) whose image is x, found by
 /// Newton from the nearest of a few samples per element; nullopt when x is not
 /// inside the patch's parameter box (to `parameter_margin`, a fraction of each
 /// direction's range, counted inward) or Newton does not converge.
 std::optional<VecN> invert_point(const Patch& patch, const VecN& x, double parameter_margin);
+/// The same, Newton started from the nearest of the samples of one element only
+/// (a local search: e.g. the element whose bounding box holds x).
+std::optional<VecN> invert_point(const Patch& patch, const VecN& x, double parameter_margin, const Element& start);
 
 }  // namespace iga::nurbs

@@ -55,14 +55,17 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
 
     while (lambda < 1.0) {
         const int index = static_cast<int>(result.increments.size()) + 1;
-        if (callbacks.stop_requested && callbacks.stop_requested()) {
-            // Worded for the user who pressed Ctrl-C: the app's stop request is SIGINT/SIGTERM.
-            result.message = index == 1 ? std::string("interrupted (SIGINT/SIGTERM) before the first increment")
-                                        : "interrupted (SIGINT/SIGTERM) after increment " + std::to_string(index - 1) +
-                                              " (load factor " + format_g(lambda, 6) + ")";
+        // Worded for the user who pressed Ctrl-C: the app's stop request is SIGINT/SIGTERM.
+        auto stopped = [&](const std::string& during) {
+            result.message = (index == 1 ? std::string("interrupted (SIGINT/SIGTERM) before the first increment")
+                                         : "interrupted (SIGINT/SIGTERM) after increment " + std::to_string(index - 1) +
+                                               " (load factor " + format_g(lambda, 6) + ")") +
+                             during;
             result.last_failure = NewtonReport{};  // a stop, not a failure of Newton
             return result;
-        }
+        };
+        if ((callbacks.stop_requested && callbacks.stop_requested()) || (context && context->stop().requested()))
+            return stopped("");
 
         const auto start = std::chrono::steady_clock::now();
         int cutbacks = 0;
@@ -77,33 +80,41 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
                                  ": the increment fell below the round-off of the load factor";
                 return result;
             }
-            PredictionReport prediction;
-            u = predict(system, stepping.predictor, u_converged, lambda, target,
-                        {u_previous.size() > 0 ? &u_previous : nullptr, lambda_previous}, solver, context,
-                        prediction);
-            if (!prediction.note.empty()) {
-                ++result.predictor_fallbacks;
-                if (context)
-                    context->log(Verbosity::verbose, increment_text(index, lambda, target) + ": predictor: " +
-                                                         prediction.note);
-            }
-            report = solve_newton(system, target, u, newton, solver, context);
-            result.total_iterations += report.iterations;
-            first_solve_iterations = report.iterations;
-            outer_updates = 0;
-            // The outer loop: solve again while it asks for it (each solve from the last converged state).
             OuterDecision decision;
-            while (report.status == NewtonStatus::converged && callbacks.outer) {
-                decision = callbacks.outer(u, target);
-                if (decision.action != OuterDecision::Action::resolve)
-                    break;
-                ++outer_updates;
-                NewtonReport again = solve_newton(system, target, u, newton, solver, context);
-                result.total_iterations += again.iterations;
-                again.iterations += report.iterations;
-                again.residual_history.insert(again.residual_history.begin(), report.residual_history.begin(),
-                                              report.residual_history.end());
-                report = std::move(again);
+            try {
+                PredictionReport prediction;
+                u = predict(system, stepping.predictor, u_converged, lambda, target,
+                            {u_previous.size() > 0 ? &u_previous : nullptr, lambda_previous}, solver, context,
+                            prediction);
+                if (!prediction.note.empty()) {
+                    ++result.predictor_fallbacks;
+                    if (context)
+                        context->log(Verbosity::verbose, increment_text(index, lambda, target) + ": predictor: " +
+                                                             prediction.note);
+                }
+                report = solve_newton(system, target, u, newton, solver, context);
+                result.total_iterations += report.iterations;
+                first_solve_iterations = report.iterations;
+                outer_updates = 0;
+                // The outer loop: solve again while it asks for it (each solve from the last converged state).
+                while (report.status == NewtonStatus::converged && callbacks.outer) {
+                    decision = callbacks.outer(u, target);
+                    if (decision.action != OuterDecision::Action::resolve)
+                        break;
+                    ++outer_updates;
+                    NewtonReport again = solve_newton(system, target, u, newton, solver, context);
+                    result.total_iterations += again.iterations;
+                    again.iterations += report.iterations;
+                    again.residual_history.insert(again.residual_history.begin(), report.residual_history.begin(),
+                                                  report.residual_history.end());
+                    report = std::move(again);
+                }
+            } catch (const Interrupted&) {
+                // A stop inside the increment (assembly, Newton): abandon it, keep the last converged state.
+                u = u_converged;
+                if (callbacks.rollback)
+                    callbacks.rollback();
+                return stopped(", during " + increment_text(index, lambda, target) + ", which was abandoned");
             }
             const bool rejected =
                 report.status == NewtonStatus::converged && decision.action == OuterDecision::Action::reject;

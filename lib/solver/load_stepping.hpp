@@ -37,6 +37,11 @@
 // (a smaller increment cannot cure a failed linear solve). Non-adaptive stepping
 // takes exactly `count` increments. Load factors are monotone:
 // lambda_k = lambda_{k-1} + (increment k).
+//
+// Stopping (SIGINT/SIGTERM): callbacks.stop_requested and context->stop() are
+// checked before each increment; a stop requested inside one (Interrupted thrown
+// by an evaluation, core/stop.hpp) abandons it: u is restored to the last converged
+// state, rollback is called, and the run ends with a message naming both.
 
 #include "core/run_context.hpp"
 #include "core/types.hpp"
@@ -89,6 +94,7 @@ struct SteppingCallbacks {
     /// After each converged Newton solve, with the state and the load factor; may be empty (accept).
     std::function<OuterDecision(const Vector& u, double load_factor)> outer;
     /// Checked before each increment; true stops the run cleanly (e.g. on SIGINT); may be empty.
+    /// (Inside an increment the stop comes from context->stop(): see the header paragraph.)
     std::function<bool()> stop_requested;
 };
 

@@ -57,6 +57,8 @@ double finite_norm_or_inf(const Evaluation& e)
 void evaluate(const NonlinearSystem& system, const Vector& u, double load_factor, bool need_tangent,
               Evaluation& out, RunContext* context)
 {
+    if (context)
+        context->stop().check();  // every trial state: a stop request ends the solve within one evaluation
     out.ok = true;
     out.message.clear();
     {

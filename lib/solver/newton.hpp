@@ -60,7 +60,9 @@
 // free mode, inadmissible state, growth, cycle, round-off floor, stagnation, slow)
 // and the message ends with what holds.
 //
-// On any failure status, u is restored to its value on entry.
+// On any failure status, u is restored to its value on entry. A stop request
+// (context->stop(), core/stop.hpp) throws Interrupted out of the solve, leaving u
+// at the last trial state: the caller restores what it needs.
 
 #include "core/run_context.hpp"
 #include "core/types.hpp"

@@ -5,6 +5,8 @@
 
 #include "analysis/scene.hpp"
 #include "analysis/size_estimate.hpp"
+#include "assembly/dof_map.hpp"
+#include "assembly/sparse_pattern.hpp"
 #include "io/deck_reader.hpp"
 #include "run_support.hpp"
 
@@ -71,6 +73,65 @@ TEST(SizeEstimate, DofsAgreeWithTheBuiltScene)
     EXPECT_EQ(base.dofs, 2.0 * 4 * 4) << "elevate [1, 1] + spans [2, 2] on a bilinear square: 4 x 4 control points";
     EXPECT_EQ(base.bodies[0].degrees, (std::vector<double>{2, 2}));
     EXPECT_EQ(base.bodies[0].spans, (std::vector<double>{2, 2}));
+}
+
+// Decks with and without contact: single-patch bodies, a rigid plane, two
+// deformable cylinders, two blocks pressed together, three bodies.
+const char* const sized_decks[] = {"verification/bad_input/base.yaml", "inputs/lame_cylinder_2d.yaml",
+                                   "inputs/block_stretch_finite_2d.yaml", "inputs/hertz.yaml",
+                                   "inputs/hertz_two_cylinders_2d.yaml", "inputs/contact_patch_test_2d.yaml",
+                                   "inputs/squeeze_three_bodies_2d.yaml"};
+
+TEST(SizeEstimate, NonzerosAgreeWithTheBuiltPattern)
+{
+    // The estimate counts the tangent entries over all dofs (constrained ones too):
+    // compared with the scene's blocks (elements and the contact couplings the search
+    // registers) scattered into a pattern with no dof constrained. The bodies' share is
+    // exact for single-patch bodies with simple knots (all decks here); the contact
+    // couplings' share is a model of facing sides (see the header), a few per cent of
+    // the entries on these decks: within 15 %.
+    constexpr double nonzero_tolerance = 0.15;
+    for (const char* deck_file : sized_decks) {
+        SCOPED_TRACE(deck_file);
+        const io::Deck deck = io::read_deck(source_path(deck_file));
+        const SizeEstimate e = estimate_size(deck);
+        const Scene scene = build_scene(deck);
+        std::vector<int> nodes_per_body;
+        for (const BodyModel& body : scene.bodies)
+            nodes_per_body.push_back(body.n_nodes);
+        const assembly::DofMap unconstrained(scene.dim, nodes_per_body, {});
+        std::vector<std::vector<int>> blocks;
+        for (int b = 0; b < scene.pattern->n_blocks(); ++b)
+            blocks.push_back(scene.pattern->block_dofs(b));
+        const auto actual = static_cast<double>(assembly::SparsePattern(unconstrained, std::move(blocks)).n_nonzeros());
+        EXPECT_NEAR(e.nonzeros, actual, nonzero_tolerance * actual);
+    }
+}
+
+TEST(SizeEstimate, ContactCouplingsAreSparse)
+{
+    // The coupling blocks the scene registers up front (one per slave element and
+    // master element within the search margin) against the estimate (facing sides,
+    // uniform spans): the same order, never the dense (side dofs)^2 block. A graded
+    // side puts more elements inside the margin (hertz_two_cylinders_2d: 3.4x more),
+    // sides that face only in part meet fewer (squeeze_three_bodies_2d: 1.7x fewer):
+    // within a factor 4 either way.
+    constexpr double coupling_factor = 4.0;
+    for (const char* deck_file : sized_decks) {
+        SCOPED_TRACE(deck_file);
+        const io::Deck deck = io::read_deck(source_path(deck_file));
+        const SizeEstimate e = estimate_size(deck);
+        const Scene scene = build_scene(deck);
+        double actual = 0;
+        for (const PairModel& pair : scene.pairs)
+            actual += static_cast<double>(pair.blocks.size());
+        if (scene.pairs.empty()) {
+            EXPECT_EQ(e.contact_couplings, 0.0);
+            continue;
+        }
+        EXPECT_GE(e.contact_couplings, actual / coupling_factor);
+        EXPECT_LE(e.contact_couplings, actual * coupling_factor);
+    }
 }
 
 TEST(SizeEstimate, RealisticDecksAreAccepted)

@@ -1,13 +1,18 @@
 // An interrupted run never leaves a corrupt or lost results file
 // (shared/spec/results.md, last paragraph), tested on the built executable:
-//   SIGINT: the run stops cleanly after the current increment, exits 1 and leaves
+//   SIGINT: the run stops cleanly (abandoning the increment in progress), exits 1 and leaves
 //     the final results file, readable, with status "failed", a message naming the
 //     interruption, and only complete increments 0001..k;
 //   SIGKILL: nothing can run, so the previous results file at that path is
 //     untouched, and the temporary file (if any) is readable with status "running"
 //     and complete increments.
+//   SIGTERM inside an increment (what a batch scheduler sends before it kills):
+//     the increment in progress is abandoned within one element block or Newton
+//     trial, not finished; the file holds the converged increments (none here).
 // Runs inputs/block_stretch_finite_2d.yaml with 400 fixed increments (2 to 20 s
-// depending on the load), long enough to be interrupted part-way.
+// depending on the load), long enough to be interrupted part-way; the long
+// increment is the same deck with an unreachable Newton tolerance and no
+// iteration limit to speak of (one increment that would run for hours).
 
 #include "cli_support.hpp"
 #include "io/h5_file.hpp"
@@ -58,12 +63,29 @@ struct Child {
     fs::path err;
 };
 
+Child start_run(std::vector<std::string> args, const fs::path& dir);
+
 Child start_long_run(const fs::path& out, const fs::path& dir)
 {
     const std::string deck = std::string(IGA_SOURCE_DIR) + "/inputs/block_stretch_finite_2d.yaml";
-    std::vector<std::string> args = {cli_path(), deck, "-o", out.string(),
-                                     "--set", "steps.count=" + std::to_string(total_increments),
-                                     "--set", "steps.adaptive=false"};
+    return start_run({cli_path(), deck, "-o", out.string(), "--set", "steps.count=" + std::to_string(total_increments),
+                      "--set", "steps.adaptive=false"},
+                     dir);
+}
+
+/// One increment that never converges: a relative tolerance below round-off, a
+/// million Newton iterations allowed (hours), -v to log each iteration.
+Child start_long_increment(const fs::path& out, const fs::path& dir)
+{
+    const std::string deck = std::string(IGA_SOURCE_DIR) + "/inputs/block_stretch_finite_2d.yaml";
+    return start_run({cli_path(), deck, "-o", out.string(), "-v", "--set", "steps.count=1", "--set",
+                      "steps.adaptive=false", "--set", "newton.tolerance=1e-300", "--set",
+                      "newton.max_iterations=1000000", "--set", "bodies.block.refine.spans=[16, 16]"},
+                     dir);
+}
+
+Child start_run(std::vector<std::string> args, const fs::path& dir)
+{
     Child child;
     child.err = dir / "stderr.txt";
     child.pid = ::fork();
@@ -109,10 +131,20 @@ bool wait_for_increments(const Child& child, int n)
     return false;
 }
 
-/// Waits for the child to end; the raw wait status, or nullopt (and kills it) on timeout.
-std::optional<int> wait_for_end(const Child& child)
+/// The number of verbose Newton iteration lines ("  newton k: ...") logged so far.
+int logged_newton_iterations(const Child& child)
 {
-    const auto end = std::chrono::steady_clock::now() + patience;
+    const std::string text = read_text(child.err);
+    int n = 0;
+    for (std::size_t pos = text.find("  newton "); pos != std::string::npos; pos = text.find("  newton ", pos + 1))
+        ++n;
+    return n;
+}
+
+/// Waits for the child to end; the raw wait status, or nullopt (and kills it) on timeout.
+std::optional<int> wait_for_end(const Child& child, std::chrono::seconds limit = patience)
+{
+    const auto end = std::chrono::steady_clock::now() + limit;
     while (std::chrono::steady_clock::now() < end) {
         int status = 0;
         if (::waitpid(child.pid, &status, WNOHANG) == child.pid)
@@ -213,6 +245,42 @@ TEST(Interrupt, SigintStopsCleanlyWithAFailedReadableFile)
     EXPECT_EQ(std::stoi(m[1]), k) << message;
     const std::string log = read_text(child.err);
     EXPECT_TRUE(std::regex_search(log, interrupted)) << "the interruption is reported on stderr too:\n" << log;
+}
+
+TEST(Interrupt, SigtermInsideALongIncrementAbandonsIt)
+{
+    const fs::path dir = scratch_dir("interrupt_sigterm_increment");
+    const fs::path out = dir / "stretch.h5";
+    const Child child = start_long_increment(out, dir);
+    ASSERT_GT(child.pid, 0);
+    // Inside increment 1: a few Newton iterations logged (each takes milliseconds).
+    constexpr int iterations_before_signal = 3;
+    const auto deadline = std::chrono::steady_clock::now() + patience;
+    while (logged_newton_iterations(child) < iterations_before_signal && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(5ms);
+    ASSERT_GE(logged_newton_iterations(child), iterations_before_signal) << read_text(child.err);
+    const auto signalled = std::chrono::steady_clock::now();
+    ::kill(child.pid, SIGTERM);
+    // A scheduler kills a few seconds after SIGTERM; the run needs one element block
+    // or one Newton trial (milliseconds). 10 s: generous for a loaded 2-core machine,
+    // and far below the hours the increment would run if it were finished first.
+    constexpr auto stop_patience = 10s;
+    const std::optional<int> status = wait_for_end(child, stop_patience);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - signalled).count();
+    ASSERT_TRUE(status.has_value()) << "the run did not stop within " << stop_patience.count() << " s of SIGTERM";
+    RecordProperty("seconds_to_stop", std::to_string(seconds));
+    ASSERT_TRUE(WIFEXITED(*status)) << "killed by signal " << WTERMSIG(*status) << ":\n" << read_text(child.err);
+    EXPECT_EQ(WEXITSTATUS(*status), 1) << read_text(child.err);
+
+    ASSERT_TRUE(fs::exists(out)) << read_text(child.err);
+    EXPECT_TRUE(temp_files(dir, "stretch.h5").empty()) << "the temporary file was not renamed";
+    std::string file_status, message;
+    const int k = check_complete_increments(out, file_status, message);
+    EXPECT_EQ(file_status, "failed");
+    EXPECT_EQ(k, 0) << "no increment converged, none is stored";
+    const std::regex abandoned("interrupted \\(SIGINT/SIGTERM\\) before the first increment, during increment 1 "
+                               "\\(load factor 0 -> 1\\), which was abandoned");
+    EXPECT_TRUE(std::regex_search(message, abandoned)) << message;
 }
 
 TEST(Interrupt, SigkillLeavesThePreviousResultsUntouched)
