@@ -193,9 +193,8 @@ int check_command(int argc, char** argv)
                                      pair.label[static_cast<std::size_t>(pair.obstacle)], pair.name);
     for (const analysis::PairModel& pair : scene.pairs)
         if (pair.penalty_auto)
-            std::cout << fmt::format("# contact pair {}: penalty auto = {:.4g} ({:g} E'/h, E' = {:.4g}, h = {:.4g})\n",
-                                     pair.name, pair.initial_penalty, analysis::auto_penalty_factor,
-                                     pair.contact_modulus, pair.element_size);
+            std::cout << "# contact pair " << pair.name << ": penalty auto = " << analysis::describe(pair.rule)
+                      << "\n";
     std::cout.flush();  // the listing before the verdict, also when both streams go to one pipe
     std::cerr << deck_path << ": ok\n";
     return exit_ok;

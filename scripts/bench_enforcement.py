@@ -9,8 +9,9 @@ Newton iterations and Uzawa updates of the increment (/steps/0001 attributes), t
 penalty in effect at the end (raised by the augmented Lagrangian's safeguard) and the
 median wall time. Single-threaded (OMP_NUM_THREADS=1), like bench_hertz.py.
 
---auto-sweep instead measures the constant c of `penalty: auto` (eps = c E'/h): it
-reads the auto penalty (c = 100) from one run and runs the penalty at c = 1 ... 1e4,
+--auto-sweep instead measures the penalty against c = eps h / E' (the conditioning
+term of `penalty: auto`): it reads E' and h of the auto rule from one run (pair
+attributes penalty_modulus, penalty_element_size) and runs the penalty at c = 1 ... 1e4,
 reporting the errors, the Newton iterations and eps h / E' (= c, the conditioning
 added to the tangent).
 Usage: scripts/bench_enforcement.py [--exe build/bin/igacontact] [--repeat 3] [--auto-sweep]
@@ -63,9 +64,12 @@ def enforcement_table(args, tmp):
 
 
 def auto_sweep(args, tmp):
-    auto = run(args.exe, [f"contact.{PAIR}.penalty=auto"], os.path.join(tmp, "auto.h5"))
-    unit = auto["penalty"] / 100.0  # E'/h: the auto rule uses c = 100
-    print(f"E'/h = {unit:.4g} (penalty auto = {auto['penalty']:.4g})")
+    auto_file = os.path.join(tmp, "auto.h5")
+    auto = run(args.exe, [f"contact.{PAIR}.penalty=auto"], auto_file)
+    with h5py.File(auto_file, "r") as f:
+        pair = f["results/contact/" + PAIR].attrs
+        unit = float(pair["penalty_modulus"]) / float(pair["penalty_element_size"])  # E'/h
+    print(f"E'/h = {unit:.4g} (penalty auto = {auto['penalty']:.4g}, c = {auto['penalty'] / unit:.3g})")
     print("| c = ε h / E' | ε | L2 % | peak % | half-width % | Newton it. | wall s (median) |")
     print("|---|---|---|---|---|---|---|")
     for c in (1, 10, 100, 1000, 10000):

@@ -3,17 +3,25 @@
 // "Choosing the penalty"), and the automatic gap tolerance of the augmented
 // Lagrangian, both from the pair's deformable sides in the reference configuration:
 //
-//   eps = c E' / h,   c = auto_penalty_factor,
-//   E' = E / (1 - nu^2) (plane strain and 3D) or E (plane stress), the contact
-//        modulus of the SOFTER deformable body of the pair,
+//   eps = min(kappa_side E* / l,  c_max E' / h),
+//   E' = E / (1 - nu^2) (plane strain and 3D) or E (plane stress); E' of the SOFTER
+//        deformable body in the cap, and the pair's Hertz modulus
+//        E* = 1 / (1/E'_1 + 1/E'_2) (E* = E' against a rigid obstacle) in the first term,
+//   l  = the size of the smallest deformable contact side: its reference length (2D)
+//        or the square root of its reference area (3D),
 //   h  = the smallest element of the pair's deformable sides: its reference length
 //        (2D) or the square root of its reference area (3D);
 //   gap_tolerance (automatic) = auto_gap_fraction h p_max / E', p_max the largest
 //        Gauss-point pressure of the pair at the state checked.
 //
-// eps h / E' = c is the ratio of the contact stiffness of one element to its bulk
-// stiffness: it sets both the penalty's own error (through kappa = eps a / E* =
-// c a / h, a the contact half-width) and the extra conditioning of the tangent.
+// The penalty's own error is about 1/kappa, kappa = eps a / E* (a the contact
+// half-width: the penalty layer in series with the bodies), and does not depend on
+// the mesh; so the first term gives kappa = kappa_side a / l whatever h, and a mesh
+// refined for accuracy keeps the eps, the conditioning and the Newton basin of the
+// coarse one. The cap eps h / E' <= c_max bounds the ratio of one element's contact
+// stiffness to its bulk stiffness (about log10 c_max digits of conditioning); it
+// binds on coarse sides only (l/h < kappa_side E*/(c_max E'), 50 to 100 elements),
+// and there gives the earlier rule eps = c_max E'/h.
 // A penetration g changes the pressure by about E' g / L over a contact zone of
 // size L >= h, so the automatic gap tolerance bounds that change by
 // auto_gap_fraction h / L <= auto_gap_fraction of p_max, in any units and at any
@@ -24,15 +32,20 @@
 #include "mechanics/material.hpp"
 #include "nurbs/patch.hpp"
 
+#include <string>
 #include <vector>
 
 namespace iga::analysis {
 
-/// c in eps = c E'/h. 100: on Hertz (inputs/hertz.yaml, a/h = 67) the penalty then
-/// costs less than the mesh (kappa = 6700: peak and half-width within 0.1 % of the
-/// exact-constraint values), while eps h/E' = 100 adds two digits to the condition
-/// number, far from the round-off floor; measured in README "What accuracy costs".
-constexpr double auto_penalty_factor = 100.0;
+/// kappa_side in eps = kappa_side E*/l: kappa = 1e4 a/l, a penalty error of about
+/// 1e-3 when the contact zone spans a tenth of the side. On both Hertz decks
+/// (inputs/hertz.yaml, inputs/hertz_two_cylinders_2d.yaml: a/l = 0.07, kappa = 690)
+/// the errors are then within 0.1 % (L2) of a penalty so stiff it no longer matters,
+/// and Newton takes the two cylinders' load in one increment at refinement levels
+/// 0-2; measured in README "What accuracy costs".
+constexpr double auto_penalty_kappa_side = 1.0e4;
+/// c_max in the cap eps <= c_max E'/h: two digits of conditioning at most.
+constexpr double auto_penalty_cap = 100.0;
 /// Automatic gap tolerance of the augmented Lagrangian (above): the pressure error
 /// it leaves is at most 1e-3 relative, below the discretization error of any
 /// mesh a contact run can afford (Hertz, inputs/hertz.yaml: L2 0.8 %).
@@ -51,11 +64,21 @@ double contact_modulus(const mechanics::Material& material);
 /// 2D, square root of the reference area in 3D.
 double smallest_element_size(const nurbs::Patch& side);
 
+/// The size l of a side patch: its reference length (2D), the square root of its
+/// reference area (3D).
+double side_size(const nurbs::Patch& side);
+
 struct AutoPenalty {
-    double penalty = 0.0;       ///< c E' / h
+    double penalty = 0.0;       ///< min(kappa_side E*/l, c_max E'/h)
     double modulus = 0.0;       ///< E' of the softer deformable body
+    double hertz_modulus = 0.0; ///< E* of the pair
     double element_size = 0.0;  ///< h
+    double side_size = 0.0;     ///< l
+    bool capped = false;        ///< the cap c_max E'/h gave eps
 };
+
+/// The value and its origin in words, for the log: "3.5e+06 = 1e4 E*/l with ...".
+std::string describe(const AutoPenalty& rule);
 
 /// The rule above for the deformable sides `sides` (one or two, each with its body's
 /// material; at least one).

@@ -194,9 +194,11 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
         result.text_attributes["enforcement"] = model.augmented ? "augmented_lagrangian" : "penalty";
         if (model.augmented)
             result.attributes["gap_tolerance"] = model.gap_tolerance_used;
-        if (model.penalty_auto) {  // the inputs of the rule eps = c E'/h
-            result.attributes["penalty_modulus"] = model.contact_modulus;
-            result.attributes["penalty_element_size"] = model.element_size;
+        if (model.penalty_auto) {  // the inputs of the rule eps = min(kappa_side E*/l, c_max E'/h)
+            result.attributes["penalty_modulus"] = model.rule.modulus;
+            result.attributes["penalty_element_size"] = model.rule.element_size;
+            result.attributes["penalty_hertz_modulus"] = model.rule.hertz_modulus;
+            result.attributes["penalty_side_size"] = model.rule.side_size;
         }
         if (model.obstacle >= 0) {
             // The body's contact force is -r_c; the obstacle feels the opposite, +r_c.

@@ -224,11 +224,7 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
 
     for (const PairModel& p : scene.pairs)
         if (p.penalty_auto)
-            context.log(Verbosity::normal,
-                        fmt::format("contact pair '{}': penalty auto = {:.4g} = {:g} E'/h with E' = {:.4g} (softer "
-                                    "body), h = {:.4g} (smallest contact-side element)",
-                                    p.name, p.initial_penalty, auto_penalty_factor, p.contact_modulus,
-                                    p.element_size));
+            context.log(Verbosity::normal, "contact pair '" + p.name + "': penalty auto = " + describe(p.rule));
 
     std::optional<io::StepData> last_step;
     std::vector<std::array<double, 4>> convergence;

@@ -361,8 +361,7 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
         model.augmented = c.enforcement == io::Enforcement::augmented_lagrangian;
         model.gap_tolerance = c.augmented_lagrangian.gap_tolerance;
         model.max_updates = c.augmented_lagrangian.max_updates;
-        model.contact_modulus = rule.modulus;
-        model.element_size = rule.element_size;
+        model.rule = rule;
         for (int k = 0; k < 2; ++k)
             if (body[k] < 0)
                 model.obstacle = k;

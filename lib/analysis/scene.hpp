@@ -16,6 +16,7 @@
 // Only the effects the deck calls for are built: no contact pairs means no
 // contact data at all; small kinematics caches the constant element stiffness.
 
+#include "analysis/contact_penalty.hpp"
 #include "analysis/multipatch.hpp"
 #include "assembly/dof_map.hpp"
 #include "assembly/sparse_pattern.hpp"
@@ -103,8 +104,7 @@ struct PairModel {
     bool augmented = false;        ///< enforcement: augmented_lagrangian (analysis/uzawa.hpp)
     double gap_tolerance = 0.0;    ///< augmented: the deck's gap_tolerance; 0 = automatic (contact_penalty.hpp)
     int max_updates = 0;           ///< augmented: Uzawa updates per increment
-    double contact_modulus = 0.0;  ///< E' of the softer deformable body (contact_penalty.hpp)
-    double element_size = 0.0;     ///< h, the smallest element of the deformable sides
+    AutoPenalty rule{};            ///< E', E*, h, l of the deformable sides and the auto eps (contact_penalty.hpp)
     double gap_tolerance_used = 0.0;  ///< augmented: the tolerance of the last Uzawa check (for output)
 };
 

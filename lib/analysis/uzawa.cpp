@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace iga::analysis {
 
@@ -20,6 +21,12 @@ void UzawaLoop::begin_attempt()
 {
     updates_ = 0;
     std::fill(last_penetration_.begin(), last_penetration_.end(), -1.0);
+}
+
+bool stalls(double rate, double penetration, double tolerance, int updates_left)
+{
+    // At rate rho the penetration after the updates left is penetration rho^updates_left.
+    return !(rate < 1.0) || penetration * std::pow(rate, updates_left) > tolerance;
 }
 
 solver::OuterDecision UzawaLoop::after_solve(const Vector& u_free, double load_factor)
@@ -48,7 +55,7 @@ solver::OuterDecision UzawaLoop::after_solve(const Vector& u_free, double load_f
                 max_pressure = std::max(max_pressure, carrier.pressure.maxCoeff());
         const double tolerance =
             model.gap_tolerance > 0.0 ? model.gap_tolerance
-                                      : auto_gap_tolerance(model.element_size, model.contact_modulus, max_pressure);
+                                      : auto_gap_tolerance(model.rule.element_size, model.rule.modulus, max_pressure);
         model.gap_tolerance_used = tolerance;
         if (penetration > tolerance) {
             if (over.empty())
@@ -75,7 +82,8 @@ solver::OuterDecision UzawaLoop::after_solve(const Vector& u_free, double load_f
         const double penetration = states[p].max_penetration;
         const double last = last_penetration_[p];
         last_penetration_[p] = penetration;
-        if (!(last > 0.0) || !(penetration > model.gap_tolerance_used) || penetration <= uzawa_stall_ratio * last)
+        if (!(last > 0.0) || !(penetration > model.gap_tolerance_used) ||
+            !stalls(penetration / last, penetration, model.gap_tolerance_used, model.max_updates - updates_))
             continue;
         const double penalty = model.pair.settings().penalty;
         if (penalty * uzawa_raise_factor > uzawa_max_raise * model.initial_penalty * (1.0 + 1e-12))

@@ -10,10 +10,14 @@
 //    load stepper cuts the increment back; multipliers are rolled back with it);
 //  - else update the multipliers of every augmented pair, lambda <- <lambda + eps g_N>
 //    (contact::ContactPair::update_multipliers), and solve again.
-// Safeguard: when a pair's g_max falls by less than stall_ratio from one solve to the
-// next, its penalty is raised by raise_factor (the multipliers are kept), at most to
-// max_raise times its initial value; each raise is logged (normal verbosity) and
-// kept in notes() for the run's warnings. Raised penalties stay for the rest of the run.
+// Safeguard: when a pair's g_max falls from one solve to the next at a rate
+// rho = g_max/g_max_previous that would not bring it within the tolerance in the
+// updates left (rho >= 1, or g_max rho^left > gap_tolerance, stalls() below), its
+// penalty is raised by raise_factor (the multipliers are kept), at most to max_raise
+// times its initial value; each raise is logged (normal verbosity) and kept in
+// notes() for the run's warnings. Raised penalties stay for the rest of the run.
+// A run whose updates are on course keeps its penalty however slow the rate: a
+// raise trades Uzawa updates for a stiffer Newton problem, which can fail.
 //
 // One UzawaLoop per run; attempt state (updates, last g_max) is reset by
 // begin_attempt(), which the driver calls on commit and on rollback.
@@ -28,9 +32,9 @@
 
 namespace iga::analysis {
 
-/// A successive-penetration ratio above this is a stall: Uzawa converges like
-/// k/(k + eps) per update for a contact stiffness k, so 0.25 means eps < 3 k.
-constexpr double uzawa_stall_ratio = 0.25;
+/// Uzawa stalls when the penetration, falling by `rate` per update (k/(k + eps) for
+/// a contact stiffness k), would still exceed `tolerance` after `updates_left` more.
+bool stalls(double rate, double penetration, double tolerance, int updates_left);
 /// Factor of one penalty raise.
 constexpr double uzawa_raise_factor = 10.0;
 /// Bound on the total raise of a pair's penalty over its initial value.

@@ -13,7 +13,9 @@
 //  - Hertz (physics.md §1-§2): with the constraint enforced, the errors of a
 //    penalty so stiff that it no longer matters (eps = 1e8, hertz_test.cpp).
 
+#include "analysis/uzawa.hpp"
 #include "run_support.hpp"
+#include "two_cylinders_auto.hpp"
 #include "support/tolerance.hpp"
 
 #include <gtest/gtest.h>
@@ -114,21 +116,75 @@ TEST(AugmentedLagrangian, MultipliersFollowTheOneSpringClosedForm)
         << "p = lambda + eps g";
 }
 
+// The safeguard keeps the penalty while the updates are on course. eps = k: rho = 1/2,
+// g_n = k Delta rho^n/(k + eps) = 5e-3/2^n, within 1e-5 first at n = 9, well inside 30
+// updates. (The former safeguard raised eps tenfold at the second update, since
+// rho > 1/4, trading Uzawa updates for a stiffer Newton problem.)
+TEST(AugmentedLagrangian, SafeguardKeepsThePenaltyWhileUzawaConverges)
+{
+    constexpr double k = E / H, penalty = k, rho = k / (k + penalty);
+    constexpr int expected_updates = 9;
+    constexpr double gap_tolerance = 1e-5;
+    const auto dir = scratch_dir("al_safeguard_keeps");
+    const auto deck = dir / "spring.yaml";
+    std::ofstream(deck) << one_spring_deck(penalty, gap_tolerance);
+    const auto file = dir / "spring.h5";
+    const analysis::RunOutcome outcome = run_deck(deck.string(), {}, file);
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    const Results r(file);
+    EXPECT_EQ(r.number("results/contact/touch", "penalty"), penalty) << "not raised";
+    EXPECT_EQ(r.number("results", "uzawa_updates"), expected_updates);
+    constexpr double closed_form_tolerance = 1e-8;  // as in MultipliersFollowTheOneSpringClosedForm
+    const double lambda = k * Delta * (1.0 - std::pow(rho, expected_updates));
+    EXPECT_TRUE(at_most(max_relative_deviation(r.reals("results/contact/touch/block.v0/gauss_points/multiplier"),
+                                               lambda),
+                        closed_form_tolerance));
+}
+
+// ... and raises it when they are not: with 5 updates allowed, rho = 1/2 leaves
+// g_1 rho^4 = 1.6e-4 > 1e-5, so eps becomes 10 k at the second update (rho = 1/11);
+// then lambda_2 = 7500, g = 2.3e-4, 2.1e-5, 1.9e-6: accepted after 4 updates, no cutback.
+TEST(AugmentedLagrangian, SafeguardRaisesThePenaltyWhenTheUpdatesLeftCannotSuffice)
+{
+    constexpr double k = E / H;
+    const auto dir = scratch_dir("al_safeguard_raises");
+    const auto deck = dir / "spring.yaml";
+    std::ofstream(deck) << one_spring_deck(k, 1e-5, 5);
+    const auto file = dir / "spring.h5";
+    const analysis::RunOutcome outcome = run_deck(deck.string(), {}, file);
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    const Results r(file);
+    EXPECT_EQ(r.number("results/contact/touch", "penalty"), 10.0 * k);
+    EXPECT_EQ(r.number("results", "uzawa_updates"), 4);
+    EXPECT_EQ(outcome.cutbacks, 0);
+}
+
+TEST(AugmentedLagrangian, StallsOnlyWhenTheRateCannotReachTheTolerance)
+{
+    using analysis::stalls;
+    EXPECT_FALSE(stalls(0.5, 2.5e-3, 1e-5, 29)) << "2.5e-3 / 2^29 is far below";
+    EXPECT_TRUE(stalls(0.5, 2.5e-3, 1e-5, 4)) << "2.5e-3 / 16 = 1.6e-4";
+    EXPECT_FALSE(stalls(0.5, 2.5e-3, 1e-5, 8)) << "2.5e-3 / 256 = 9.8e-6";
+    EXPECT_TRUE(stalls(1.0, 2.5e-3, 1e-5, 100)) << "no progress";
+    EXPECT_TRUE(stalls(std::nan(""), 2.5e-3, 1e-5, 100)) << "NaN is a stall";
+}
+
 // Too few updates allowed: the attempt is rejected and cut back, and the multipliers
 // return to the committed ones (zero) each time. With g_n(L) = k Delta L rho^n/(k + eps)
-// at load factor L and two updates, g_2 = 2e-3 L / 25 is within 1.01e-5 first at
-// L = 1/8 (three cutbacks: 1, 1/2, 1/4 rejected); the multipliers there are the closed
-// form from ZERO, k Delta L (1 - rho^2) = 1200. Multipliers left over from the
-// rejected attempts (2400 at L = 1/4) would instead open the contact (g < 0), be
-// accepted without an update and keep lambda = 2400.
+// at load factor L and one update, g_1 = 4e-4 L is within 5.05e-5 first at L = 1/8
+// (three cutbacks: 1, 1/2, 1/4 rejected); the multipliers there are the closed form
+// from ZERO, k Delta L (1 - rho) = 1000. Multipliers left over from the rejected
+// attempts (2000 at L = 1/4) would instead open the contact (g < 0), be accepted
+// without an update and keep lambda = 2000. (One update: the safeguard, which needs
+// two penetrations for a rate, cannot rescue the attempt by a raise.)
 TEST(AugmentedLagrangian, RejectedAttemptsAreCutBackWithTheirMultipliersRolledBack)
 {
     constexpr double k = E / H, penalty = 4.0 * k, rho = k / (k + penalty);
-    constexpr int max_updates = 2, expected_cutbacks = 3;
+    constexpr int max_updates = 1, expected_cutbacks = 3;
     constexpr double first_load_factor = 0.125;
     const auto dir = scratch_dir("al_rollback");
     const auto deck = dir / "spring.yaml";
-    std::ofstream(deck) << one_spring_deck(penalty, 1.01e-5, max_updates);
+    std::ofstream(deck) << one_spring_deck(penalty, 5.05e-5, max_updates);
     const auto file = dir / "spring.h5";
     const analysis::RunOutcome outcome = run_deck(deck.string(), {}, file);
     ASSERT_EQ(outcome.status, "completed") << outcome.message;
@@ -137,7 +193,7 @@ TEST(AugmentedLagrangian, RejectedAttemptsAreCutBackWithTheirMultipliersRolledBa
     EXPECT_EQ(r.number(step, "cutbacks"), expected_cutbacks);
     EXPECT_EQ(r.number(step, "load_factor"), first_load_factor);
     EXPECT_EQ(r.number(step, "uzawa_updates"), max_updates);
-    const double lambda = k * Delta * first_load_factor * (1.0 - rho * rho);
+    const double lambda = k * Delta * first_load_factor * (1.0 - rho);
     constexpr double closed_form_tolerance = 1e-8;  // as in MultipliersFollowTheOneSpringClosedForm
     EXPECT_TRUE(at_most(max_relative_deviation(r.reals(step + "/contact/touch/block.v0/gauss_points/multiplier"),
                                                lambda),
@@ -345,18 +401,24 @@ TEST(PenaltyAuto, HertzReportsTheRuleAndMeetsTheBounds)
     const std::string pair = "results/contact/cyl_floor";
     EXPECT_EQ(r.text(pair, "penalty_rule"), "auto");
     // The rule, recomputed from the stored Gauss weights: 4 points per element
-    // (degree 2 + 2), each element's reference length the sum of its weights.
+    // (degree 2 + 2), each element's reference length the sum of its weights, the
+    // side's length l the sum of them all. Against a rigid plane E* = E'.
     const std::vector<double> W = r.reals(pair + "/cylinder.v0/gauss_points/weight");
     ASSERT_EQ(W.size() % 4, 0u);
-    double h = std::numeric_limits<double>::infinity();
-    for (std::size_t e = 0; e < W.size(); e += 4)
+    double h = std::numeric_limits<double>::infinity(), l = 0.0;
+    for (std::size_t e = 0; e < W.size(); e += 4) {
         h = std::min(h, W[e] + W[e + 1] + W[e + 2] + W[e + 3]);
+        l += W[e] + W[e + 1] + W[e + 2] + W[e + 3];
+    }
     const double E_contact = 1000.0 / (1.0 - 0.3 * 0.3);
-    constexpr double rule_constant = 100.0;  // docs/deck.md
-    // The same Gauss rule computes h in the solver: round-off of sums of 4 terms.
+    constexpr double kappa_side = 1.0e4, cap = 100.0;  // docs/deck.md
+    // The same Gauss rule computes h and l in the solver: round-off of sums of up to 400 terms.
     constexpr double rule_tolerance = 1e-12;
-    EXPECT_TRUE(near_rel(r.number(pair, "penalty"), rule_constant * E_contact / h, rule_tolerance))
-        << "eps = " << r.number(pair, "penalty") << ", h = " << h;
+    const double expected = std::min(kappa_side * E_contact / l, cap * E_contact / h);
+    EXPECT_TRUE(near_rel(r.number(pair, "penalty"), expected, rule_tolerance))
+        << "eps = " << r.number(pair, "penalty") << ", h = " << h << ", l = " << l;
+    EXPECT_TRUE(near_rel(r.number(pair, "penalty_side_size"), l, rule_tolerance));
+    EXPECT_TRUE(near_rel(r.number(pair, "penalty_hertz_modulus"), E_contact, rule_tolerance));
     EXPECT_EQ(r.number(pair, "penalty"), r.number(pair, "penalty_initial"));
     expect_within_bounds({r.number(hertz_reference, "peak"), r.number(hertz_reference, "half_width"),
                           r.number(hertz_reference, "l2")});
@@ -367,6 +429,18 @@ TEST(PenaltyAuto, AugmentedLagrangianWithAutoPenaltyMeetsTheBounds)
     const HertzErrors e = run_hertz("hertz_penalty_auto_al", {"contact.cyl_floor.penalty=auto",
                                                              "contact.cyl_floor.enforcement=augmented_lagrangian"});
     expect_within_bounds(e);
+}
+
+// ---- penalty: auto under refinement (two_cylinders_auto.hpp) ------------------
+
+TEST(PenaltyAuto, TwoCylindersRefinedOnceTakeOneIncrementAtTheFormerAccuracy)
+{
+    expect_one_increment_and_former_accuracy(run_two_cylinders_auto("two_cyl_auto_l1", "penalty", 1));
+}
+
+TEST(PenaltyAuto, TwoCylindersRefinedOnceWithAugmentedLagrangianTakeOneIncrement)
+{
+    expect_one_increment_and_former_accuracy(run_two_cylinders_auto("two_cyl_auto_al_l1", "augmented_lagrangian", 1));
 }
 
 }  // namespace
