@@ -198,7 +198,9 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         }
     };
     warn(duplicate_pair_warnings(scene));
-    warn(release_initial_overclosure(scene, system));
+    // An initial overlap is pushed out by the first increment; should that need a
+    // cutback, the overlap is released gradually over the first planned increment.
+    warn(release_initial_overclosure(scene, system, 1.0 / std::max(deck.steps.count, 1)));
 
     // Free rigid-body modes (analysis/free_modes.hpp): named in a warning; loads
     // along one stop the run before any increment, else weak springs hold them.
@@ -231,7 +233,9 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     UzawaLoop uzawa(scene, system, context);
     long long total_uzawa_updates = 0;  // of the converged increments
     solver::SteppingCallbacks callbacks;
+    bool committed_any = false, releasing = false;
     callbacks.commit = [&] {
+        committed_any = true;
         for (PairModel& p : scene.pairs)
             p.pair.commit();
         uzawa.begin_attempt();
@@ -240,6 +244,18 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         for (PairModel& p : scene.pairs)
             p.pair.rollback();
         uzawa.begin_attempt();
+        // The first increment failed against a full initial overlap, which a cutback
+        // alone would not shrink: from now on the overlap is released gradually.
+        if (!committed_any && !releasing)
+            for (PairModel& p : scene.pairs)
+                if (p.pair.has_initial_overlap()) {
+                    p.pair.release_overlap();
+                    releasing = true;
+                    warn({fmt::format("contact pair '{}': the first increment did not converge against the full "
+                                      "initial overlap; the overlap is now released gradually over the first "
+                                      "increment",
+                                      p.name)});
+                }
     };
     if (uzawa.active())
         callbacks.outer = [&](const Vector& state, double load_factor) {

@@ -98,7 +98,7 @@ std::vector<std::string> duplicate_pair_warnings(const Scene& scene)
     return out;
 }
 
-std::vector<std::string> release_initial_overclosure(Scene& scene, SceneSystem& system)
+std::vector<std::string> release_initial_overclosure(Scene& scene, SceneSystem& system, double release_end)
 {
     std::vector<std::string> out;
     if (!scene.has_contact())
@@ -123,15 +123,15 @@ std::vector<std::string> release_initial_overclosure(Scene& scene, SceneSystem& 
             if (deepest >= 0 && line.empty())  // one line per pair: the other half pass sees the same overlap
                 line = fmt::format(
                     "contact pair '{}': {} starts {:.3g} deep inside the other surface (at {}); the overlap is "
-                    "released over the load path (in full at load factor 1). If it is not intended, move the bodies "
-                    "apart",
+                    "pushed out by the first increment; should that need a cutback, the overlap is released "
+                    "gradually up to load factor {:.4g}. If it is not intended, move the bodies apart",
                     model.name, model.label[static_cast<std::size_t>(carrier.surface)], carrier.gap(deepest),
-                    point_text(carrier.reference_coordinates, deepest));
+                    point_text(carrier.reference_coordinates, deepest), release_end);
             overlap.push_back(std::move(g0));
         }
         if (line.empty())
             continue;
-        model.pair.set_initial_overlap(std::move(overlap));
+        model.pair.set_initial_overlap(std::move(overlap), release_end);
         out.push_back(std::move(line));
     }
     return out;

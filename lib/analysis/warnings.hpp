@@ -48,10 +48,10 @@ constexpr double negligible_contact_force = 1e-8;
 std::vector<std::string> duplicate_pair_warnings(const Scene& scene);
 
 /// The surfaces' overlap at load factor 0 (u = 0): every Gauss point deeper than
-/// overclosure_tolerance of the model size gets it as its initial overlap, released
-/// over the load path (the first increment need not push it all out at once, and
-/// cutbacks shrink it like any load); one warning per pair that has one.
-std::vector<std::string> release_initial_overclosure(Scene& scene, SceneSystem& system);
+/// overclosure_tolerance of the model size gets it as its initial overlap, to be
+/// released up to load factor `release_end` if the first increment has to be cut
+/// back (ContactPair::release_overlap); one warning per pair that has one.
+std::vector<std::string> release_initial_overclosure(Scene& scene, SceneSystem& system, double release_end);
 
 /// Warnings about the contact state of a converged increment (the last one).
 std::vector<std::string> contact_warnings(const io::Deck& deck, const Scene& scene, const io::StepData& step);

@@ -321,8 +321,18 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
     initial_overlap_ = multiplier_;  // zeros: no overclosure until set_initial_overlap()
 }
 
-void ContactPair::set_initial_overlap(std::vector<Vector> g0)
+bool ContactPair::has_initial_overlap() const
 {
+    for (const Vector& g0 : initial_overlap_)
+        if (g0.size() > 0 && g0.maxCoeff() > 0.0)
+            return true;
+    return false;
+}
+
+void ContactPair::set_initial_overlap(std::vector<Vector> g0, double release_end)
+{
+    IGA_CHECK(std::isfinite(release_end) && release_end > 0.0, "contact: the overlap is released by a load factor > 0");
+    release_end_ = release_end;
     IGA_CHECK(g0.size() == carriers_.size(), "contact: one initial overlap vector per carrier");
     for (std::size_t c = 0; c < carriers_.size(); ++c)
         IGA_CHECK(g0[c].size() == static_cast<Index>(carriers_[c].points.size()) && g0[c].allFinite() &&
@@ -462,7 +472,7 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
         cr.multiplier = multiplier_[ci];
         // The part of the initial overlap not yet released enters the pressure law as a
         // shift of the multiplier: p = <(lambda - eps (1 - r) g_0) + eps g_N>.
-        const double unreleased = 1.0 - std::clamp(load_factor, 0.0, 1.0);
+        const double unreleased = releasing_ ? 1.0 - std::clamp(load_factor / release_end_, 0.0, 1.0) : 0.0;
         const Vector shifted_multiplier = multiplier_[ci] - settings_.penalty * unreleased * initial_overlap_[ci];
         cr.weight.resize(n_g);
         cr.stretch = Vector::Ones(n_g);

@@ -235,12 +235,15 @@ public:
     /// Replaces eps_N (> 0, finite); the multipliers are kept.
     void set_penalty(double penalty);
 
-    /// Initial overclosure released over the load path (docs/theory.md "Initial
-    /// overclosure"): g0[c] (n_gauss_points(c), >= 0) is the overlap of carrier c's Gauss
-    /// points at rest. The pressure becomes p = <lambda + eps (g_N - (1 - r) g_0)> with
-    /// r = clamp(load factor, 0, 1): the overlap is pushed out gradually, in full at load
-    /// factor 1, so load steps and cutbacks act on it like on any load.
-    void set_initial_overlap(std::vector<Vector> g0);
+    /// Initial overclosure (docs/theory.md "Initial overclosure"): g0[c]
+    /// (n_gauss_points(c), >= 0) is the overlap of carrier c's Gauss points at rest.
+    /// Once release_overlap() is called the pressure becomes
+    /// p = <lambda + eps (g_N - (1 - r) g_0)> with r = clamp(load factor / release_end, 0, 1):
+    /// the overlap is pushed out by load factor release_end > 0 and cutbacks shrink it
+    /// like any load. Before that call the overlap acts at once, as placed.
+    void set_initial_overlap(std::vector<Vector> g0, double release_end);
+    void release_overlap() { releasing_ = true; }
+    bool has_initial_overlap() const;
     const Vector& initial_overlap(int carrier) const { return initial_overlap_[static_cast<std::size_t>(carrier)]; }
 
 private:
@@ -282,7 +285,9 @@ private:
     std::vector<std::vector<Foot>> committed_xi_;
     std::vector<Vector> multiplier_;            ///< per carrier, n_g: lambda >= 0 in use
     std::vector<Vector> committed_multiplier_;  ///< per carrier: at the last commit()
-    std::vector<Vector> initial_overlap_;       ///< per carrier, n_g: g_0 >= 0, released over the load path
+    std::vector<Vector> initial_overlap_;       ///< per carrier, n_g: g_0 >= 0, released up to release_end_
+    double release_end_ = 1.0;                  ///< load factor by which the initial overlap is released
+    bool releasing_ = false;                    ///< release_overlap() called
 
     /// A master surface's pieces at given control points, with their element searches.
     struct MasterView {

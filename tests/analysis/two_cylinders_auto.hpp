@@ -57,9 +57,11 @@ inline TwoCylinderRun run_two_cylinders_auto(const std::string& name, const std:
 
 // The errors of the former rule at level 0 (eps = 7.5e7, 6 increments), the best it
 // reached: upper peak -0.13 %, half-width +1.07 %, L2 0.71 %; lower -0.13 %, +0.91 %,
-// 0.98 %. A refined mesh must not be worse than that by more than 0.1 % of p0 (the
-// penalty's own error 1/kappa at kappa = 1e4 a/l = 690 is 0.15 %).
-inline constexpr double former_margin = 1e-3;
+// 0.98 %. A refined mesh must not be worse than that by more than 0.2 % of p0: the
+// penalty's own error 1/kappa at kappa = 1e4 a/l = 690 is 0.15 %, and integrating each
+// half pass over its current length (docs/theory.md "Two-half-pass balance") moves
+// the upper peak by a further -0.08 % (measured -0.26 % at level 1).
+inline constexpr double former_margin = 2e-3;
 inline void expect_not_worse_than_former_level0(const SideErrors& e, const SideErrors& former, const std::string& side)
 {
     EXPECT_TRUE(at_most(std::abs(e.peak), std::abs(former.peak) + former_margin)) << side << " peak " << e.peak;
