@@ -59,7 +59,12 @@ int parse_command_line(CLI::App& cli, int argc, char** argv)
     }
 }
 
-int run_command(int argc, char** argv)
+std::string rank_prefix(const Communicator& comm)
+{
+    return comm.parallel() ? fmt::format("rank {}: ", comm.rank()) : std::string();
+}
+
+int run_command(int argc, char** argv, const Communicator& comm)
 {
     CLI::App cli{"igacontact: isogeometric contact mechanics (two-half-pass Gauss-point-to-segment penalty).\n"
                  "Runs a YAML deck and writes the results to HDF5.",
@@ -119,9 +124,12 @@ int run_command(int argc, char** argv)
     // points) replaces the solver's per-increment log line; in files and pipes
     // (not a TTY) the log lines stay, and -q silences both.
     const bool terminal = !quiet && !verbose && isatty(STDERR_FILENO);
+    // On several ranks rank 0 prints; the others run silently (they hold the same
+    // warnings, the same outcome, and their results are rank 0's file).
+    const bool speaks = comm.root();
     RunContext context(
-        [terminal](Verbosity level, const std::string& line) {
-            if (!(terminal && level == Verbosity::normal))
+        [terminal, speaks](Verbosity level, const std::string& line) {
+            if (speaks && !(terminal && level == Verbosity::normal))
                 std::cerr << line << '\n';
         },
         verbosity);
@@ -133,12 +141,16 @@ int run_command(int argc, char** argv)
     context.set_stop(StopRequest(&interrupt_requested));  // polled inside set-up, assembly and Newton
     options.threads = threads;
     options.refine_levels = refine_levels;
-    if (terminal)
+    options.comm = comm;
+    if (terminal && speaks)
         options.progress = [](const std::string& line) { std::cerr << line << '\n'; };
     // -q silences progress only: a warning or a failure's reason always reaches stderr.
-    options.warning = [](const std::string& line) { std::cerr << "warning: " << line << '\n'; };
+    if (speaks)
+        options.warning = [](const std::string& line) { std::cerr << "warning: " << line << '\n'; };
 
     const analysis::RunOutcome outcome = analysis::run(deck, options, context);
+    if (!speaks)
+        return outcome.status == "completed" ? exit_ok : exit_failed;
 
     if (outcome.status != "completed")
         std::cerr << fmt::format("igacontact: {}: {}\n", outcome.status, outcome.message);

@@ -2,6 +2,8 @@
 // The three commands of the CLI. Each parses its own arguments (CLI11) and
 // returns the process exit code.
 
+#include "core/parallel.hpp"
+
 #include <stdexcept>
 
 namespace CLI {
@@ -21,7 +23,11 @@ inline constexpr int exit_failed = 1;     ///< the solve failed; `compare`: file
 inline constexpr int exit_bad_input = 2;  ///< bad deck, bad usage, unreadable file
 inline constexpr int exit_internal = 3;   ///< a bug
 
-int run_command(int argc, char** argv);
+/// The run; on several MPI ranks (comm) every rank runs it and rank 0 prints.
+int run_command(int argc, char** argv, const Communicator& comm);
+
+/// "rank k: " on several ranks, "" on one process: names the rank a message comes from.
+std::string rank_prefix(const Communicator& comm);
 int check_command(int argc, char** argv);
 int compare_command(int argc, char** argv);
 int study_command(int argc, char** argv);  ///< app/study.cpp

@@ -8,11 +8,13 @@
 //   igacontact check DECK [--set PATH=VALUE]...
 //   igacontact compare REF.h5 NEW.h5 [--rtol R] [--atol A] [--only PATH]... [--all] [-v]
 //   igacontact study DECK [--levels N] [--jobs J] [--set PATH=VALUE]... [-q]
+//   mpirun -np N igacontact DECK ...   (the same run on N MPI ranks; rank 0 prints and writes)
 
 #include "commands.hpp"
 #include "summary_json.hpp"
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "core/stop.hpp"
 #include "version.hpp"
 
@@ -20,13 +22,18 @@
 #include <iostream>
 #include <string>
 
-int main(int argc, char** argv)
+namespace {
+
+/// main() proper; the exit code of this process.
+int run_main(int argc, char** argv, const iga::Communicator& comm)
 {
     using namespace iga::app;
     const std::string first = argc > 1 ? argv[1] : "";
     const bool json = first != "check" && first != "compare" && first != "study" && summary_json_requested(argc, argv);
+    // Under mpirun every rank meets the same deck and usage errors: rank 0 tells them.
+    const bool speaks = comm.root();
     auto fail = [&](const std::string& status, const std::string& message, int code) {
-        if (json)
+        if (json && speaks)
             std::cout << error_summary_json(status, message, code) << std::endl;
         return code;
     };
@@ -37,24 +44,42 @@ int main(int argc, char** argv)
             return compare_command(argc - 1, argv + 1);
         if (first == "study")
             return study_command(argc - 1, argv + 1);
-        return run_command(argc, argv);
+        return run_command(argc, argv, comm);
     } catch (const UsageError& e) {
-        std::cerr << "igacontact: error: " << e.what() << "\nRun 'igacontact --help' for usage.\n";
+        if (speaks)
+            std::cerr << "igacontact: error: " << e.what() << "\nRun 'igacontact --help' for usage.\n";
         return fail("bad_input", e.what(), exit_bad_input);
     } catch (const iga::Interrupted& e) {
         // A stop during set-up (inside the increments the run writes its file and returns).
         const std::string message = std::string(e.what()) + " during set-up, before any results were written";
-        std::cerr << "igacontact: failed: " << message << '\n';
+        if (speaks)
+            std::cerr << "igacontact: failed: " << message << '\n';
         return fail("failed", message, exit_failed);
     } catch (const iga::DeckError& e) {
-        std::cerr << e.what() << '\n';
+        if (speaks)
+            std::cerr << e.what() << '\n';
         return fail("bad_input", e.what(), exit_bad_input);
     } catch (const iga::Error& e) {
-        std::cerr << "igacontact: error: " << e.what() << "\nThis is a bug in igacontact " << iga::program_version
-                  << "; please report it with the deck.\n";
+        // Not necessarily met by every rank: this rank ends them all (below).
+        std::cerr << "igacontact: error: " << rank_prefix(comm) << e.what() << "\nThis is a bug in igacontact "
+                  << iga::program_version << "; please report it with the deck.\n";
+        iga::parallel::abort_all(exit_internal);
         return fail("internal_error", e.what(), exit_internal);
     } catch (const std::exception& e) {
-        std::cerr << "igacontact: internal error: " << e.what() << '\n';
+        std::cerr << "igacontact: internal error: " << rank_prefix(comm) << e.what() << '\n';
+        iga::parallel::abort_all(exit_internal);
         return fail("internal_error", e.what(), exit_internal);
     }
+}
+
+}  // namespace
+
+int main(int argc, char** argv)
+{
+    // Under mpirun (or srun) MPI first: every rank then builds the same scene and
+    // works on its part (core/parallel.hpp). A plain run starts no MPI.
+    iga::parallel::initialize();
+    const int code = run_main(argc, argv, iga::Communicator::world());
+    iga::parallel::finalize();
+    return code;
 }

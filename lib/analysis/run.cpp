@@ -6,6 +6,7 @@
 #include "analysis/free_modes.hpp"
 #include "analysis/output.hpp"
 #include "analysis/scene.hpp"
+#include "analysis/solver_choice.hpp"
 #include "analysis/system.hpp"
 #include "analysis/tessellation.hpp"
 #include "analysis/uzawa.hpp"
@@ -114,29 +115,54 @@ std::string load_items_text(const io::Deck& deck, const Scene& scene, const Free
 RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& context)
 {
     ScopedTimer total(nullptr, "total");
+    const Communicator& comm = options.comm;
+    // On several ranks a stop is taken by all ranks together, inside the residual
+    // sum (analysis/system.hpp): a rank-local poll would leave one rank alone.
+    const StopRequest stop = context.stop();
+    if (comm.parallel())
+        context.set_stop(StopRequest{});
     Scene scene = [&] {
         ScopedTimer t(&context, "setup");
-        Scene built = build_scene(deck, options.refine_levels, context.stop());
+        Scene built = build_scene(deck, options.refine_levels, context.stop(), comm);
         context.log(Verbosity::verbose, fmt::format("  set-up (patches, gluing and checks, element geometry, "
                                                     "pattern): {:.3g} s", t.elapsed()));
         return built;
     }();
     assembly::limit_library_threads();  // CHOLMOD's OpenMP loops inline: nothing spins
-    SceneSystem system(scene, context, options.threads);
+    SceneSystem system(scene, context, options.threads, comm);
+    system.set_collective_stop(stop);
+    // The linear solver before the results file: a backend that starts MPI (PETSc in a
+    // plain run starts a one-rank world, whose helper process inherits open files)
+    // must not hold the results file open after the run.
+    const solver::NonlinearSystem nonlinear = system.nonlinear_system();
+    if (deck.solver.backend == io::SolverBackend::petsc && !solver::petsc_available())
+        throw DeckError(io::located_issue(deck.source_file, "solver.backend", "petsc",
+                                          "this igacontact was built without PETSc (scripts/setup.sh installs it, "
+                                          "then rebuild); the suitesparse backend needs nothing else"));
+    const std::unique_ptr<solver::LinearSolver> linear =
+        solver::make_linear_solver(linear_solver_policy(deck, scene, nonlinear, comm), comm);
+    context.log(Verbosity::verbose, "  linear solver: " + linear->describe());
 
-    std::optional<io::ResultsWriter> writer;
-    try {
-        writer.emplace(deck.output.file, program_version, deck.resolved_yaml);
-    } catch (const Error& e) {
-        throw DeckError(io::located_issue(deck.source_file, "output.file", deck.output.file, e.what()));
+    std::optional<io::ResultsWriter> writer;  // rank 0's
+    std::string open_error;
+    if (comm.root()) {
+        try {
+            writer.emplace(deck.output.file, program_version, deck.resolved_yaml);
+        } catch (const Error& e) {
+            open_error = e.what();
+        }
     }
+    open_error = comm.first_message(open_error);  // every rank leaves with rank 0's error
+    if (!open_error.empty())
+        throw DeckError(io::located_issue(deck.source_file, "output.file", deck.output.file, open_error));
     // ParaView: tessellated bodies (4 cells per span and direction) and an XDMF index.
     constexpr int tessellation_cells_per_span = 4;
     std::vector<TessellatedBody> tessellations;
     std::vector<io::XdmfStep> xdmf_steps;
     {
         ScopedTimer t(&context, "output");
-        writer->write_bodies(body_geometry(deck, scene));
+        if (writer)
+            writer->write_bodies(body_geometry(deck, scene));
         if (deck.output.paraview || deck.output.fields)  // fields live on the tessellation points
             for (const BodyModel& body : scene.bodies)
                 tessellations.push_back(tessellate(body, tessellation_cells_per_span));
@@ -144,7 +170,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
             std::vector<io::Tessellation> meshes;
             for (const TessellatedBody& t : tessellations)
                 meshes.push_back(t.mesh);
-            writer->write_tessellation(meshes);
+            if (writer)
+                writer->write_tessellation(meshes);
         }
     }
     auto xdmf_step = [&](const io::StepData& step) {
@@ -161,33 +188,7 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         return x;
     };
 
-    const solver::NonlinearSystem nonlinear = system.nonlinear_system();
-    solver::LinearSolver linear(nonlinear.symmetric ? solver::LinearSolver::Kind::cholesky
-                                                    : solver::LinearSolver::Kind::lu);
-    if (scene.dim == 3)
-        linear.set_ordering(solver::LinearSolver::Ordering::nested_dissection);
-    // Small-strain elasticity plus penalty contact against rigid planes (eps N N^T
-    // (x) n n^T per Gauss point) is positive semi-definite: a tangent Cholesky refuses
-    // is singular (a body held by contact alone before it touches), and the LU that
-    // would only find that out again (several Cholesky costs in 3D) is skipped.
-    // Curved obstacles (the turning normal adds -p/r (I - n n)) and finite strain
-    // can be indefinite and keep the LU fallback.
-    const bool only_planes = std::all_of(scene.pairs.begin(), scene.pairs.end(), [](const PairModel& p) {
-        if (p.obstacle < 0)
-            return false;
-        const auto& obstacle = std::get<contact::RigidObstacle>(p.pair.surface(p.obstacle));
-        return std::holds_alternative<contact::RigidPlane>(obstacle.shape);
-    });
-    linear.set_semidefinite(nonlinear.symmetric && scene.kinematics == mechanics::Kinematics::small &&
-                            scene.followers.empty() && only_planes);
     Vector u = Vector::Zero(scene.dofs->n_free());
-    // Small kinematics with contact: the tangent is the constant elastic stiffness
-    // plus the contact stiffness of the active Gauss points, so one factorization
-    // serves the following iterations and increments as a reference, and each new
-    // tangent is a Woodbury update on the active contact dofs (solver/woodbury.hpp)
-    // as long as that costs fewer flops than a factorization (the solver decides).
-    if (scene.kinematics == mechanics::Kinematics::small && scene.has_contact())
-        linear.set_updates(true);
 
     std::vector<std::string> warnings;
     auto warn = [&](const std::vector<std::string>& lines) {
@@ -261,7 +262,9 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         callbacks.outer = [&](const Vector& state, double load_factor) {
             return uzawa.after_solve(state, load_factor);
         };
-    callbacks.stop_requested = options.stop_requested;
+    // Between increments, too, the ranks stop together.
+    if (options.stop_requested)
+        callbacks.stop_requested = [&] { return comm.any(options.stop_requested()); };
     callbacks.converged = [&](const solver::IncrementRecord& record, const Vector& state) {
         ScopedTimer t(&context, "output");
         io::StepData step = step_data(scene, system, state, record.load_factor, deck.output.samples_per_span);
@@ -276,7 +279,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         for (std::size_t k = 0; k < record.report.residual_history.size(); ++k)
             convergence.push_back({static_cast<double>(record.index), static_cast<double>(k),
                                    record.report.residual_history[k], record.load_factor});
-        writer->append_history(history_row(step));
+        if (writer)
+            writer->append_history(history_row(step));
         // Tessellation and fields work in body nodes: step.displacement lists only
         // the single-patch bodies (multi-patch ones are stored per patch).
         const std::vector<RowMatrix> u_nodes =
@@ -291,7 +295,7 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
             step.fields = stress_fields(scene, tessellations, u_nodes, record.index, field_warnings);
             warn(field_warnings);
         }
-        if (deck.output.every_step) {
+        if (deck.output.every_step && writer) {
             writer->write_step(step);
             if (deck.output.paraview)
                 xdmf_steps.push_back(xdmf_step(step));
@@ -318,16 +322,21 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         result.message = *driven_mode;  // not completed, no increment
     else
         result = solver::run_load_steps(nonlinear, u, stepping_settings(deck.steps), newton_settings(deck.newton),
-                                        linear, callbacks, &context);
+                                        *linear, callbacks, &context);
 
-    context.add_count("symbolic_factorizations", linear.n_symbolic());
-    context.add_count("numeric_factorizations", linear.n_numeric());
-    if (scene.kinematics == mechanics::Kinematics::small && scene.has_contact())
-        context.add_count("woodbury_updates", linear.n_updates());
+    const solver::LinearStatistics linear_statistics = linear->statistics();
+    context.add_count("symbolic_factorizations", linear_statistics.symbolic);
+    context.add_count("numeric_factorizations", linear_statistics.numeric);
+    if (scene.kinematics == mechanics::Kinematics::small && scene.has_contact() &&
+        deck.solver.backend == io::SolverBackend::suitesparse && !comm.parallel())
+        context.add_count("woodbury_updates", linear_statistics.updates);
+    if (linear_statistics.iterations > 0)
+        context.add_count("linear_iterations", linear_statistics.iterations);
 
     if (!deck.output.every_step && last_step) {
         ScopedTimer t(&context, "output");
-        writer->write_step(*last_step);
+        if (writer)
+            writer->write_step(*last_step);
         if (deck.output.paraview)
             xdmf_steps.push_back(xdmf_step(*last_step));
     }
@@ -402,8 +411,15 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
             gauss_points += p.pair.n_gauss_points(c);
     summary.counters["contact_gauss_points"] = gauss_points;
 
-    writer->finish(summary);
-    if (deck.output.paraview) {
+    summary.ranks = comm.size();
+    if (comm.parallel()) {
+        summary.parallel["elements_per_rank"] = system.elements_per_rank();
+        summary.parallel["couplings_per_rank"] = system.couplings_per_rank();
+    }
+    summary.linear_solver = linear->describe();
+    if (writer)
+        writer->finish(summary);
+    if (deck.output.paraview && writer) {
         std::vector<io::XdmfMesh> meshes;
         for (const TessellatedBody& t : tessellations)
             meshes.push_back({t.mesh.body, t.mesh.points.rows(),
@@ -418,6 +434,7 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     outcome.wall_s = total.elapsed();
     outcome.numbers["dofs"] = scene.dofs->n_full();
     outcome.numbers["threads"] = system.n_threads();
+    outcome.numbers["ranks"] = comm.size();
     outcome.numbers["contact_gauss_points"] = static_cast<double>(gauss_points);
     if (uzawa.active())
         outcome.numbers["uzawa_updates"] = static_cast<double>(total_uzawa_updates);

@@ -8,7 +8,10 @@
 // Bad input found here (geometry that cannot be built, an output path that
 // cannot be written) throws DeckError before anything is written. A failed solve
 // is not an exception: the file is written with status "failed" and the message.
+// On several ranks every rank runs this same sequence (its collective sums in step),
+// and only rank 0 opens and writes the results file.
 
+#include "core/parallel.hpp"
 #include "core/run_context.hpp"
 #include "io/deck.hpp"
 #include "io/results_data.hpp"
@@ -35,6 +38,9 @@ struct RunOptions {
     /// halved this many times after the deck's own refinement (`--refine-levels`,
     /// the levels of `igacontact study`). 0: the deck as written.
     int refine_levels = 0;
+    /// The ranks of the run (core/parallel.hpp): each builds the same scene and
+    /// assembles its part; rank 0 writes the results file. One process by default.
+    Communicator comm;
 };
 
 struct RunOutcome {

@@ -131,7 +131,7 @@ std::vector<int> coupling_full_dofs(const PairModel& pair, const contact::Coupli
     return full;
 }
 
-Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& stop)
+Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& stop, const Communicator& comm)
 {
     check_size(deck);  // refuse an absurd model before allocating any of it
     Scene scene;
@@ -224,6 +224,14 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
         }
     }
     scene.n_element_blocks = static_cast<int>(blocks.size());
+    scene.partition.rank = comm.rank();
+    scene.partition.size = comm.size();
+    scene.partition.n_element_blocks = scene.n_element_blocks;
+    {
+        const auto [first, last] = comm.block_range(scene.n_element_blocks);
+        scene.partition.first_element = static_cast<int>(first);
+        scene.partition.last_element = static_cast<int>(last);
+    }
 
     // Loads: dead ones summed into f_ext at load factor 1.
     scene.f_ext = Vector::Zero(dofs.n_full());
@@ -407,6 +415,10 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
         }
     }
 
+    // A block another rank assembles keeps its index but no entries here.
+    for (std::size_t k = 0; k < blocks.size(); ++k)
+        if (!scene.partition.owns(static_cast<int>(k)))
+            blocks[k].clear();
     scene.pattern = std::make_unique<assembly::SparsePattern>(dofs, std::move(blocks));
     return scene;
 }

@@ -20,6 +20,7 @@
 #include "analysis/multipatch.hpp"
 #include "assembly/dof_map.hpp"
 #include "assembly/sparse_pattern.hpp"
+#include "core/parallel.hpp"
 #include "contact/contact_pair.hpp"
 #include "core/stop.hpp"
 #include "io/deck.hpp"
@@ -108,6 +109,25 @@ struct PairModel {
     double gap_tolerance_used = 0.0;  ///< augmented: the tolerance of the last Uzawa check (for output)
 };
 
+/// Which connectivity blocks this rank assembles (the parallel model of
+/// core/parallel.hpp): element blocks in contiguous ranges (a patch is cut into
+/// slabs of knot spans, as its elements are numbered), the blocks after them
+/// (follower sides, contact couplings, also those registered later) round robin.
+/// One process owns every block.
+struct Partition {
+    int rank = 0;
+    int size = 1;
+    int first_element = 0, last_element = 0;  ///< owned element blocks [first, last)
+    int n_element_blocks = 0;
+
+    bool owns(int block) const
+    {
+        if (size == 1)
+            return true;
+        return block < n_element_blocks ? block >= first_element && block < last_element : block % size == rank;
+    }
+};
+
 struct Scene {
     int dim = 2;
     mechanics::Kinematics kinematics = mechanics::Kinematics::small;
@@ -120,6 +140,7 @@ struct Scene {
     std::vector<ReactionGroup> reactions;  ///< sides, then body totals, then constraint items
     std::unique_ptr<assembly::SparsePattern> pattern;
     int n_element_blocks = 0;
+    Partition partition;  ///< this rank's blocks; the pattern holds only those (and the diagonal)
     double model_size = 1.0;  ///< bounding-box diagonal of all deformable bodies
 
     bool has_contact() const { return !pairs.empty(); }
@@ -137,6 +158,9 @@ std::vector<int> coupling_full_dofs(const PairModel& pair, const contact::Coupli
 /// `refine_levels` > 0 halves every knot span of every body that many times after
 /// the deck's refinement (RunOptions::refine_levels). `stop` is polled per patch
 /// (and inside the gluing): a requested stop throws Interrupted.
-Scene build_scene(const io::Deck& deck, int refine_levels = 0, const StopRequest& stop = {});
+/// On several ranks (`comm`), each rank's pattern holds only the blocks it owns
+/// (Scene::partition); everything else is the same on every rank.
+Scene build_scene(const io::Deck& deck, int refine_levels = 0, const StopRequest& stop = {},
+                  const Communicator& comm = Communicator());
 
 }  // namespace iga::analysis

@@ -72,9 +72,10 @@ std::string inadmissible_message(const std::string& body, const mechanics::Eleme
 
 }  // namespace
 
-SceneSystem::SceneSystem(Scene& scene, RunContext& context, int requested_threads)
-    : scene_(scene), context_(context), element_force_(static_cast<std::size_t>(scene.n_element_blocks))
+SceneSystem::SceneSystem(Scene& scene, RunContext& context, int requested_threads, const Communicator& comm)
+    : scene_(scene), context_(context), comm_(comm), element_force_(static_cast<std::size_t>(scene.n_element_blocks))
 {
+    IGA_CHECK(scene.partition.size == comm.size(), "SceneSystem: the scene was partitioned for another rank count");
     std::int64_t work = 0;  // entries of all element tangents
     for (std::size_t b = 0; b < scene.bodies.size(); ++b)
         for (std::size_t e = 0; e < scene.bodies[b].elements.size(); ++e) {
@@ -89,6 +90,14 @@ SceneSystem::SceneSystem(Scene& scene, RunContext& context, int requested_thread
                                                    requested_threads >= 1 ? 0.0 : assembly::system_load());
         if (n > 1)
             team_ = std::make_unique<assembly::ThreadTeam>(n);
+    }
+    if (comm.parallel()) {
+        first_block_of_dof_.assign(static_cast<std::size_t>(scene.dofs->n_full()), scene.n_element_blocks);
+        for (int block = scene.n_element_blocks - 1; block >= 0; --block) {
+            const BlockOwner& o = owner_[static_cast<std::size_t>(block)];
+            for (int dof : scene.bodies[static_cast<std::size_t>(o.body)].element_dofs[static_cast<std::size_t>(o.element)])
+                first_block_of_dof_[static_cast<std::size_t>(dof)] = block;
+        }
     }
     context_.log(Verbosity::verbose, fmt::format("  element assembly: {} thread(s) ({} element-tangent entries{})",
                                                  n_threads(), work,
@@ -110,6 +119,8 @@ solver::NonlinearSystem SceneSystem::nonlinear_system()
     for (const PairModel& pair : scene_.pairs)
         half_passes = half_passes || (pair.obstacle < 0 && pair.formulation == contact::Formulation::two_half_pass);
     system.symmetric = !half_passes && !follower;
+    if (comm_.parallel())
+        system.sum_over_ranks = [this](Vector& v) { comm_.sum(v); };
     // A trust radius only where a singular first touch can send a step far away.
     system.max_step = scene_.has_contact() ? 0.05 * scene_.model_size : 0.0;
     const assembly::DofMap& dofs = *scene_.dofs;
@@ -159,6 +170,7 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
     const assembly::SparsePattern& pattern = *scene_.pattern;
     const int d = scene_.dim;
     const bool small = scene_.kinematics == mechanics::Kinematics::small;
+    auto owns = [&](int block) { return scene_.partition.owns(block); };
     auto element_of = [&](int block) -> const mechanics::ElementGeometry& {
         const BlockOwner& o = owner_[static_cast<std::size_t>(block)];
         return scene_.bodies[static_cast<std::size_t>(o.body)].elements[static_cast<std::size_t>(o.element)];
@@ -188,10 +200,12 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
         const assembly::DofMap unconstrained(d, nodes_per_body, {});
         std::vector<std::vector<int>> blocks;
         for (int block = 0; block < scene_.n_element_blocks; ++block)
-            blocks.push_back(dofs_of(block));
+            blocks.push_back(owns(block) ? dofs_of(block) : std::vector<int>{});
         const assembly::SparsePattern full_pattern(unconstrained, std::move(blocks));
         SparseMatrix K0 = full_pattern.make_matrix();
         for (int block = 0; block < scene_.n_element_blocks; ++block) {  // once per run: not worth threads
+            if (!owns(block))
+                continue;
             stop.check();
             const mechanics::ElementGeometry& geometry = element_of(block);
             full_pattern.add(block,
@@ -238,7 +252,7 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
         int failed_block = scene_.n_element_blocks;  // the lowest failed block names the failure (deterministic)
         pattern.for_each_block(
             [&](int block) {
-                if (block >= scene_.n_element_blocks)
+                if (block >= scene_.n_element_blocks || !owns(block))
                     return;
                 stop.check();  // every block after a stop throws: for_each_block rethrows once all have returned
                 const std::vector<int>& dofs = dofs_of(block);
@@ -268,6 +282,8 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
         // Vectors are scattered serially: cheap, and constrained entries (reactions)
         // may be shared between blocks of one color.
         for (int block = 0; block < scene_.n_element_blocks; ++block) {
+            if (!owns(block))
+                continue;
             const std::vector<int>& dofs = dofs_of(block);
             const Vector& f = element_force_[static_cast<std::size_t>(block)];
             for (std::size_t k = 0; k < dofs.size(); ++k) {
@@ -298,8 +314,12 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
 {
     const assembly::DofMap& dofs = *scene_.dofs;
     const assembly::SparsePattern& pattern = *scene_.pattern;
+    const Partition& partition = scene_.partition;
+    const bool root = comm_.root();  // adds the terms that are not split over the ranks
     const int d = scene_.dim;
     const Vector u_full = dofs.expand(u_free, load_factor);
+    // One rank alone must not leave on a stop request (see the header): polled in the sum.
+    const StopRequest local_stop = context && !comm_.parallel() ? context->stop() : StopRequest{};
 
     // Contact first: a coupling that the pattern lacks (a Gauss point slid onto a
     // master element not registered yet) extends it before the tangent is made, so
@@ -309,8 +329,7 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
         ScopedTimer timer(context, "contact");
         contact.reserve(scene_.pairs.size());
         for (std::size_t p = 0; p < scene_.pairs.size(); ++p) {
-            if (context)
-                context->stop().check();
+            local_stop.check();
             contact.push_back(scene_.pairs[p].pair.evaluate(side_displacement(u_full, static_cast<int>(p), 0),
                                                             side_displacement(u_full, static_cast<int>(p), 1),
                                                             need_tangent, context, load_factor));
@@ -334,17 +353,15 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
         ScopedTimer timer(context, "elements");
         // Polled per element block only for Newton's evaluations (context given): the
         // output's evaluations of a converged state always finish.
-        assemble_elements(u_full, need_tangent, r_full, out.tangent, out, magnitude,
-                          context ? context->stop() : StopRequest{});
+        assemble_elements(u_full, need_tangent, r_full, out.tangent, out, magnitude, local_stop);
     }
-    double f_int_norm = 0.0, reaction_norm2 = 0.0;
-    for (Index k = 0; k < r_full.size(); ++k)
-        if (dofs.is_constrained(static_cast<int>(k)))
-            reaction_norm2 += r_full(k) * r_full(k);
-    f_int_norm = r_full.norm();
+    Vector f_int = r_full;  // this rank's part; its constrained entries are the reactions
 
     // Weak springs on free rigid-body modes (free dofs only, in every element block).
-    for (const NodeSpring& spring : springs_) {
+    for (std::size_t k = 0; k < springs_.size(); ++k) {
+        if (!owns_spring(k))
+            continue;
+        const NodeSpring& spring = springs_[k];
         const int n = static_cast<int>(spring.dofs.size());
         for (int i = 0; i < n; ++i)
             for (int j = 0; j < n; ++j) {
@@ -359,11 +376,16 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
     }
 
     // External loads: dead ones scale with lambda; follower pressures depend on u.
-    r_full -= load_factor * scene_.f_ext;
-    magnitude += load_factor * scene_.f_ext.cwiseAbs();
-    double external_norm = load_factor * scene_.f_ext.norm();
+    if (root) {
+        r_full -= load_factor * scene_.f_ext;
+        magnitude += load_factor * scene_.f_ext.cwiseAbs();
+    }
+    double follower_norm = root ? load_factor * scene_.f_ext.norm() : 0.0;  // summed over the ranks below
     for (const FollowerPressure& follower : scene_.followers) {
         for (std::size_t e = 0; e < follower.side.elements.size(); ++e) {
+            const int block = follower.first_block + static_cast<int>(e);
+            if (!partition.owns(block))
+                continue;
             const auto& element_dofs = follower.element_dofs[e];
             const Matrix u_local = local_displacement(u_full, element_dofs, d);
             const mechanics::LocalForceTangent f = mechanics::follower_pressure(
@@ -372,10 +394,9 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
                 r_full(element_dofs[k]) -= load_factor * f.f_ext(static_cast<Index>(k));
                 magnitude(element_dofs[k]) += load_factor * std::abs(f.f_ext(static_cast<Index>(k)));
             }
-            external_norm += load_factor * f.f_ext.norm();
+            follower_norm += load_factor * f.f_ext.norm();
             if (need_tangent && f.df_ext_du.size() > 0)
-                pattern.add(follower.first_block + static_cast<int>(e), Matrix(-load_factor * f.df_ext_du),
-                            out.tangent);
+                pattern.add(block, Matrix(-load_factor * f.df_ext_du), out.tangent);
         }
     }
 
@@ -394,18 +415,30 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
                 continue;
             }
             active += c.n_active;
-            for (std::size_t k = 0; k < pair.local_to_full.size(); ++k) {
-                r_full(pair.local_to_full[k]) += c.residual(static_cast<Index>(k));
-                magnitude(pair.local_to_full[k]) += std::abs(c.residual(static_cast<Index>(k)));
-            }
+            if (root)
+                for (std::size_t k = 0; k < pair.local_to_full.size(); ++k) {
+                    r_full(pair.local_to_full[k]) += c.residual(static_cast<Index>(k));
+                    magnitude(pair.local_to_full[k]) += std::abs(c.residual(static_cast<Index>(k)));
+                }
             contact_norm += c.residual.norm();
             gap_round_off += contact_gap_round_off(c, pair.pair.settings().penalty);
             if (need_tangent)
-                for (const contact::LocalBlock& block : c.tangent)
-                    pattern.add(pair.blocks.at(block.element), block.K, out.tangent);
+                for (const contact::LocalBlock& block : c.tangent) {
+                    const int index = pair.blocks.at(block.element);
+                    if (partition.owns(index))
+                        pattern.add(index, block.K, out.tangent);
+                }
         }
     }
     last_active_ = active;
+
+    sum_over_ranks(r_full, magnitude, f_int, follower_norm, out, context);
+    const double external_norm = follower_norm;
+    double reaction_norm2 = 0.0;
+    for (Index k = 0; k < f_int.size(); ++k)
+        if (dofs.is_constrained(static_cast<int>(k)))
+            reaction_norm2 += f_int(k) * f_int(k);
+    const double f_int_norm = f_int.norm();
 
     out.residual = dofs.restrict(r_full);
     if (r_full_out)
@@ -418,6 +451,58 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
         out.ok = false;
         out.message = "the residual is not finite";
     }
+}
+
+void SceneSystem::sum_over_ranks(Vector& r_full, Vector& magnitude, Vector& f_int, double& follower_norm,
+                                 solver::Evaluation& out, RunContext* context) const
+{
+    if (!comm_.parallel())
+        return;
+    // A stop request on any rank stops every rank here, together.
+    if (comm_.any(context != nullptr && collective_stop_.requested()))
+        throw Interrupted();
+    comm_.sum(r_full);
+    comm_.sum(magnitude);
+    comm_.sum(f_int);
+    follower_norm = comm_.sum(follower_norm);
+    const std::string failure = comm_.first_message(out.ok ? std::string() : out.message);
+    if (!failure.empty()) {
+        out.ok = false;
+        out.message = failure;
+    }
+}
+
+namespace {
+std::vector<double> per_rank(const Communicator& comm, double mine)
+{
+    Vector counts = Vector::Zero(comm.size());
+    counts(comm.rank()) = mine;
+    comm.sum(counts);
+    return {counts.data(), counts.data() + counts.size()};
+}
+}  // namespace
+
+std::vector<double> SceneSystem::elements_per_rank() const
+{
+    const Partition& p = scene_.partition;
+    return per_rank(comm_, p.last_element - p.first_element);
+}
+
+std::vector<double> SceneSystem::couplings_per_rank() const
+{
+    double mine = 0;
+    for (const PairModel& pair : scene_.pairs)
+        for (const auto& [coupling, block] : pair.blocks)
+            mine += scene_.partition.owns(block) ? 1 : 0;
+    return per_rank(comm_, mine);
+}
+
+bool SceneSystem::owns_spring(std::size_t k) const
+{
+    if (!comm_.parallel())
+        return true;
+    const int block = first_block_of_dof_[static_cast<std::size_t>(springs_[k].dofs.front())];
+    return scene_.partition.owns(block);
 }
 
 double SceneSystem::spring_energy(const Vector& u_free, double load_factor) const
@@ -441,6 +526,7 @@ double SceneSystem::strain_energy(const Vector& u_free, double load_factor)
     solver::Evaluation scratch;
     Vector magnitude = Vector::Zero(scene_.dofs->n_full());  // the round-off estimate, unused here
     assemble_elements(u_full, false, f_int, unused, scratch, magnitude, StopRequest{});
+    comm_.sum(f_int);
     return 0.5 * u_full.dot(f_int);
 }
 
@@ -448,12 +534,16 @@ void SceneSystem::register_couplings(const std::vector<contact::PairEvaluation>&
 {
     std::vector<std::vector<int>> new_blocks;
     std::vector<std::pair<std::size_t, contact::Coupling>> owners;
+    // Every rank registers the same couplings (the contact evaluation is the same on
+    // all); a block another rank assembles keeps its index but no entries here.
+    const int first_index = scene_.pattern->n_blocks();
     for (std::size_t p = 0; p < scene_.pairs.size(); ++p) {
         const PairModel& pair = scene_.pairs[p];
         for (const contact::LocalBlock& block : contact[p].tangent)
             if (!pair.blocks.contains(block.element)) {
+                const bool mine = scene_.partition.owns(first_index + static_cast<int>(owners.size()));
                 owners.emplace_back(p, block.element);
-                new_blocks.push_back(coupling_full_dofs(pair, block.element));
+                new_blocks.push_back(mine ? coupling_full_dofs(pair, block.element) : std::vector<int>{});
             }
     }
     if (new_blocks.empty())

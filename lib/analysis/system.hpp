@@ -29,6 +29,16 @@
 //
 // Stopping: Newton's evaluations (context given) poll the context's stop request
 // per contact pair and per element block and throw Interrupted (core/stop.hpp).
+// On several ranks a stop must be taken by all ranks at the same point (one rank
+// alone leaving would leave the others waiting in a sum): the request is then
+// polled once per evaluation, inside the sum over the ranks.
+//
+// Parallel runs (core/parallel.hpp): a rank assembles the element blocks, follower
+// sides and contact couplings of scene.partition into its tangent (its summand);
+// dead loads, weak springs and the contact residual are added by rank 0 only (the
+// contact evaluation itself runs on every rank, each for all Gauss points: the
+// surfaces are O(N^(2/3)) of the model); then r, the round-off magnitudes and the
+// norms are summed over the ranks, so every rank holds the same residual.
 
 #include "analysis/free_modes.hpp"
 #include "analysis/scene.hpp"
@@ -46,7 +56,10 @@ namespace iga::analysis {
 class SceneSystem {
 public:
     /// requested_threads: >= 1 exactly that many for the element loop, 0 automatic.
-    SceneSystem(Scene& scene, RunContext& context, int requested_threads = 0);
+    /// comm: the ranks of a parallel run (core/parallel.hpp); each assembles the
+    /// blocks of scene.partition, and every residual is summed over the ranks.
+    SceneSystem(Scene& scene, RunContext& context, int requested_threads = 0,
+                const Communicator& comm = Communicator());
 
     /// Threads of the element loop (1 for small kinematics, whose loop is serial).
     int n_threads() const { return team_ ? team_->n_threads() : 1; }
@@ -75,8 +88,18 @@ public:
 
     int last_active() const { return last_active_; }
 
+    /// Per rank (one entry each, the same on every rank): the element blocks and the
+    /// contact couplings it assembles. Collective.
+    std::vector<double> elements_per_rank() const;
+    std::vector<double> couplings_per_rank() const;
+
     /// Weak springs on free rigid-body modes, added to every later evaluation.
     void set_weak_springs(std::vector<NodeSpring> springs) { springs_ = std::move(springs); }
+
+    const Communicator& communicator() const { return comm_; }
+    /// On several ranks: the stop request, polled by all ranks together once per
+    /// evaluation (see the header); the run clears the context's own.
+    void set_collective_stop(StopRequest stop) { collective_stop_ = stop; }
     /// 1/2 sum_a u_a^T S_a u_a over the weak springs at a state.
     double spring_energy(const Vector& u_free, double load_factor) const;
     /// 1/2 u . f_int(u) over all dofs: the strain energy under small kinematics, its
@@ -93,8 +116,16 @@ private:
                            solver::Evaluation& out, Vector& magnitude,
                            const StopRequest& stop);
 
+    /// Sums the ranks' parts of a residual evaluation (no-op on one process) and
+    /// makes failures and stop requests collective.
+    void sum_over_ranks(Vector& r_full, Vector& magnitude, Vector& f_int, double& follower_norm,
+                        solver::Evaluation& out, RunContext* context) const;
+    /// Whether this rank assembles weak spring k (the rank of the first element block at its node).
+    bool owns_spring(std::size_t k) const;
+
     Scene& scene_;
     RunContext& context_;
+    Communicator comm_;
     std::unique_ptr<assembly::ThreadTeam> team_;  // null: serial element loop
     std::optional<SparseMatrix> small_stiffness_;  // small kinematics: its free block in the pattern
     struct BlockOwner {
@@ -106,6 +137,8 @@ private:
     std::vector<Vector> element_force_;            // finite kinematics: f_int per block (reused storage)
     int last_active_ = 0;
     std::vector<NodeSpring> springs_;
+    StopRequest collective_stop_;
+    std::vector<int> first_block_of_dof_;  // parallel: per full dof, the first element block holding it
 };
 
 }  // namespace iga::analysis

@@ -13,7 +13,7 @@
 // result is identical to a pattern built with all blocks from the start (same
 // arrays, same colors). A matrix made before an extension that added entries no
 // longer matches(): make a new one (and the linear solver then redoes its
-// symbolic analysis, solver/linear.hpp). The pattern is the union of
+// symbolic analysis, solver/suitesparse_solver.hpp). The pattern is the union of
 // the blocks' dense couplings restricted to free dofs, plus the whole diagonal
 // (so that a Levenberg-Marquardt shift K + mu D keeps the pattern; see
 // solver/newton.hpp). For each block the position in K.valuePtr() of every local

@@ -24,6 +24,8 @@ enum class Kinematics { small, finite };
 enum class MaterialModel { linear_elastic, saint_venant_kirchhoff, neo_hookean };
 enum class Formulation { two_half_pass, single_pass };
 enum class Enforcement { penalty, augmented_lagrangian };
+enum class SolverBackend { suitesparse, petsc };
+enum class SolverType { direct, iterative };
 enum class ShapeType { half_disc, quarter_disc, rectangle, sphere_octant, box };
 enum class LoadKind { traction, force, pressure, gravity };
 enum class ReferenceType { hertz_cylinder_plane, hertz_two_cylinders, hertz_sphere_plane, hertz_two_spheres };
@@ -270,6 +272,16 @@ struct Newton {
     bool operator==(const Newton&) const = default;
 };
 
+/// `solver:` the linear solver of Newton's steps (docs/deck.md, "Linear solver").
+struct Solver {
+    SolverBackend backend = SolverBackend::suitesparse;
+    SolverType type = SolverType::direct;
+    std::string options;  ///< PETSc options database text (backend petsc)
+    bool backend_given = false;  ///< the deck (or --set) named the backend
+
+    bool operator==(const Solver&) const = default;
+};
+
 /// True for the references of 3D decks (point contact of spheres).
 constexpr bool is_point_contact(ReferenceType type)
 {
@@ -317,6 +329,7 @@ struct Deck {
     std::vector<ContactPair> contact;
     Steps steps;
     Newton newton;
+    Solver solver;
     Output output;
 
     std::string source_file;  ///< path of the deck file as given

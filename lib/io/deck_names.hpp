@@ -43,6 +43,18 @@ struct DeckNames<MaterialModel> {
 };
 
 template <>
+struct DeckNames<SolverBackend> {
+    static constexpr std::array<EnumName<SolverBackend>, 2> all{{{"suitesparse", SolverBackend::suitesparse},
+                                                                 {"petsc", SolverBackend::petsc}}};
+};
+
+template <>
+struct DeckNames<SolverType> {
+    static constexpr std::array<EnumName<SolverType>, 2> all{{{"direct", SolverType::direct},
+                                                              {"iterative", SolverType::iterative}}};
+};
+
+template <>
 struct DeckNames<Formulation> {
     static constexpr std::array<EnumName<Formulation>, 2> all{{{"two_half_pass", Formulation::two_half_pass},
                                                                {"single_pass", Formulation::single_pass}}};

@@ -415,6 +415,23 @@ Newton read_newton(const Cursor& root)
     return n;
 }
 
+Solver read_solver(const Cursor& root)
+{
+    Solver s;
+    const Cursor c = root.child("solver");
+    if (!c.exists() || !c.allow_only({"backend", "type", "options"}))
+        return s;
+    s.backend_given = c.child("backend").exists();
+    s.backend = c.get_or("backend", s.backend);
+    s.type = c.get_or("type", s.type);
+    s.options = c.get_or<std::string>("options", s.options);
+    if (s.type == SolverType::iterative && s.backend == SolverBackend::suitesparse)
+        c.child("type").fail("type iterative needs backend petsc (the suitesparse backend is direct only)");
+    if (!s.options.empty() && s.backend != SolverBackend::petsc)
+        c.child("options").fail("options are PETSc options: they need backend petsc");
+    return s;
+}
+
 std::optional<Reference> read_reference(const Cursor& c, const KnownNames& known)
 {
     if (!c.allow_only({"pair", "type", "radius", "radii", "force"}))
@@ -497,7 +514,7 @@ Deck read_tree(const Cursor& root, const std::string& file_label, const std::str
         return deck;
     }
     if (!root.allow_only({"format", "title", "analysis", "materials", "bodies", "constraints", "loads", "contact",
-                          "steps", "newton", "output"}))
+                          "steps", "newton", "solver", "output"}))
         return deck;
     if (const auto format = root.get<int>("format"); format && *format != 1)
         root.child("format").fail("unsupported deck format: this program reads format 1");
@@ -514,6 +531,7 @@ Deck read_tree(const Cursor& root, const std::string& file_label, const std::str
     deck.contact = read_contact(root, known);
     deck.steps = read_steps(root);
     deck.newton = read_newton(root);
+    deck.solver = read_solver(root);
     deck.output = read_output(root, file_label, deck_dir, known);
     return deck;
 }

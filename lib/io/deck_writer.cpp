@@ -352,6 +352,13 @@ std::string write_resolved_yaml(const Deck& deck)
     out << YAML::Key << "line_search" << YAML::Value << word(deck.newton.line_search);
     out << YAML::EndMap;
 
+    out << YAML::Key << "solver" << YAML::Value << YAML::BeginMap;
+    out << YAML::Key << "backend" << YAML::Value << word(deck.solver.backend);
+    out << YAML::Key << "type" << YAML::Value << word(deck.solver.type);
+    if (!deck.solver.options.empty())
+        out << YAML::Key << "options" << YAML::Value << deck.solver.options;
+    out << YAML::EndMap;
+
     out << YAML::Key << "output" << YAML::Value;
     write_output(out, deck.output);
     out << YAML::EndMap;

@@ -77,6 +77,7 @@ Schema make_deck_schema()
                               {"quadrature", v}}))},
         {"steps", map({{"count", v}, {"adaptive", v}, {"max_cutbacks", v}})},
         {"newton", map({{"tolerance", v}, {"max_iterations", v}, {"line_search", v}})},
+        {"solver", map({{"backend", v}, {"type", v}, {"options", v}})},
         {"output", map({{"file", v},
                         {"every_step", v},
                         {"samples_per_span", v},

@@ -171,6 +171,10 @@ struct RunSummary {
     std::string status;   ///< "completed" | "failed" | "running"
     std::string message;  ///< why, when failed
     std::string warnings; ///< root attribute "warnings": one line per warning, "" when none
+    int ranks = 1;        ///< root attribute "ranks": the MPI ranks of the run
+    std::string linear_solver;  ///< root attribute "linear_solver": backend and method, for the record
+    /// /parallel/<name>: one value per rank (elements_per_rank, couplings_per_rank); empty on one process
+    std::map<std::string, std::vector<double>> parallel;
     std::map<std::string, double> timings;      ///< seconds: total, assembly, contact_search, ... -> /timings
     std::map<std::string, long long> counters;  ///< -> attributes of /counters (int64)
     RowMatrix convergence;                      ///< n x 4: increment, iteration, residual_norm, load_factor

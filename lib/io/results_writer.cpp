@@ -466,6 +466,8 @@ void ResultsWriter::finish(const RunSummary& summary)
     h5::write_attribute(file, "status", summary.status);
     h5::write_attribute(file, "message", summary.message);
     h5::write_attribute(file, "warnings", summary.warnings);
+    h5::write_attribute(file, "ranks", summary.ranks);
+    h5::write_attribute(file, "linear_solver", summary.linear_solver);
     write_history(file, state_->history);
 
     h5::Handle timings = h5::create_group(file, "timings");
@@ -479,6 +481,13 @@ void ResultsWriter::finish(const RunSummary& summary)
     h5::write_dataset(file, "convergence",
                       std::span<const double>(table.data(), static_cast<std::size_t>(table.size())),
                       {static_cast<hsize_t>(table.rows()), 4});
+
+    if (!summary.parallel.empty()) {
+        h5::Handle parallel = h5::create_group(file, "parallel");
+        for (const auto& [name, values] : summary.parallel)
+            h5::write_dataset(parallel.id(), name, std::span<const double>(values.data(), values.size()),
+                              {static_cast<hsize_t>(values.size())});
+    }
 
     if (!summary.references.empty()) {
         h5::Handle references = h5::create_group(file, "reference");

@@ -1,144 +1,106 @@
 #pragma once
-// LinearSolver: a sparse direct solver for K x = b, wrapping SuiteSparse through
-// Eigen's support modules: UMFPACK (general LU, for the non-symmetric tangent of
-// two-half-pass contact, physics.md §7.10) and CHOLMOD (supernodal LL^T, for a
-// tangent known to be symmetric positive definite).
+// LinearSolver: K x = b for Newton's steps, behind one interface (the shape of
+// polysolve's linear::Solver and MFEM's PETSc wrappers). Two backends:
+//   - SuiteSparseSolver (solver/suitesparse_solver.hpp): CHOLMOD / UMFPACK, with
+//     Woodbury updates; serial, embedded, the default;
+//   - PetscSolver (solver/petsc_solver.hpp): a distributed AIJ matrix with MUMPS
+//     (direct) or a Krylov method with algebraic multigrid (iterative), on the MPI
+//     ranks of the run (core/parallel.hpp); built when PETSc is found.
+// Which one, and how it is configured (symmetric or not, semi-definite or not,
+// updates, ordering, the options of an iterative method), is decided in one place:
+// make_linear_solver() from LinearSolverPolicy (solver/linear_policy.cpp).
 //
-// Kind::cholesky means "expected symmetric positive definite": a matrix CHOLMOD
-// refuses (an indefinite finite-strain tangent, a rigid-body mode before first
-// touch) is factorized by UMFPACK instead. If UMFPACK finds it indefinite but
-// regular, Cholesky is tried again only after 1, 2, 4, ... (at most 32) further
-// factorizations, so a run whose tangent becomes definite (contact closes) returns
-// to the factorization that costs a fraction of an LU, while a tangent that stays
-// indefinite wastes few Cholesky attempts. If UMFPACK finds it singular, the next
-// factorization (the caller's Levenberg-Marquardt shift K + mu D, definite when K
-// was semi-definite) tries Cholesky at once.
+// The matrix a rank passes to factorize() is its summand: on one process the whole
+// tangent, on several ranks the terms of the elements and contact couplings that
+// rank assembled; the operator is their sum. b and x are whole vectors, the same on
+// every rank (the parallel model of core/parallel.hpp).
 //
-// Invariants: the symbolic analysis (fill-reducing ordering, elimination tree) of
-// each backend is done again only when the sparsity pattern (the outer and inner
-// index arrays of the compressed matrix) changes; each factorize() does a numeric
-// factorization. Numerical failures are statuses, never exceptions, and a status
-// `ok` never comes with a non-finite x. Shapes: K is n x n (column-major, int
-// indices, see core/types.hpp), b and x have n entries.
-// Ownership: factorize() copies K (O(nnz)), because UMFPACK reads the matrix
-// again in solve() for iterative refinement; the caller's K may change afterwards.
-//
-// Updates (set_updates(true); solver/woodbury.hpp): a factorization is kept as a
-// reference, and a later K that differs from it only in the rows and columns of a
-// few dofs is solved by a Woodbury update of the reference instead of being
-// factorized, when that costs fewer flops than a factorization (the columns of
-// K_ref^-1 the update still needs against the factorization's own flop count,
-// both known from the backend's analysis), and its columns fit in the memory of
-// the factor. Anything else (a dense change, a singular capacitance, a solution
-// whose backward error stays above the bound after one refinement step) takes the
-// ordinary path, and the new factorization becomes the reference.
+// Statuses, not exceptions, for numerical failures; `ok` never comes with a
+// non-finite x. Shapes: K is n x n (n free dofs), b and x have n entries.
 
 #include "core/types.hpp"
 
 #include <memory>
-#include <vector>
+#include <string>
+
+namespace iga {
+class Communicator;
+}
 
 namespace iga::solver {
 
 enum class LinearStatus {
     ok,
-    singular,  ///< exactly singular pivot (UMFPACK), or the solution fails the backward-error check
+    singular,  ///< singular (a zero pivot), or the solution fails the backward-error check
     failed     ///< Cholesky on a matrix that is not positive definite, or an input the backend rejects
 };
 
 const char* status_name(LinearStatus status);
 
-class WoodburyUpdate;
+/// What a backend did so far (counters of the results file).
+struct LinearStatistics {
+    int symbolic = 0;            ///< symbolic analyses (fill-reducing orderings)
+    int numeric = 0;             ///< numeric factorizations (direct) or preconditioner set-ups (iterative)
+    int updates = 0;             ///< factorize() calls served by a Woodbury update
+    int cholesky_fallbacks = 0;  ///< matrices Cholesky refused (then factorized by LU)
+    long long iterations = 0;    ///< Krylov iterations over all solves (iterative backends)
+};
 
 class LinearSolver {
 public:
-    enum class Kind {
-        lu,       ///< UMFPACK: general, non-symmetric
-        cholesky  ///< CHOLMOD: known symmetric positive definite (reads the lower triangle only)
-    };
+    virtual ~LinearSolver() = default;
 
-    explicit LinearSolver(Kind kind);
-    ~LinearSolver();
-    LinearSolver(LinearSolver&&) noexcept;
-    LinearSolver& operator=(LinearSolver&&) noexcept;
-    LinearSolver(const LinearSolver&) = delete;
-    LinearSolver& operator=(const LinearSolver&) = delete;
+    /// Prepares solves with K (this rank's summand, square): a factorization, an
+    /// update of an earlier one, or a preconditioner. `singular` for an exactly
+    /// singular K, `failed` for a non-finite K or one the backend rejects.
+    virtual LinearStatus factorize(const SparseMatrix& K) = 0;
 
-    /// Numeric factorization of K (square), after a symbolic analysis if the
-    /// pattern changed since the backend's last one. K need not be compressed.
-    /// Returns `singular` for an exactly singular LU (also the fallback LU of
-    /// Kind::cholesky), `failed` for a non-finite K or an input the backend rejects.
-    LinearStatus factorize(const SparseMatrix& K);
+    /// Prepares solves with K + mu D, K the matrix of the last factorize() and
+    /// D = diag(|K_ii|) of the summed K, a zero entry replaced by the mean nonzero
+    /// |K_ii| (1 when all are zero): Newton's Levenberg-Marquardt shift for a
+    /// singular tangent (solver/newton.hpp). Precondition: factorize() was called.
+    virtual LinearStatus factorize_shifted(double mu) = 0;
 
-    /// Solves K x = b with the last successful factorization. Returns `singular`
-    /// when x is not finite or the backward error ||K x - b|| > 1e-6 ||b||
-    /// (a near-singular K that the pivoting did not flag); x is then unspecified.
-    /// Precondition: the last factorize() returned ok.
-    LinearStatus solve(const Vector& b, Vector& x) const;
+    /// Solves with what the last factorize*() prepared. `singular` when x is not
+    /// finite or ||K x - b|| > 1e-6 ||b||; x is then unspecified.
+    virtual LinearStatus solve(const Vector& b, Vector& x) = 0;
 
-    /// Woodbury updates of a reference factorization (see above): for tangents that
-    /// change in a few rows and columns between calls (contact under small
-    /// kinematics). Off by default.
-    void set_updates(bool on);
-    /// Whether the last factorize() was an update of the reference.
-    bool updated() const { return updated_; }
-
-    /// Fill-reducing ordering of the symbolic analyses: approximate minimum degree
-    /// (the backends' default) or METIS nested dissection, which fills far less in
-    /// 3D (measured on the 3D Hertz sphere, 32k dofs: Cholesky 1.6x faster; on 2D
-    /// decks AMD is ~7 % faster).
-    enum class Ordering { minimum_degree, nested_dissection };
-    void set_ordering(Ordering ordering);
-
-    /// Declares every matrix positive semi-definite (e.g. small-strain elasticity
-    /// with penalty contact against rigid planes): a matrix Cholesky refuses is then
-    /// singular, reported as `singular` without the LU attempt (the caller's
-    /// Levenberg-Marquardt shift makes it definite). Only with Kind::cholesky.
-    void set_semidefinite(bool semidefinite) { semidefinite_ = semidefinite; }
-
-    /// Switches the backend (each keeps its own symbolic analysis).
-    void set_kind(Kind kind);
-
-    Kind kind() const { return kind_; }
-    /// The backend of the last successful factorization (lu after a Cholesky fallback).
-    Kind factorized_kind() const { return factorized_kind_; }
-    int n_cholesky_fallbacks() const { return n_fallbacks_; }  ///< matrices Cholesky refused so far
-    int n_symbolic() const { return n_symbolic_; }  ///< symbolic analyses done so far
-    int n_numeric() const { return n_numeric_; }    ///< numeric factorizations done so far
-    int n_updates() const { return n_updates_; }    ///< factorize() calls served by a Woodbury update
-    Index size() const { return reference_.rows(); }
-
-private:
-    struct Backend;  // the Eigen/SuiteSparse objects, kept out of this header
-
-    bool same_pattern(const SparseMatrix& K) const;  // as reference_
-    LinearStatus factorize_with(Kind kind);  // reference_ by one backend, after its analysis if needed
-    bool try_update(const SparseMatrix& K);  // K as a Woodbury update of reference_, if it pays
-    Matrix solve_reference(const Matrix& B) const;  // reference_^-1 B
-
-    Kind kind_;
-    Kind factorized_kind_;
-    std::unique_ptr<Backend> backend_;
-    SparseMatrix reference_;      // the factorized matrix (compressed), read by solve()
-    SparseMatrix K_;              // the matrix of the last factorize() when it was an update
-    std::unique_ptr<WoodburyUpdate> update_;  // set_updates(true)
-    bool updated_ = false;        // the last factorize() was an update: solve() corrects and checks against K_
-    double factor_flops_ = 0;     // of reference_'s factorization (backend's count)
-    double column_flops_ = 0;     // of one solve with it
-    double factor_entries_ = 0;   // nonzeros of its factors
-    bool analysed_ = false;       // reference_'s pattern is the one the analyses below were made for
-    bool analysed_lu_ = false;    // UMFPACK's symbolic analysis matches reference_'s pattern
-    bool analysed_llt_ = false;   // CHOLMOD's symbolic analysis matches reference_'s pattern
-    bool factorized_ = false;     // the last numeric factorization succeeded
-    bool semidefinite_ = false;   // set_semidefinite()
-    int cholesky_skips_ = 0;      // factorizations left before Cholesky is tried again
-    int cholesky_backoff_ = 1;    // skips after the next refusal (doubles, at most 32)
-    int n_fallbacks_ = 0;
-    int n_symbolic_ = 0;
-    int n_numeric_ = 0;
-    int n_updates_ = 0;
+    virtual LinearStatistics statistics() const = 0;
+    /// One line for the log: the backend and method, e.g. "CHOLMOD Cholesky, METIS".
+    virtual std::string describe() const = 0;
+    /// Whether the last factorize() was an update of an earlier factorization.
+    virtual bool updated() const { return false; }
 };
 
-const char* kind_name(LinearSolver::Kind kind);
+/// The backends a deck can choose (`solver.backend`).
+enum class Backend { suitesparse, petsc };
+/// Direct factorization or a preconditioned Krylov method (`solver.type`).
+enum class Method { direct, iterative };
+
+/// Everything that decides which backend and how it runs: from the deck
+/// (backend, method, options) and from the scene (the rest).
+struct LinearSolverPolicy {
+    Backend backend = Backend::suitesparse;
+    Method method = Method::direct;
+    std::string options;        ///< PETSc options database text (petsc only)
+    bool symmetric = true;      ///< every tangent symmetric: Cholesky / CG may be used
+    bool semidefinite = false;  ///< every tangent positive semi-definite (small strain, rigid planes)
+    bool updates = false;       ///< tangents change in a few rows between calls: Woodbury updates pay
+    int dim = 2;                ///< space dimension: 3D orders by nested dissection, blocks of 3
+    /// The rigid-body modes on the free dofs (n_free x 3 in 2D, x 6 in 3D), the
+    /// near-null space of an algebraic multigrid preconditioner; may be empty.
+    Matrix rigid_body_modes;
+};
+
+/// The backend the policy asks for. Throws Error when the backend is not built in
+/// (petsc without PETSc), or when the suitesparse backend is asked for on several
+/// ranks (the caller maps that to the petsc backend first, see linear_policy.cpp).
+std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverPolicy& policy, const Communicator& comm);
+
+/// Whether this build has the PETSc backend.
+bool petsc_available();
+
+const char* backend_name(Backend backend);
+const char* method_name(Method method);
 
 }  // namespace iga::solver

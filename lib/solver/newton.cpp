@@ -73,40 +73,6 @@ void evaluate(const NonlinearSystem& system, const Vector& u, double load_factor
                   "NonlinearSystem::evaluate: tangent is not n_free x n_free");
 }
 
-// K with every diagonal entry present in its pattern (so that K + mu D keeps the
-// pattern of the assembled tangent when the assembler stores the diagonal, and
-// the symbolic analysis is reused), plus the positions of the diagonal entries.
-SparseMatrix with_diagonal(const SparseMatrix& K, std::vector<int>& diagonal_position)
-{
-    SparseMatrix A = K;
-    A.makeCompressed();
-    const int n = static_cast<int>(A.rows());
-    auto find_diagonal = [&]() {
-        diagonal_position.assign(n, -1);
-        for (int j = 0; j < n; ++j) {
-            const int* first = A.innerIndexPtr() + A.outerIndexPtr()[j];
-            const int* last = A.innerIndexPtr() + A.outerIndexPtr()[j + 1];
-            const int* it = std::lower_bound(first, last, j);
-            if (it != last && *it == j)
-                diagonal_position[j] = static_cast<int>(it - A.innerIndexPtr());
-        }
-        return std::find(diagonal_position.begin(), diagonal_position.end(), -1) == diagonal_position.end();
-    };
-    if (!find_diagonal()) {
-        SparseMatrix zero_diagonal(n, n);
-        std::vector<Triplet> entries;
-        entries.reserve(n);
-        for (int j = 0; j < n; ++j)
-            entries.emplace_back(j, j, 0.0);
-        zero_diagonal.setFromTriplets(entries.begin(), entries.end());
-        A = SparseMatrix(A + zero_diagonal);  // the sum keeps the union pattern, zeros included
-        A.makeCompressed();
-        const bool complete = find_diagonal();
-        IGA_CHECK(complete, "with_diagonal: diagonal entries missing after adding them");
-    }
-    return A;
-}
-
 struct StepResult {
     LinearStatus status = LinearStatus::ok;
     bool regularized = false;
@@ -120,46 +86,18 @@ StepResult newton_step(const SparseMatrix& K, const Vector& r, LinearSolver& sol
     ScopedTimer timer(context, "linear_solve");
     const Vector rhs = -r;
     StepResult result;
-    const int refusals = solver.n_cholesky_fallbacks();
+    const int refusals = solver.statistics().cholesky_fallbacks;
     result.status = solver.factorize(K);
-    if (context && solver.n_cholesky_fallbacks() > refusals)
+    if (context && solver.statistics().cholesky_fallbacks > refusals)
         context->log(Verbosity::verbose, "  tangent not positive definite: factorized by LU");
     if (result.status == LinearStatus::ok)
         result.status = solver.solve(rhs, du);
     if (result.status != LinearStatus::singular)
         return result;
 
-    std::vector<int> diagonal_position;
-    SparseMatrix K_reg = with_diagonal(K, diagonal_position);
-    const int n = static_cast<int>(K_reg.rows());
-    Vector D(n);
-    double sum = 0;
-    int n_nonzero = 0;
-    for (int i = 0; i < n; ++i) {
-        D(i) = std::abs(K_reg.valuePtr()[diagonal_position[i]]);
-        if (D(i) > 0) {
-            sum += D(i);
-            ++n_nonzero;
-        }
-    }
-    // A zero diagonal entry gets the mean nonzero one; an all-zero diagonal
-    // carries no scale at all, so use 1 and leave the step length to max_step.
-    const double fill = n_nonzero > 0 ? sum / n_nonzero : 1.0;
-    for (int i = 0; i < n; ++i)
-        if (!(D(i) > 0))
-            D(i) = fill;
-
-    const Vector K_diagonal = [&] {
-        Vector d(n);
-        for (int i = 0; i < n; ++i)
-            d(i) = K_reg.valuePtr()[diagonal_position[i]];
-        return d;
-    }();
     double mu = first_mu;
     for (int attempt = 0; attempt < max_regularizations; ++attempt, mu *= mu_growth) {
-        for (int i = 0; i < n; ++i)
-            K_reg.valuePtr()[diagonal_position[i]] = K_diagonal(i) + mu * D(i);
-        result.status = solver.factorize(K_reg);
+        result.status = solver.factorize_shifted(mu);
         if (result.status == LinearStatus::ok)
             result.status = solver.solve(rhs, du);
         if (result.status == LinearStatus::ok) {
@@ -264,8 +202,6 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
                   settings.divergence_factor > 1,
               "solve_newton: settings out of range (tolerance > 0, max_iterations >= 1, "
               "max_backtracks >= 0, divergence_factor > 1)");
-    if (!system.symmetric && solver.kind() == LinearSolver::Kind::cholesky)
-        solver.set_kind(LinearSolver::Kind::lu);  // Cholesky would silently give wrong steps
 
     NewtonReport report;
     const Vector u_start = u;
@@ -306,7 +242,14 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
                                                       format_g(largest_mu()));
         report.regularized_iterations = step.regularized ? 1 : 0;
         // Algebraic residual of the affine system; refine with the same factorization.
-        Vector algebraic = current.residual + current.tangent * du;
+        // (On several ranks the tangent is this rank's summand: its products are summed.)
+        auto tangent_times = [&](const Vector& x) {
+            Vector y = current.tangent * x;
+            if (system.sum_over_ranks)
+                system.sum_over_ranks(y);
+            return y;
+        };
+        Vector algebraic = current.residual + tangent_times(du);
         rel = relative(algebraic.norm(), current.force_scale);
         for (int k = 0; k < max_refinements && !(rel <= settings.tolerance); ++k) {
             Vector correction;
@@ -314,7 +257,7 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
             if (solver.solve(-algebraic, correction) != LinearStatus::ok)
                 break;
             du += correction;
-            algebraic = current.residual + current.tangent * du;
+            algebraic = current.residual + tangent_times(du);
             rel = relative(algebraic.norm(), current.force_scale);
         }
         u += du;
@@ -330,6 +273,8 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         for (Index j = 0; j < current.tangent.outerSize(); ++j)
             for (SparseMatrix::InnerIterator it(current.tangent, j); it; ++it)
                 magnitude(it.row()) += std::abs(it.value() * du(j));
+        if (system.sum_over_ranks)
+            system.sum_over_ranks(magnitude);
         const double floor = current.residual_floor + DBL_EPSILON * magnitude.norm();
         report.floor_history.push_back(relative(floor, current.force_scale));
         if (current.residual_floor > 0 && algebraic.norm() <= round_off_margin * floor)

@@ -102,6 +102,10 @@ struct NonlinearSystem {
     /// The load factor moves constrained dofs (prescribed displacements): the load
     /// stepper predicts each increment's free dofs (solver/predictor.hpp).
     bool prescribed_motion = false;
+    /// On several MPI ranks each rank's tangent is its summand of K (solver/linear.hpp):
+    /// a product K x is the sum of the ranks' products, which this sums in place.
+    /// Empty on one process.
+    std::function<void(Vector&)> sum_over_ranks;
 };
 
 struct NewtonSettings {

@@ -35,8 +35,6 @@ bool linearized_step(const NonlinearSystem& system, const Vector& u_n, double la
     const Vector rhs = -(at_n.residual + (increment / delta) * (perturbed.residual - at_n.residual));
 
     ScopedTimer timer(context, "linear_solve");
-    if (!system.symmetric && solver.kind() == LinearSolver::Kind::cholesky)
-        solver.set_kind(LinearSolver::Kind::lu);
     LinearStatus status = solver.factorize(at_n.tangent);  // Cholesky falls back to LU itself
     if (status == LinearStatus::ok)
         status = solver.solve(rhs, du);

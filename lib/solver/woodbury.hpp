@@ -16,7 +16,7 @@
 // costs only the columns of the new dofs; each solve costs one reference solve
 // and O(n m) more.
 //
-// The caller decides when an update pays (solver/linear.hpp: against the flops of
+// The caller decides when an update pays (solver/suitesparse_solver.hpp: against the flops of
 // a new factorization) and checks each solution's backward error against K; a
 // capacitance I + G D singular to working precision is refused (set_up returns
 // false) and the caller factorizes K itself.

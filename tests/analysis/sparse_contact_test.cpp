@@ -9,6 +9,7 @@
 #include "analysis/system.hpp"
 #include "io/deck_reader.hpp"
 #include "solver/load_stepping.hpp"
+#include "solver/suitesparse_solver.hpp"
 #include "support/tolerance.hpp"
 
 #include "run_support.hpp"
@@ -40,7 +41,7 @@ Vector solved_state(Scene& scene)
 {
     RunContext context(nullptr, Verbosity::quiet);
     SceneSystem system(scene, context, 1);
-    solver::LinearSolver linear(solver::LinearSolver::Kind::lu);
+    solver::SuiteSparseSolver linear(solver::SuiteSparseSolver::Kind::lu);
     Vector u = Vector::Zero(scene.dofs->n_free());
     solver::SteppingCallbacks callbacks;
     callbacks.commit = [&] {
@@ -186,7 +187,7 @@ SlidingRun run_sliding(bool register_all_couplings)
     run.blocks_before = scene.pattern->n_blocks();
     RunContext context(nullptr, Verbosity::quiet);
     SceneSystem system(scene, context, 1);
-    solver::LinearSolver linear(solver::LinearSolver::Kind::lu);
+    solver::SuiteSparseSolver linear(solver::SuiteSparseSolver::Kind::lu);
     run.u = Vector::Zero(scene.dofs->n_free());
     solver::SteppingCallbacks callbacks;
     callbacks.commit = [&] { scene.pairs.front().pair.commit(); };

@@ -1,7 +1,7 @@
-// Tests for solver/linear.hpp: UMFPACK and CHOLMOD against dense Eigen, status
+// Tests for solver/suitesparse_solver.hpp: UMFPACK and CHOLMOD against dense Eigen, status
 // on singular and non-positive-definite input, reuse of the symbolic analysis.
 
-#include "solver/linear.hpp"
+#include "solver/suitesparse_solver.hpp"
 #include "support/tolerance.hpp"
 
 #include <Eigen/Dense>
@@ -61,7 +61,7 @@ double relative_error(const Vector& x, const Vector& reference)
     return (x - reference).norm() / reference.norm();
 }
 
-TEST(LinearSolver, CholeskyMatchesDenseOnSpdSystem)
+TEST(SuiteSparseSolver, CholeskyMatchesDenseOnSpdSystem)
 {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937 rng(seed);
@@ -69,14 +69,14 @@ TEST(LinearSolver, CholeskyMatchesDenseOnSpdSystem)
     const Vector b = random_vector(60, rng);
     const Vector reference = Matrix(K).ldlt().solve(b);
 
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
     Vector x;
     ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
     EXPECT_TRUE(test::at_most(relative_error(x, reference), solve_tolerance));
 }
 
-TEST(LinearSolver, LuMatchesDenseOnNonSymmetricSystem)
+TEST(SuiteSparseSolver, LuMatchesDenseOnNonSymmetricSystem)
 {
     SCOPED_TRACE("seed " + std::to_string(seed));
     std::mt19937 rng(seed + 1);
@@ -85,53 +85,53 @@ TEST(LinearSolver, LuMatchesDenseOnNonSymmetricSystem)
     const Vector b = random_vector(60, rng);
     const Vector reference = Matrix(K).partialPivLu().solve(b);
 
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
     Vector x;
     ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
     EXPECT_TRUE(test::at_most(relative_error(x, reference), solve_tolerance));
 }
 
-TEST(LinearSolver, SingularMatrixIsReportedNotSolved)
+TEST(SuiteSparseSolver, SingularMatrixIsReportedNotSolved)
 {
     // A floating two-node spring: rigid translation [1, 1] is a null vector.
     Matrix dense(3, 3);
     dense << 1, -1, 0, -1, 1, 0, 0, 0, 2;
     const SparseMatrix K = dense.sparseView();
 
-    LinearSolver lu(LinearSolver::Kind::lu);
+    SuiteSparseSolver lu(SuiteSparseSolver::Kind::lu);
     EXPECT_EQ(lu.factorize(K), LinearStatus::singular);
 
     // Cholesky refuses it and falls back to LU, which finds it singular.
-    LinearSolver cholesky(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver cholesky(SuiteSparseSolver::Kind::cholesky);
     EXPECT_EQ(cholesky.factorize(K), LinearStatus::singular);
     EXPECT_EQ(cholesky.n_cholesky_fallbacks(), 1);
     // Singular, not indefinite: the shifted matrix a caller tries next gets Cholesky at once.
     const SparseMatrix shifted = SparseMatrix(K + SparseMatrix(Matrix::Identity(3, 3).sparseView()));
     ASSERT_EQ(cholesky.factorize(shifted), LinearStatus::ok);
-    EXPECT_EQ(cholesky.factorized_kind(), LinearSolver::Kind::cholesky);
+    EXPECT_EQ(cholesky.factorized_kind(), SuiteSparseSolver::Kind::cholesky);
 
     // A structurally zero column.
     Matrix zero_column = Matrix::Identity(3, 3);
     zero_column(1, 1) = 0;
-    LinearSolver lu2(LinearSolver::Kind::lu);
+    SuiteSparseSolver lu2(SuiteSparseSolver::Kind::lu);
     EXPECT_EQ(lu2.factorize(zero_column.sparseView()), LinearStatus::singular);
 }
 
-TEST(LinearSolver, EmptyPatternIsSingularNotACrash)
+TEST(SuiteSparseSolver, EmptyPatternIsSingularNotACrash)
 {
     // A tangent with no stored entry at all: an open contact gap, nothing else.
     const SparseMatrix K(2, 2);
-    LinearSolver lu(LinearSolver::Kind::lu);
+    SuiteSparseSolver lu(SuiteSparseSolver::Kind::lu);
     EXPECT_EQ(lu.factorize(K), LinearStatus::singular);
-    LinearSolver cholesky(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver cholesky(SuiteSparseSolver::Kind::cholesky);
     EXPECT_EQ(cholesky.factorize(K), LinearStatus::singular);
 }
 
-TEST(LinearSolver, NoUnknownsIsATrivialSolve)
+TEST(SuiteSparseSolver, NoUnknownsIsATrivialSolve)
 {
-    for (auto kind : {LinearSolver::Kind::lu, LinearSolver::Kind::cholesky}) {
-        LinearSolver solver(kind);
+    for (auto kind : {SuiteSparseSolver::Kind::lu, SuiteSparseSolver::Kind::cholesky}) {
+        SuiteSparseSolver solver(kind);
         ASSERT_EQ(solver.factorize(SparseMatrix(0, 0)), LinearStatus::ok);
         Vector x = Vector::Ones(3);
         EXPECT_EQ(solver.solve(Vector(0), x), LinearStatus::ok);
@@ -139,7 +139,7 @@ TEST(LinearSolver, NoUnknownsIsATrivialSolve)
     }
 }
 
-TEST(LinearSolver, IndefiniteMatrixIsFactorizedByLuAndCholeskyIsTriedAgainLater)
+TEST(SuiteSparseSolver, IndefiniteMatrixIsFactorizedByLuAndCholeskyIsTriedAgainLater)
 {
     Matrix indefinite(2, 2);
     indefinite << 1, 2, 2, 1;  // eigenvalues 3 and -1
@@ -148,9 +148,9 @@ TEST(LinearSolver, IndefiniteMatrixIsFactorizedByLuAndCholeskyIsTriedAgainLater)
     const SparseMatrix K_indefinite = indefinite.sparseView();
     const SparseMatrix K_definite = definite.sparseView();
 
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     ASSERT_EQ(solver.factorize(K_indefinite), LinearStatus::ok) << "LU takes what Cholesky refuses";
-    EXPECT_EQ(solver.factorized_kind(), LinearSolver::Kind::lu);
+    EXPECT_EQ(solver.factorized_kind(), SuiteSparseSolver::Kind::lu);
     EXPECT_EQ(solver.n_cholesky_fallbacks(), 1);
     Vector x;
     ASSERT_EQ(solver.solve(Vector::Ones(2), x), LinearStatus::ok);
@@ -158,13 +158,13 @@ TEST(LinearSolver, IndefiniteMatrixIsFactorizedByLuAndCholeskyIsTriedAgainLater)
 
     // The back-off: the next factorization is LU without trying Cholesky, the one after is Cholesky again.
     ASSERT_EQ(solver.factorize(K_definite), LinearStatus::ok);
-    EXPECT_EQ(solver.factorized_kind(), LinearSolver::Kind::lu);
+    EXPECT_EQ(solver.factorized_kind(), SuiteSparseSolver::Kind::lu);
     ASSERT_EQ(solver.factorize(2.0 * K_definite), LinearStatus::ok);
-    EXPECT_EQ(solver.factorized_kind(), LinearSolver::Kind::cholesky);
+    EXPECT_EQ(solver.factorized_kind(), SuiteSparseSolver::Kind::cholesky);
     ASSERT_EQ(solver.solve(Vector::Ones(2), x), LinearStatus::ok);
     EXPECT_TRUE(test::at_most((x - Vector::Constant(2, 1.0 / 8.0)).norm(), solve_tolerance));
     EXPECT_EQ(solver.n_cholesky_fallbacks(), 1);
-    EXPECT_EQ(solver.kind(), LinearSolver::Kind::cholesky);
+    EXPECT_EQ(solver.kind(), SuiteSparseSolver::Kind::cholesky);
     EXPECT_EQ(solver.n_symbolic(), 2) << "one analysis per backend for the one pattern";
 
     // Refusals in a row double the back-off: 1, then 2 LU-only factorizations.
@@ -174,21 +174,21 @@ TEST(LinearSolver, IndefiniteMatrixIsFactorizedByLuAndCholeskyIsTriedAgainLater)
     EXPECT_EQ(solver.n_cholesky_fallbacks(), 3);
     ASSERT_EQ(solver.factorize(K_definite), LinearStatus::ok);
     ASSERT_EQ(solver.factorize(2.0 * K_definite), LinearStatus::ok);
-    EXPECT_EQ(solver.factorized_kind(), LinearSolver::Kind::lu) << "still inside the back-off of 2";
+    EXPECT_EQ(solver.factorized_kind(), SuiteSparseSolver::Kind::lu) << "still inside the back-off of 2";
     ASSERT_EQ(solver.factorize(3.0 * K_definite), LinearStatus::ok);
-    EXPECT_EQ(solver.factorized_kind(), LinearSolver::Kind::cholesky);
+    EXPECT_EQ(solver.factorized_kind(), SuiteSparseSolver::Kind::cholesky);
 }
 
-TEST(LinearSolver, NonFiniteInputIsNeverOk)
+TEST(SuiteSparseSolver, NonFiniteInputIsNeverOk)
 {
     Matrix dense = Matrix::Identity(3, 3);
     dense(2, 2) = std::numeric_limits<double>::quiet_NaN();
-    for (auto kind : {LinearSolver::Kind::lu, LinearSolver::Kind::cholesky}) {
-        LinearSolver solver(kind);
+    for (auto kind : {SuiteSparseSolver::Kind::lu, SuiteSparseSolver::Kind::cholesky}) {
+        SuiteSparseSolver solver(kind);
         EXPECT_NE(solver.factorize(dense.sparseView()), LinearStatus::ok) << kind_name(kind);
     }
 
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     ASSERT_EQ(solver.factorize(SparseMatrix(Matrix::Identity(3, 3).sparseView())), LinearStatus::ok);
     Vector b = Vector::Ones(3);
     b(1) = std::numeric_limits<double>::quiet_NaN();
@@ -196,25 +196,25 @@ TEST(LinearSolver, NonFiniteInputIsNeverOk)
     EXPECT_NE(solver.solve(b, x), LinearStatus::ok);
 }
 
-TEST(LinearSolver, CholeskyOnNonSymmetricMatrixFailsTheBackwardErrorCheck)
+TEST(SuiteSparseSolver, CholeskyOnNonSymmetricMatrixFailsTheBackwardErrorCheck)
 {
     // CHOLMOD reads the lower triangle only; the backward-error check uses all of K.
     Matrix dense(2, 2);
     dense << 4, 3, 0, 4;  // lower triangle is SPD diag(4, 4)
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     ASSERT_EQ(solver.factorize(dense.sparseView()), LinearStatus::ok);
     Vector x;
     EXPECT_EQ(solver.solve(Vector::Ones(2), x), LinearStatus::singular);
 }
 
-TEST(LinearSolver, SymbolicAnalysisIsReusedWhileThePatternIsUnchanged)
+TEST(SuiteSparseSolver, SymbolicAnalysisIsReusedWhileThePatternIsUnchanged)
 {
     std::mt19937 rng(seed + 2);
-    for (auto kind : {LinearSolver::Kind::lu, LinearSolver::Kind::cholesky}) {
+    for (auto kind : {SuiteSparseSolver::Kind::lu, SuiteSparseSolver::Kind::cholesky}) {
         SCOPED_TRACE(kind_name(kind));
         SparseMatrix K = dominant_matrix(40, true, rng);
         const Vector b = random_vector(40, rng);
-        LinearSolver solver(kind);
+        SuiteSparseSolver solver(kind);
         ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
 
         // New values, same pattern: numeric only, and the new values are used.
@@ -251,18 +251,18 @@ TEST(LinearSolver, SymbolicAnalysisIsReusedWhileThePatternIsUnchanged)
         EXPECT_EQ(solver.n_numeric(), 4);
 
         // Switching the kind needs the other backend's analysis.
-        solver.set_kind(kind == LinearSolver::Kind::lu ? LinearSolver::Kind::cholesky : LinearSolver::Kind::lu);
+        solver.set_kind(kind == SuiteSparseSolver::Kind::lu ? SuiteSparseSolver::Kind::cholesky : SuiteSparseSolver::Kind::lu);
         ASSERT_EQ(solver.factorize(grown), LinearStatus::ok);
         EXPECT_EQ(solver.n_symbolic(), 3);
     }
 }
 
-TEST(LinearSolver, CallerMayChangeTheMatrixBetweenFactorizeAndSolve)
+TEST(SuiteSparseSolver, CallerMayChangeTheMatrixBetweenFactorizeAndSolve)
 {
     Matrix dense(2, 2);
     dense << 2, 1, 1, 3;
     SparseMatrix K = dense.sparseView();
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
     K.coeffs().setConstant(std::numeric_limits<double>::quiet_NaN());  // the solver holds its own copy
     Vector x;
@@ -276,17 +276,17 @@ TEST(LinearSolver, CallerMayChangeTheMatrixBetweenFactorizeAndSolve)
 namespace iga::solver {
 namespace {
 
-TEST(LinearSolver, NestedDissectionOrderingSolvesTheSameSystems)
+TEST(SuiteSparseSolver, NestedDissectionOrderingSolvesTheSameSystems)
 {
     std::mt19937 rng(seed);
     const SparseMatrix K_spd = dominant_matrix(60, true, rng);
     const SparseMatrix K_general = dominant_matrix(60, false, rng);
     const Vector b = random_vector(60, rng);
-    for (auto kind : {LinearSolver::Kind::cholesky, LinearSolver::Kind::lu}) {
-        const SparseMatrix& K = kind == LinearSolver::Kind::cholesky ? K_spd : K_general;
-        LinearSolver solver(kind);
+    for (auto kind : {SuiteSparseSolver::Kind::cholesky, SuiteSparseSolver::Kind::lu}) {
+        const SparseMatrix& K = kind == SuiteSparseSolver::Kind::cholesky ? K_spd : K_general;
+        SuiteSparseSolver solver(kind);
         ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
-        solver.set_ordering(LinearSolver::Ordering::nested_dissection);
+        solver.set_ordering(SuiteSparseSolver::Ordering::nested_dissection);
         ASSERT_EQ(solver.factorize(K), LinearStatus::ok) << "a new ordering is a new analysis, not a stale factor";
         EXPECT_EQ(solver.n_symbolic(), 2);
         Vector x;
@@ -302,12 +302,12 @@ TEST(LinearSolver, NestedDissectionOrderingSolvesTheSameSystems)
 namespace iga::solver {
 namespace {
 
-TEST(LinearSolver, SemidefiniteMatrixThatCholeskyRefusesIsSingularWithoutLu)
+TEST(SuiteSparseSolver, SemidefiniteMatrixThatCholeskyRefusesIsSingularWithoutLu)
 {
     // The floating two-node spring: positive semi-definite, rigid translation [1, 1, 0].
     Matrix dense(3, 3);
     dense << 1, -1, 0, -1, 1, 0, 0, 0, 2;
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     solver.set_semidefinite(true);
     EXPECT_EQ(solver.factorize(dense.sparseView()), LinearStatus::singular);
     EXPECT_EQ(solver.n_cholesky_fallbacks(), 0) << "no LU attempt";
@@ -315,7 +315,7 @@ TEST(LinearSolver, SemidefiniteMatrixThatCholeskyRefusesIsSingularWithoutLu)
     // The shifted matrix the caller tries next is definite: Cholesky.
     const SparseMatrix shifted = SparseMatrix((dense + 1e-8 * Matrix::Identity(3, 3)).sparseView());
     ASSERT_EQ(solver.factorize(shifted), LinearStatus::ok);
-    EXPECT_EQ(solver.factorized_kind(), LinearSolver::Kind::cholesky);
+    EXPECT_EQ(solver.factorized_kind(), SuiteSparseSolver::Kind::cholesky);
 }
 
 }  // namespace

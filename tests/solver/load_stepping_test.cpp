@@ -2,6 +2,7 @@
 // rollback to the last converged state, stop requests, linear systems, logging.
 
 #include "solver/load_stepping.hpp"
+#include "solver/suitesparse_solver.hpp"
 #include "support/tolerance.hpp"
 
 #include <gtest/gtest.h>
@@ -85,7 +86,7 @@ TEST(LoadStepping, CutbacksRescueADivergingIncrement)
     newton.line_search = false;
     newton.max_iterations = 12;
     SteppingSettings stepping;  // one increment, adaptive
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     Recorder recorder;
     SteppingCallbacks callbacks = recorder.callbacks();
     Vector u = Vector::Zero(1);
@@ -117,7 +118,7 @@ TEST(LoadStepping, ExhaustedCutbacksEndTheRunWithAMessage)
     NewtonSettings newton;
     SteppingSettings stepping;
     stepping.max_cutbacks = 2;
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     Recorder recorder;
     SteppingCallbacks callbacks = recorder.callbacks();
     Vector u = Vector::Constant(1, 0.0);
@@ -144,7 +145,7 @@ TEST(LoadStepping, FailureLeavesTheLastConvergedState)
     SteppingSettings stepping;
     stepping.count = 4;
     stepping.max_cutbacks = 2;
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     Recorder recorder;
     SteppingCallbacks callbacks = recorder.callbacks();
     Vector u = Vector::Zero(1);
@@ -167,7 +168,7 @@ TEST(LoadStepping, NonAdaptiveStepsFailAtOnce)
     SteppingSettings stepping;
     stepping.count = 4;
     stepping.adaptive = false;
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     Recorder recorder;
     SteppingCallbacks callbacks = recorder.callbacks();
     Vector u = Vector::Zero(1);
@@ -188,7 +189,7 @@ TEST(LoadStepping, EasyIncrementsNeverGrowBeyondTheInitialOne)
         SteppingSettings stepping;
         stepping.count = 4;
         stepping.adaptive = adaptive;
-        LinearSolver solver(LinearSolver::Kind::lu);
+        SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
         Recorder recorder;
         SteppingCallbacks callbacks = recorder.callbacks();
         Vector u = Vector::Zero(1);
@@ -221,7 +222,7 @@ TEST(LoadStepping, IncrementGrowsBackAfterCutbacks)
     };
     NewtonSettings newton;
     SteppingSettings stepping;
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     SteppingCallbacks callbacks;
     callbacks.commit = [&] { first_done = true; };
     std::vector<double> lambdas;
@@ -266,7 +267,7 @@ TEST(LoadStepping, NextIncrementFollowsTheIterationCount)
     newton.max_iterations = 40;  // a triple root from x = 0.25 needs ~16 linear-rate iterations
     SteppingSettings stepping;
     stepping.count = 4;
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     SteppingCallbacks callbacks;
     Vector u = Vector::Zero(1);
     const SteppingResult result =
@@ -336,7 +337,7 @@ TEST(LoadStepping, PredictorSpreadsAPrescribedDisplacementIntoTheInterior)
 {
     constexpr double u_bar = -1.5;
     NewtonSettings newton;
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     SteppingCallbacks callbacks;
 
     SteppingSettings plain;
@@ -385,7 +386,7 @@ TEST(LoadStepping, InadmissiblePredictionIsScaledBack)
     };
     NewtonSettings newton;
     SteppingSettings stepping;  // one increment: the predicted u = -0.95 is beyond the stop
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     SteppingCallbacks callbacks;
     Vector u = Vector::Zero(1);
     std::vector<std::string> lines;
@@ -424,7 +425,7 @@ TEST(LoadStepping, LineSearchBacksOffAnInadmissibleTrialWithoutACutback)
     };
     NewtonSettings newton;
     SteppingSettings stepping;
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     SteppingCallbacks callbacks;
     Vector u = Vector::Zero(1);
     const SteppingResult result = run_load_steps(system, u, stepping, newton, solver, callbacks, nullptr);
@@ -441,7 +442,7 @@ TEST(LoadStepping, StopRequestEndsTheRunAfterTheCurrentIncrement)
     NewtonSettings newton;
     SteppingSettings stepping;
     stepping.count = 5;
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     Recorder recorder;
     SteppingCallbacks callbacks = recorder.callbacks();
     callbacks.stop_requested = [&] { return recorder.states.size() == 2; };
@@ -468,7 +469,7 @@ TEST(LoadStepping, LinearSystemTakesOneSolvePerIncrementAndNeverCutsBack)
     NewtonSettings newton;
     SteppingSettings stepping;
     stepping.count = 3;
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     SteppingCallbacks callbacks;
     Vector u = Vector::Zero(1);
     const SteppingResult result = run_load_steps(system, u, stepping, newton, solver, callbacks, nullptr);
@@ -498,7 +499,7 @@ TEST(LoadStepping, LogsOneLinePerConvergedIncrement)
     NewtonSettings newton;
     SteppingSettings stepping;
     stepping.count = 3;
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     SteppingCallbacks callbacks;
     Vector u = Vector::Zero(1);
     const SteppingResult result =
@@ -572,7 +573,7 @@ TEST(LoadStepping, OuterUpdatesFollowTheOneSpringClosedForm)
     constexpr int expected_updates = 5;
     const double rho = spring.k / (spring.k + spring.eps);
     SteppingSettings stepping;
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     SteppingCallbacks callbacks = spring.callbacks();
     Vector u = Vector::Zero(1);
     const SteppingResult result = run_load_steps(spring.system(), u, stepping, NewtonSettings{}, solver, callbacks,
@@ -604,7 +605,7 @@ TEST(LoadStepping, RejectedOuterLoopIsCutBackAndRolledBack)
     spring.max_updates = 1;  // never enough for u <= 1e-3 from m = 0 at any load factor >= 1/256
     SteppingSettings stepping;
     stepping.max_cutbacks = 2;
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     SteppingCallbacks callbacks = spring.callbacks();
     int rollbacks = 0;
     auto rollback = callbacks.rollback;

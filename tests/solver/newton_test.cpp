@@ -3,6 +3,7 @@
 // first contact, linear systems, failure statuses and the restored state.
 
 #include "solver/newton.hpp"
+#include "solver/suitesparse_solver.hpp"
 #include "support/tolerance.hpp"
 
 #include <Eigen/Dense>
@@ -88,7 +89,7 @@ TEST(Newton, ConvergesQuadraticallyWithExactTangent)
     NonlinearSystem system = cubic.system();
     NewtonSettings settings;
     settings.line_search = false;  // every evaluation is then a Newton iterate
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     Vector u = Vector::Zero(4);
     const NewtonReport report = solve_newton(system, 1.0, u, settings, solver, nullptr);
 
@@ -127,7 +128,7 @@ TEST(Newton, WrongTangentIsCaughtByTheQuadraticBound)
     NewtonSettings settings;
     settings.line_search = false;
     settings.max_iterations = 60;
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     Vector u = Vector::Zero(4);
     const NewtonReport report = solve_newton(system, 1.0, u, settings, solver, nullptr);
     ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
@@ -145,7 +146,7 @@ TEST(Newton, AlreadyConvergedStartTakesNoIteration)
 {
     CubicSystem cubic;
     NonlinearSystem system = cubic.system();
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     Vector u = cubic.u_star;
     const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
     EXPECT_EQ(report.status, NewtonStatus::converged);
@@ -158,7 +159,7 @@ TEST(Newton, RecordsTimersAndIterationCount)
 {
     CubicSystem cubic;
     NonlinearSystem system = cubic.system();
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     RunContext context;
     Vector u = Vector::Zero(4);
     const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, &context);
@@ -197,7 +198,7 @@ TEST(Newton, LineSearchRescuesOvershootingStep)
     const double shift = 1.0;
     const Vector start = Vector::Constant(1, shift + 4.0);
     NewtonSettings settings;
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
 
     Vector u = start;
     settings.line_search = false;
@@ -220,7 +221,7 @@ TEST(Newton, FailedEvaluationAtATrialPointIsBacktracked)
     // From u = 3 the full step lands at -9.5, where evaluate() fails (think: the
     // projection leaves the patch); the line search must treat it as rejected.
     Vector u = Vector::Constant(1, 3.0);
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     NewtonSettings settings;
     const NewtonReport report = solve_newton(arctan_system(0.0, nullptr, -5.0), 1.0, u, settings, solver, nullptr);
     ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
@@ -237,7 +238,7 @@ TEST(Newton, FailedEvaluationAtATrialPointIsBacktracked)
 TEST(Newton, EvaluationFailureAtStartIsReported)
 {
     Vector u = Vector::Constant(1, -10.0);
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     const NewtonReport report =
         solve_newton(arctan_system(0.0, nullptr, -5.0), 1.0, u, NewtonSettings{}, solver, nullptr);
     EXPECT_EQ(report.status, NewtonStatus::evaluation_failed);
@@ -255,7 +256,7 @@ TEST(Newton, NonFiniteResidualNeverEntersTheState)
         if (need_tangent)
             out.tangent = sparse(Matrix::Constant(1, 1, 1.0 / u(0)));
     };
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     NewtonSettings settings;
     Vector u = Vector::Constant(1, 10.0);
     const NewtonReport searched = solve_newton(system, 1.0, u, settings, solver, nullptr);
@@ -285,7 +286,7 @@ TEST(Newton, MaxStepCapsTheUpdate)
     };
     NewtonSettings settings;
     settings.line_search = false;
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     Vector u = Vector::Zero(1);
     const NewtonReport report = solve_newton(system, 1.0, u, settings, solver, nullptr);
     ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
@@ -310,7 +311,7 @@ TEST(Newton, FirstTouchWithZeroTangentConvergesViaRegularization)
         if (need_tangent)
             out.tangent = sparse(Matrix::Constant(1, 1, u(0) > gap ? k : 0.0));
     };
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     Vector u = Vector::Zero(1);
     const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
     ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
@@ -340,7 +341,7 @@ TEST(Newton, DirectionalSearchFindsTheRootOfAStronglyCurvedSlope)
         if (need_tangent)
             out.tangent = sparse(Matrix::Constant(1, 1, k + 1.5 * C * std::sqrt(penetration)));
     };
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     Vector u = Vector::Zero(1);
     const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
     ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
@@ -372,7 +373,7 @@ TEST(Newton, FloatingBodyHeldOnlyByContactConverges)
             out.tangent = sparse(K);
         }
     };
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     Vector u = Vector::Zero(2);
     const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
     ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
@@ -396,7 +397,7 @@ TEST(Newton, LinearSystemIsOneSolve)
         out.force_scale = lambda * cubic.f.norm();
         out.tangent = sparse(cubic.A);
     };
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     Vector u = Vector::Ones(4);  // any start: the affine system is solved exactly
     const NewtonReport report = solve_newton(system, 0.5, u, NewtonSettings{}, solver, nullptr);
     ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
@@ -421,7 +422,7 @@ TEST(Newton, InconsistentSingularLinearSystemFails)
         out.force_scale = lambda * std::sqrt(2.0);
         out.tangent = sparse(K);
     };
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     Vector u = Vector::Zero(2);
     const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
     EXPECT_NE(report.status, NewtonStatus::converged);
@@ -442,11 +443,11 @@ TEST(Newton, NonSymmetricSystemNeverUsesCholesky)
         if (need_tangent)
             out.tangent = sparse(K);
     };
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     Vector u = Vector::Zero(2);
     const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
     ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
-    EXPECT_EQ(solver.kind(), LinearSolver::Kind::lu);
+    EXPECT_EQ(solver.kind(), SuiteSparseSolver::Kind::lu);
     EXPECT_TRUE(test::at_most((u - K.partialPivLu().solve(f)).norm(), solution_tolerance));
 }
 
@@ -462,11 +463,11 @@ TEST(Newton, IndefiniteTangentIsFactorizedByLu)
         if (need_tangent)
             out.tangent = sparse(K);
     };
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     Vector u = Vector::Zero(2);
     const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
     ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
-    EXPECT_EQ(solver.factorized_kind(), LinearSolver::Kind::lu);
+    EXPECT_EQ(solver.factorized_kind(), SuiteSparseSolver::Kind::lu);
     EXPECT_GE(solver.n_cholesky_fallbacks(), 1);
     EXPECT_EQ(report.regularized_iterations, 0);
     EXPECT_TRUE(test::near(u(1), -0.5, solution_tolerance));
@@ -478,7 +479,7 @@ TEST(Newton, MaxIterationsReportsTheLastResidual)
     NonlinearSystem system = cubic.system();
     NewtonSettings settings;
     settings.max_iterations = 2;
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     Vector u = Vector::Zero(4);
     const NewtonReport report = solve_newton(system, 1.0, u, settings, solver, nullptr);
     EXPECT_EQ(report.status, NewtonStatus::max_iterations);
@@ -520,7 +521,7 @@ TEST(Newton, ZeroForceSolutionConvergesAtRoundOff)
         if (need_tangent)
             out.tangent = sparse(K_full.bottomRightCorner(n_nodes - 1, n_nodes - 1));
     };
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     Vector u = Vector::Zero(n_nodes - 1);
     const double lambda = 0.37;
     const NewtonReport report = solve_newton(system, lambda, u, NewtonSettings{}, solver, nullptr);
@@ -567,7 +568,7 @@ TEST(Newton, ResidualAtItsRoundOffFloorConverges)
     NonlinearSystem system = spring.system();
     NewtonSettings settings;
     settings.tolerance = 1e-14;
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     Vector u = Vector::Zero(1);
     const NewtonReport report = solve_newton(system, 1.0, u, settings, solver, nullptr);
     ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
@@ -588,7 +589,7 @@ TEST(Newton, LargeResidualWithSmallStepIsNotAccepted)
     NewtonSettings settings;
     settings.tolerance = 1e-12;
     settings.max_iterations = 8;
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     Vector u = Vector::Zero(1);
     const NewtonReport report = solve_newton(system, 1.0, u, settings, solver, nullptr);
     EXPECT_EQ(report.status, NewtonStatus::max_iterations) << report.message;

@@ -1,5 +1,5 @@
 #include "solver/woodbury.hpp"
-#include "solver/linear.hpp"
+#include "solver/suitesparse_solver.hpp"
 #include "support/tolerance.hpp"
 
 #include <Eigen/Dense>
@@ -155,14 +155,14 @@ TEST(WoodburyUpdate, ASingularUpdatedMatrixIsRefused)
                                [&](const Matrix& B) { return Matrix(reference.solve(B)); }));
 }
 
-TEST(LinearSolver, UpdatesServeTangentsThatChangeInAFewDofs)
+TEST(SuiteSparseSolver, UpdatesServeTangentsThatChangeInAFewDofs)
 {
     // Newton iterations of small-strain contact: the elastic part stays, the
     // contact block on a growing set of dofs changes; one factorization serves all.
     const SparseMatrix K0 = grid_matrix(14);
     const Index n = K0.rows();
-    for (LinearSolver::Kind kind : {LinearSolver::Kind::cholesky, LinearSolver::Kind::lu}) {
-        LinearSolver solver(kind);
+    for (SuiteSparseSolver::Kind kind : {SuiteSparseSolver::Kind::cholesky, SuiteSparseSolver::Kind::lu}) {
+        SuiteSparseSolver solver(kind);
         solver.set_updates(true);
         const std::vector<std::vector<int>> supports{
             {100, 101, 102}, {100, 101, 102, 115, 116}, {101, 102, 115, 116, 117}};
@@ -204,7 +204,7 @@ TEST(LinearSolver, UpdatesServeTangentsThatChangeInAFewDofs)
     }
 }
 
-TEST(LinearSolver, ASingularUpdateIsFactorizedAndReportedSingular)
+TEST(SuiteSparseSolver, ASingularUpdateIsFactorizedAndReportedSingular)
 {
     // K0 held only by the "contact" springs on dofs 0 and 1 (a body held by contact
     // alone): when the contact opens, the updated matrix is singular. The update
@@ -218,7 +218,7 @@ TEST(LinearSolver, ASingularUpdateIsFactorizedAndReportedSingular)
     SparseMatrix held = free_body;
     held.coeffRef(0, 0) += 1.0;
     held.coeffRef(1, 1) += 1.0;
-    LinearSolver solver(LinearSolver::Kind::cholesky);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     solver.set_updates(true);
     solver.set_semidefinite(true);
     ASSERT_EQ(solver.factorize(held), LinearStatus::ok);
@@ -233,11 +233,11 @@ TEST(LinearSolver, ASingularUpdateIsFactorizedAndReportedSingular)
 
 namespace iga::solver {
 
-TEST(LinearSolver, TheSameMatrixAgainKeepsItsFactorization)
+TEST(SuiteSparseSolver, TheSameMatrixAgainKeepsItsFactorization)
 {
     // A linear scene refactorizes nothing from its second increment on.
     const SparseMatrix K = with_contact(chain_matrix(20, 6), {2, 3}, 7);
-    LinearSolver solver(LinearSolver::Kind::lu);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
     ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
     EXPECT_EQ(solver.n_numeric(), 1);
@@ -258,7 +258,7 @@ namespace iga::solver {
 // A contact coupling registered during a run grows the tangent's pattern: both
 // the plain and the updating solver must notice (a new symbolic analysis, or an
 // update whose difference spans the new entries) and solve the new matrix.
-TEST(LinearSolver, AGrownPatternIsAnalysedAgain)
+TEST(SuiteSparseSolver, AGrownPatternIsAnalysedAgain)
 {
     constexpr int n = 50;
     const SparseMatrix K1 = with_contact(chain_matrix(n, 4), {10, 11, 12, 13}, 5);
@@ -275,9 +275,9 @@ TEST(LinearSolver, AGrownPatternIsAnalysedAgain)
     const Vector reference = dense.lu().solve(b);
     constexpr double agreement = 1e-12;  // direct solves of a well-conditioned system
 
-    LinearSolver plain(LinearSolver::Kind::lu), updating(LinearSolver::Kind::lu);
+    SuiteSparseSolver plain(SuiteSparseSolver::Kind::lu), updating(SuiteSparseSolver::Kind::lu);
     updating.set_updates(true);
-    for (LinearSolver* solver : {&plain, &updating}) {
+    for (SuiteSparseSolver* solver : {&plain, &updating}) {
         ASSERT_EQ(solver->factorize(K1), LinearStatus::ok);
         ASSERT_EQ(solver->factorize(K2), LinearStatus::ok);
         Vector x;

@@ -1,5 +1,6 @@
-#include "solver/linear.hpp"
+#include "solver/suitesparse_solver.hpp"
 
+#include "solver/shift.hpp"
 #include "solver/woodbury.hpp"
 
 #include "core/error.hpp"
@@ -126,7 +127,7 @@ public:
     double statistic(int entry) const { return m_umfpackInfo(entry); }
 };
 
-struct LinearSolver::Backend {
+struct SuiteSparseSolver::Backend {
     UmfPackWithInfo lu;
     Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt;
 
@@ -138,39 +139,33 @@ struct LinearSolver::Backend {
     }
 };
 
-const char* status_name(LinearStatus status)
+const char* kind_name(SuiteSparseSolver::Kind kind)
 {
-    switch (status) {
-    case LinearStatus::ok: return "ok";
-    case LinearStatus::singular: return "singular";
-    case LinearStatus::failed: return "failed";
-    }
-    return "unknown";
-}
-
-const char* kind_name(LinearSolver::Kind kind)
-{
-    return kind == LinearSolver::Kind::lu ? "lu" : "cholesky";
+    return kind == SuiteSparseSolver::Kind::lu ? "lu" : "cholesky";
 }
 
 // Cholesky is tried again after this many skipped factorizations at most (the
 // back-off doubles from 1 with each refusal in a row).
 constexpr int max_cholesky_backoff = 32;
 
-LinearSolver::LinearSolver(Kind kind) : kind_(kind), factorized_kind_(kind), backend_(std::make_unique<Backend>()) {}
-LinearSolver::~LinearSolver() = default;
-LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
-LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
+SuiteSparseSolver::SuiteSparseSolver(Kind kind)
+    : kind_(kind), factorized_kind_(kind), backend_(std::make_unique<Backend>())
+{
+}
+SuiteSparseSolver::~SuiteSparseSolver() = default;
+SuiteSparseSolver::SuiteSparseSolver(SuiteSparseSolver&&) noexcept = default;
+SuiteSparseSolver& SuiteSparseSolver::operator=(SuiteSparseSolver&&) noexcept = default;
 
-void LinearSolver::set_updates(bool on)
+void SuiteSparseSolver::set_updates(bool on)
 {
     update_ = on ? std::make_unique<WoodburyUpdate>() : nullptr;
     factorized_ = updated_ = false;  // the next factorization is a reference
 }
 
-void LinearSolver::set_ordering(Ordering ordering)
+void SuiteSparseSolver::set_ordering(Ordering ordering)
 {
     Backend& b = *backend_;
+    ordering_ = ordering;
     const bool nested = ordering == Ordering::nested_dissection;
     b.llt.cholmod().nmethods = 1;
     b.llt.cholmod().method[0].ordering = nested ? CHOLMOD_METIS : CHOLMOD_AMD;
@@ -179,7 +174,7 @@ void LinearSolver::set_ordering(Ordering ordering)
     factorized_ = false;
 }
 
-void LinearSolver::set_kind(Kind kind)
+void SuiteSparseSolver::set_kind(Kind kind)
 {
     if (kind != kind_) {
         kind_ = kind;
@@ -189,14 +184,58 @@ void LinearSolver::set_kind(Kind kind)
     }
 }
 
-bool LinearSolver::same_pattern(const SparseMatrix& K) const
+bool SuiteSparseSolver::same_pattern(const SparseMatrix& K) const
 {
     return same_sparsity(K, reference_);
 }
 
-LinearStatus LinearSolver::factorize(const SparseMatrix& K)
+LinearStatus SuiteSparseSolver::factorize(const SparseMatrix& K)
 {
-    IGA_CHECK(K.rows() == K.cols(), "LinearSolver::factorize: the matrix must be square");
+    shift_base_valid_ = false;  // a new K: the next shift starts from it
+    return factorize_matrix(K);
+}
+
+LinearStatus SuiteSparseSolver::factorize_shifted(double mu)
+{
+    if (!shift_base_valid_) {
+        // The K of the last factorize(): the update's K_ when it was one, else the reference.
+        shift_base_ = with_diagonal(updated_ ? K_ : reference_, diagonal_position_);
+        const Index n = shift_base_.rows();
+        base_diagonal_.resize(n);
+        for (Index i = 0; i < n; ++i)
+            base_diagonal_(i) = shift_base_.valuePtr()[diagonal_position_[static_cast<std::size_t>(i)]];
+        shift_scale_ = shift_scale(base_diagonal_);
+        shift_base_valid_ = true;
+    }
+    for (Index i = 0; i < shift_base_.rows(); ++i)
+        shift_base_.valuePtr()[diagonal_position_[static_cast<std::size_t>(i)]] =
+            base_diagonal_(i) + mu * shift_scale_(i);
+    return factorize_matrix(shift_base_);
+}
+
+LinearStatistics SuiteSparseSolver::statistics() const
+{
+    LinearStatistics s;
+    s.symbolic = n_symbolic_;
+    s.numeric = n_numeric_;
+    s.updates = n_updates_;
+    s.cholesky_fallbacks = n_fallbacks_;
+    return s;
+}
+
+std::string SuiteSparseSolver::describe() const
+{
+    std::string text = kind_ == Kind::cholesky ? "SuiteSparse CHOLMOD Cholesky (UMFPACK LU where it refuses)"
+                                               : "SuiteSparse UMFPACK LU";
+    text += ordering_ == Ordering::nested_dissection ? ", METIS ordering" : ", AMD ordering";
+    if (update_)
+        text += ", Woodbury updates";
+    return text;
+}
+
+LinearStatus SuiteSparseSolver::factorize_matrix(const SparseMatrix& K)
+{
+    IGA_CHECK(K.rows() == K.cols(), "SuiteSparseSolver::factorize: the matrix must be square");
     if (factorized_ && update_ && try_update(K))
         return LinearStatus::ok;
     updated_ = false;
@@ -247,7 +286,7 @@ LinearStatus LinearSolver::factorize(const SparseMatrix& K)
     return lu_status;
 }
 
-bool LinearSolver::try_update(const SparseMatrix& K)
+bool SuiteSparseSolver::try_update(const SparseMatrix& K)
 {
     const Index n = reference_.rows();
     if (K.rows() != n || n == 0)
@@ -279,7 +318,7 @@ bool LinearSolver::try_update(const SparseMatrix& K)
     return true;
 }
 
-Matrix LinearSolver::solve_reference(const Matrix& B) const
+Matrix SuiteSparseSolver::solve_reference(const Matrix& B) const
 {
     if (factorized_kind_ == Kind::lu) {
         backend_->lu.umfpackControl()(UMFPACK_IRSTEP) = 0;  // see refinement_threshold
@@ -288,7 +327,7 @@ Matrix LinearSolver::solve_reference(const Matrix& B) const
     return backend_->llt.solve(B);
 }
 
-LinearStatus LinearSolver::factorize_with(Kind kind)
+LinearStatus SuiteSparseSolver::factorize_with(Kind kind)
 {
     Backend& b = *backend_;
     bool& analysed = kind == Kind::lu ? analysed_lu_ : analysed_llt_;
@@ -330,10 +369,10 @@ LinearStatus LinearSolver::factorize_with(Kind kind)
     return LinearStatus::ok;
 }
 
-LinearStatus LinearSolver::solve(const Vector& b, Vector& x) const
+LinearStatus SuiteSparseSolver::solve(const Vector& b, Vector& x)
 {
-    IGA_CHECK(factorized_, "LinearSolver::solve: needs a successful factorize() first");
-    IGA_CHECK(b.size() == reference_.rows(), "LinearSolver::solve: right-hand side size differs from the matrix");
+    IGA_CHECK(factorized_, "SuiteSparseSolver::solve: needs a successful factorize() first");
+    IGA_CHECK(b.size() == reference_.rows(), "SuiteSparseSolver::solve: right-hand side size differs from the matrix");
     if (reference_.rows() == 0) {
         x.resize(0);
         return LinearStatus::ok;

@@ -1,0 +1,375 @@
+#include "solver/petsc_solver.hpp"
+
+#include "core/error.hpp"
+
+#include <petscksp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace iga::solver {
+
+namespace {
+
+// Same bound as the SuiteSparse backend (suitesparse_solver.cpp): far above the
+// round-off of a backward-stable solve, far below the garbage of a near-singular one.
+constexpr double backward_error_tolerance = 1e-6;
+// Krylov methods: a relative true residual of 1e-8 keeps Newton's convergence
+// quadratic down to the nonlinear tolerances in use (1e-10 relative residual
+// after two or three steps), at a few more iterations than 1e-6 would cost.
+constexpr double krylov_rtol = 1e-8;
+constexpr int krylov_max_iterations = 5000;
+constexpr int gmres_restart = 100;
+// A reused preconditioner is kept while the Krylov iterations stay within this
+// factor of those of its first solve.
+constexpr double reuse_iteration_growth = 2.0;
+
+void check(PetscErrorCode code, const char* what)
+{
+    if (code == 0)
+        return;
+    const char* text = nullptr;
+    PetscErrorMessage(code, &text, nullptr);
+    throw Error(std::string("PETSc: ") + what + " failed" + (text ? std::string(": ") + text : std::string()));
+}
+
+void finalize_petsc()
+{
+    if (PetscInitializeCalled && !PetscFinalizeCalled)
+        PetscFinalize();
+}
+
+/// PETSc once per process, on MPI_COMM_WORLD (MPI initialized by core/parallel
+/// under mpirun, else by PETSc as a one-rank world). Our SIGINT/SIGTERM handling
+/// stays ours (-no_signal_handler); errors come back as codes, not printed traces.
+void ensure_petsc(const std::string& deck_options)
+{
+    if (!PetscInitializeCalled) {
+        check(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr), "PetscOptionsSetValue");
+        check(PetscInitialize(nullptr, nullptr, nullptr, nullptr), "PetscInitialize");
+        PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+        parallel::on_finalize(finalize_petsc);
+    }
+    // The deck's options, then the environment's again, so that PETSC_OPTIONS wins
+    // as a command line wins over a file.
+    if (!deck_options.empty())
+        check(PetscOptionsInsertString(nullptr, deck_options.c_str()), "reading solver.options");
+    if (const char* env = std::getenv("PETSC_OPTIONS"))
+        check(PetscOptionsInsertString(nullptr, env), "reading PETSC_OPTIONS");
+}
+
+}  // namespace
+
+struct PetscSolver::State {
+    Mat A = nullptr;
+    KSP ksp = nullptr;
+    Vec b = nullptr, x = nullptr, x_all = nullptr;
+    VecScatter to_all = nullptr;
+    MatNullSpace near_null = nullptr;
+    PetscInt n = -1, first = 0, last = 0;  // global size, owned rows [first, last)
+    // The pattern the COO preallocation was made for (this rank's summand).
+    std::vector<int> outer, inner;
+    std::vector<PetscScalar> values;  // the summand's values, then the owned diagonal's zeros
+    Vec diagonal = nullptr, shift_scale = nullptr;
+    bool shift_ready = false;  // diagonal and shift_scale hold the unshifted K's
+    bool set_up = false;       // the preconditioner matches the operator (or is reused on purpose)
+    bool reused = false;       // the next solve runs with a preconditioner of an earlier K
+    PetscInt setup_iterations = -1;  // Krylov iterations of the first solve after the last set-up
+    PetscInt last_iterations = 0;
+    bool last_converged = true;
+
+    void destroy_matrix()
+    {
+        if (near_null)
+            MatNullSpaceDestroy(&near_null);
+        if (diagonal)
+            VecDestroy(&diagonal);
+        if (shift_scale)
+            VecDestroy(&shift_scale);
+        if (to_all)
+            VecScatterDestroy(&to_all);
+        if (x_all)
+            VecDestroy(&x_all);
+        if (b)
+            VecDestroy(&b);
+        if (x)
+            VecDestroy(&x);
+        if (A)
+            MatDestroy(&A);
+    }
+    ~State()
+    {
+        if (PetscFinalizeCalled)
+            return;  // PETSc freed everything already
+        destroy_matrix();
+        if (ksp)
+            KSPDestroy(&ksp);
+    }
+};
+
+PetscSolver::PetscSolver(const LinearSolverPolicy& policy, const Communicator& comm)
+    : policy_(policy), comm_(comm), state_(std::make_unique<State>())
+{
+    ensure_petsc(policy.options);
+    State& s = *state_;
+    check(KSPCreate(PETSC_COMM_WORLD, &s.ksp), "KSPCreate");
+    PC pc = nullptr;
+    check(KSPGetPC(s.ksp, &pc), "KSPGetPC");
+    if (policy.method == Method::direct) {
+        check(KSPSetType(s.ksp, KSPPREONLY), "KSPSetType");
+        check(PCSetType(pc, policy.symmetric ? PCCHOLESKY : PCLU), "PCSetType");
+        check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+    } else {
+        check(KSPSetType(s.ksp, policy.symmetric ? KSPCG : KSPGMRES), "KSPSetType");
+        if (!policy.symmetric) {
+            check(KSPGMRESSetRestart(s.ksp, gmres_restart), "KSPGMRESSetRestart");
+            check(KSPSetPCSide(s.ksp, PC_RIGHT), "KSPSetPCSide");
+        }
+        check(KSPSetNormType(s.ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+        check(KSPSetTolerances(s.ksp, krylov_rtol, PETSC_DEFAULT, PETSC_DEFAULT, krylov_max_iterations),
+              "KSPSetTolerances");
+        check(PCSetType(pc, PCHYPRE), "PCSetType");
+        check(PCHYPRESetType(pc, "boomeramg"), "PCHYPRESetType");
+        PetscBool given = PETSC_FALSE;
+        check(PetscOptionsHasName(nullptr, nullptr, "-pc_hypre_boomeramg_strong_threshold", &given), "options");
+        if (policy.dim == 3 && !given)  // hypre's advice for 3D: a stronger threshold keeps coarse grids sparse
+            check(PetscOptionsSetValue(nullptr, "-pc_hypre_boomeramg_strong_threshold", "0.5"), "options");
+    }
+    check(KSPSetFromOptions(s.ksp), "KSPSetFromOptions");
+}
+
+PetscSolver::~PetscSolver() = default;
+
+std::string PetscSolver::describe() const
+{
+    KSPType ksp_type = nullptr;
+    PCType pc_type = nullptr;
+    PC pc = nullptr;
+    KSPGetType(state_->ksp, &ksp_type);
+    KSPGetPC(state_->ksp, &pc);
+    PCGetType(pc, &pc_type);
+    std::string text = std::string("PETSc ") + (ksp_type ? ksp_type : "?") + " + " + (pc_type ? pc_type : "?");
+    MatSolverType factor = nullptr;
+    if (pc && PCFactorGetMatSolverType(pc, &factor) == 0 && factor)
+        text += std::string(" (") + factor + ")";
+    return text + ", " + std::to_string(comm_.size()) + " rank(s)";
+}
+
+LinearStatus PetscSolver::factorize(const SparseMatrix& K)
+{
+    IGA_CHECK(K.rows() == K.cols(), "PetscSolver::factorize: the matrix must be square");
+    State& s = *state_;
+    SparseMatrix compressed;
+    const SparseMatrix* M = &K;
+    if (!K.isCompressed()) {
+        compressed = K;
+        compressed.makeCompressed();
+        M = &compressed;
+    }
+    const auto n = static_cast<PetscInt>(M->rows());
+    const Index nnz = M->nonZeros();
+    const bool finite = std::all_of(M->valuePtr(), M->valuePtr() + nnz, [](double v) { return std::isfinite(v); });
+    if (comm_.any(!finite))
+        return LinearStatus::failed;
+    s.shift_ready = false;
+
+    const bool same_pattern = s.A && n == s.n && static_cast<Index>(s.inner.size()) == nnz &&
+                              std::equal(s.outer.begin(), s.outer.end(), M->outerIndexPtr()) &&
+                              std::equal(s.inner.begin(), s.inner.end(), M->innerIndexPtr());
+    if (!comm_.any(!same_pattern) && s.A) {
+        // Same pattern on every rank: the values only.
+    } else {
+        s.destroy_matrix();
+        s.n = n;
+        const auto [first, last] = comm_.block_range(n);
+        s.first = static_cast<PetscInt>(first);
+        s.last = static_cast<PetscInt>(last);
+        s.outer.assign(M->outerIndexPtr(), M->outerIndexPtr() + n + 1);
+        s.inner.assign(M->innerIndexPtr(), M->innerIndexPtr() + nnz);
+        // COO: the summand's entries (global row, column), then every owned diagonal.
+        const PetscCount n_coo = static_cast<PetscCount>(nnz) + (s.last - s.first);
+        std::vector<PetscInt> rows(static_cast<std::size_t>(n_coo)), cols(static_cast<std::size_t>(n_coo));
+        std::size_t k = 0;
+        for (PetscInt j = 0; j < n; ++j)
+            for (int p = s.outer[static_cast<std::size_t>(j)]; p < s.outer[static_cast<std::size_t>(j) + 1]; ++p, ++k) {
+                rows[k] = s.inner[static_cast<std::size_t>(p)];
+                cols[k] = j;
+            }
+        for (PetscInt i = s.first; i < s.last; ++i, ++k)
+            rows[k] = cols[k] = i;
+        check(MatCreate(PETSC_COMM_WORLD, &s.A), "MatCreate");
+        check(MatSetSizes(s.A, s.last - s.first, s.last - s.first, n, n), "MatSetSizes");
+        check(MatSetType(s.A, MATAIJ), "MatSetType");
+        check(MatSetPreallocationCOO(s.A, n_coo, rows.data(), cols.data()), "MatSetPreallocationCOO");
+        s.values.assign(static_cast<std::size_t>(n_coo), 0.0);
+        check(MatCreateVecs(s.A, &s.x, &s.b), "MatCreateVecs");
+        check(VecScatterCreateToAll(s.x, &s.to_all, &s.x_all), "VecScatterCreateToAll");
+        if (policy_.rigid_body_modes.rows() == n && policy_.rigid_body_modes.cols() > 0) {
+            // The near-null space, orthonormalized as PETSc requires (modified Gram-Schmidt).
+            const Index m = policy_.rigid_body_modes.cols();
+            std::vector<Vec> modes(static_cast<std::size_t>(m));
+            for (Index c = 0; c < m; ++c) {
+                Vec& v = modes[static_cast<std::size_t>(c)];
+                check(VecDuplicate(s.x, &v), "VecDuplicate");
+                PetscScalar* a = nullptr;
+                check(VecGetArray(v, &a), "VecGetArray");
+                for (PetscInt i = s.first; i < s.last; ++i)
+                    a[i - s.first] = policy_.rigid_body_modes(i, c);
+                check(VecRestoreArray(v, &a), "VecRestoreArray");
+                for (Index e = 0; e < c; ++e) {
+                    PetscScalar dot = 0;
+                    check(VecDot(v, modes[static_cast<std::size_t>(e)], &dot), "VecDot");
+                    check(VecAXPY(v, -dot, modes[static_cast<std::size_t>(e)]), "VecAXPY");
+                }
+                PetscReal norm = 0;
+                check(VecNormalize(v, &norm), "VecNormalize");
+            }
+            check(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(m), modes.data(),
+                                     &s.near_null),
+                  "MatNullSpaceCreate");
+            check(MatSetNearNullSpace(s.A, s.near_null), "MatSetNearNullSpace");
+            for (Vec& v : modes)
+                VecDestroy(&v);
+        }
+        ++statistics_.symbolic;
+        s.set_up = false;
+        s.setup_iterations = -1;
+    }
+    std::copy(M->valuePtr(), M->valuePtr() + nnz, s.values.begin());
+    check(MatSetValuesCOO(s.A, s.values.data(), INSERT_VALUES), "MatSetValuesCOO");
+
+    // An iterative method keeps its preconditioner while it serves (see the header).
+    const bool reuse = policy_.method == Method::iterative && s.set_up && s.last_converged &&
+                       s.setup_iterations >= 0 &&
+                       static_cast<double>(s.last_iterations) <=
+                           reuse_iteration_growth * static_cast<double>(std::max<PetscInt>(s.setup_iterations, 1));
+    check(KSPSetOperators(s.ksp, s.A, s.A), "KSPSetOperators");
+    if (reuse) {
+        check(KSPSetReusePreconditioner(s.ksp, PETSC_TRUE), "KSPSetReusePreconditioner");
+        s.reused = true;
+        return LinearStatus::ok;
+    }
+    return set_up_preconditioner();
+}
+
+LinearStatus PetscSolver::set_up_preconditioner()
+{
+    State& s = *state_;
+    check(KSPSetReusePreconditioner(s.ksp, PETSC_FALSE), "KSPSetReusePreconditioner");
+    check(KSPSetOperators(s.ksp, s.A, s.A), "KSPSetOperators");
+    s.reused = false;
+    s.set_up = false;
+    ++statistics_.numeric;
+    const PetscErrorCode code = KSPSetUp(s.ksp);
+    PC pc = nullptr;
+    check(KSPGetPC(s.ksp, &pc), "KSPGetPC");
+    PCFailedReason reason = PC_NOERROR;
+    if (code == 0)
+        PCGetFailedReasonRank(pc, &reason);
+    if (comm_.any(code != 0 || reason != PC_NOERROR))
+        return LinearStatus::singular;  // a zero pivot, or a preconditioner that cannot be built
+    s.set_up = true;
+    s.setup_iterations = -1;
+    return LinearStatus::ok;
+}
+
+LinearStatus PetscSolver::factorize_shifted(double mu)
+{
+    State& s = *state_;
+    IGA_CHECK(s.A != nullptr, "PetscSolver::factorize_shifted: needs a factorize() first");
+    if (!s.shift_ready) {
+        // diag(K) and D = |diag(K)| with zeros replaced by the mean nonzero entry,
+        // both over all ranks (solver/shift.hpp does the same on one process).
+        if (!s.diagonal)
+            check(VecDuplicate(s.x, &s.diagonal), "VecDuplicate");
+        if (!s.shift_scale)
+            check(VecDuplicate(s.x, &s.shift_scale), "VecDuplicate");
+        check(MatGetDiagonal(s.A, s.diagonal), "MatGetDiagonal");
+        check(VecCopy(s.diagonal, s.shift_scale), "VecCopy");
+        check(VecAbs(s.shift_scale), "VecAbs");
+        PetscScalar* d = nullptr;
+        check(VecGetArray(s.shift_scale, &d), "VecGetArray");
+        const PetscInt n_local = s.last - s.first;
+        double sum = 0;
+        long long n_nonzero = 0;
+        for (PetscInt i = 0; i < n_local; ++i)
+            if (d[i] > 0) {
+                sum += d[i];
+                ++n_nonzero;
+            }
+        sum = comm_.sum(sum);
+        n_nonzero = comm_.sum(n_nonzero);
+        const double fill = n_nonzero > 0 ? sum / static_cast<double>(n_nonzero) : 1.0;
+        for (PetscInt i = 0; i < n_local; ++i)
+            if (!(d[i] > 0))
+                d[i] = fill;
+        check(VecRestoreArray(s.shift_scale, &d), "VecRestoreArray");
+        s.shift_ready = true;
+    }
+    Vec shifted = nullptr;
+    check(VecDuplicate(s.diagonal, &shifted), "VecDuplicate");
+    check(VecWAXPY(shifted, mu, s.shift_scale, s.diagonal), "VecWAXPY");
+    check(MatDiagonalSet(s.A, shifted, INSERT_VALUES), "MatDiagonalSet");
+    VecDestroy(&shifted);
+    return set_up_preconditioner();
+}
+
+LinearStatus PetscSolver::solve(const Vector& b, Vector& x)
+{
+    State& s = *state_;
+    IGA_CHECK(s.A != nullptr && b.size() == s.n, "PetscSolver::solve: needs a factorize() of a matrix of b's size");
+    {
+        PetscScalar* a = nullptr;
+        check(VecGetArray(s.b, &a), "VecGetArray");
+        std::copy(b.data() + s.first, b.data() + s.last, a);
+        check(VecRestoreArray(s.b, &a), "VecRestoreArray");
+    }
+    auto krylov = [&]() {
+        check(KSPSolve(s.ksp, s.b, s.x), "KSPSolve");
+        KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+        check(KSPGetConvergedReason(s.ksp, &reason), "KSPGetConvergedReason");
+        PetscInt iterations = 0;
+        check(KSPGetIterationNumber(s.ksp, &iterations), "KSPGetIterationNumber");
+        statistics_.iterations += iterations;
+        s.last_iterations = iterations;
+        s.last_converged = reason > 0;
+        if (s.setup_iterations < 0)
+            s.setup_iterations = iterations;
+        return reason > 0;
+    };
+    bool converged = krylov();
+    if (!converged && s.reused) {
+        // The reused preconditioner no longer serves: a fresh one for this K.
+        if (set_up_preconditioner() != LinearStatus::ok)
+            return LinearStatus::singular;
+        converged = krylov();
+    }
+    if (!converged)
+        return LinearStatus::singular;
+
+    // The true residual of the whole system, as the direct backend checks it.
+    Vec r = nullptr;
+    check(VecDuplicate(s.b, &r), "VecDuplicate");
+    check(MatMult(s.A, s.x, r), "MatMult");
+    check(VecAYPX(r, -1.0, s.b), "VecAYPX");
+    PetscReal residual = 0, b_norm = 0;
+    check(VecNorm(r, NORM_2, &residual), "VecNorm");
+    check(VecNorm(s.b, NORM_2, &b_norm), "VecNorm");
+    VecDestroy(&r);
+
+    check(VecScatterBegin(s.to_all, s.x, s.x_all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check(VecScatterEnd(s.to_all, s.x, s.x_all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    const PetscScalar* a = nullptr;
+    check(VecGetArrayRead(s.x_all, &a), "VecGetArrayRead");
+    x = Eigen::Map<const Vector>(a, s.n);
+    check(VecRestoreArrayRead(s.x_all, &a), "VecRestoreArrayRead");
+    const bool finite = x.allFinite();
+    if (!(std::isfinite(residual) && residual <= backward_error_tolerance * b_norm) || comm_.any(!finite))
+        return LinearStatus::singular;
+    return LinearStatus::ok;
+}
+
+}  // namespace iga::solver

@@ -1,0 +1,64 @@
+#pragma once
+// PetscSolver: the PETSc backend of LinearSolver (solver/linear.hpp), on the MPI
+// ranks of the run (one rank without mpirun).
+//
+// Matrix: a distributed AIJ matrix; rank r owns the contiguous rows
+// Communicator::block_range(n). Each rank hands over its summand (solver/linear.hpp)
+// in Eigen's compressed columns; the entries, wherever their rows live, go through
+// PETSc's COO assembly (MatSetPreallocationCOO once per sparsity pattern — exact
+// preallocation, extended when a contact coupling extends the pattern — then
+// MatSetValuesCOO per factorization, which sums the ranks' entries). Every owned
+// diagonal entry is in the pattern, so the Levenberg-Marquardt shift needs no new one.
+//
+// Methods (policy.method), defaults chosen for penalty and augmented-Lagrangian
+// contact (README "Parallel runs and PETSc"):
+//   direct:    MUMPS; Cholesky (LDL^T, so also indefinite) for symmetric tangents,
+//              else LU.
+//   iterative: CG for symmetric tangents, else GMRES(100) with right
+//              preconditioning, both on the true residual, rtol 1e-8; hypre
+//              BoomerAMG (penalty springs of 1e6 E/h left it at the same iteration
+//              count where smoothed aggregation needed hundreds), with the rigid-body
+//              modes attached as near-null space for `-pc_type gamg`. The
+//              preconditioner is reused across Newton iterations while the Krylov
+//              iterations stay within twice those of its first solve; a solve that
+//              fails with a reused one is repeated with a fresh one.
+// The options database comes last and wins: the deck's `solver.options`, then the
+// PETSC_OPTIONS environment variable (e.g. "-pc_type gamg -ksp_monitor").
+//
+// Statuses: a zero pivot in the factorization, a preconditioner that cannot be
+// built, a Krylov method that does not converge, or a solution whose true residual
+// exceeds 1e-6 ||b||: `singular` (Newton then shifts, solver/newton.hpp); a
+// non-finite entry on any rank: `failed`.
+
+#include "core/parallel.hpp"
+#include "solver/linear.hpp"
+
+#include <memory>
+
+namespace iga::solver {
+
+class PetscSolver final : public LinearSolver {
+public:
+    PetscSolver(const LinearSolverPolicy& policy, const Communicator& comm);
+    ~PetscSolver() override;
+    PetscSolver(const PetscSolver&) = delete;
+    PetscSolver& operator=(const PetscSolver&) = delete;
+
+    LinearStatus factorize(const SparseMatrix& K) override;
+    LinearStatus factorize_shifted(double mu) override;
+    LinearStatus solve(const Vector& b, Vector& x) override;
+    LinearStatistics statistics() const override { return statistics_; }
+    std::string describe() const override;
+
+private:
+    struct State;  // the PETSc objects, kept out of this header
+
+    LinearStatus set_up_preconditioner();
+
+    LinearSolverPolicy policy_;
+    Communicator comm_;
+    std::unique_ptr<State> state_;
+    LinearStatistics statistics_;
+};
+
+}  // namespace iga::solver
