@@ -407,7 +407,10 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
         }
     }
 
-    scene.pattern = std::make_unique<assembly::SparsePattern>(dofs, std::move(blocks));
+    // Small kinematics assembles the element blocks once (SceneSystem's constant
+    // stiffness): their entry positions would outweigh the tangent in 3D.
+    const int searched = scene.kinematics == mechanics::Kinematics::small ? scene.n_element_blocks : 0;
+    scene.pattern = std::make_unique<assembly::SparsePattern>(dofs, std::move(blocks), searched);
     return scene;
 }
 
