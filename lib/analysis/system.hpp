@@ -96,7 +96,6 @@ private:
     Scene& scene_;
     RunContext& context_;
     std::unique_ptr<assembly::ThreadTeam> team_;  // null: serial element loop
-    std::optional<SparseMatrix> small_stiffness_;  // small kinematics: its free block in the pattern
     struct BlockOwner {
         int body;
         int element;
