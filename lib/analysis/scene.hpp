@@ -59,7 +59,6 @@ struct BodyModel {
     int n_nodes = 0;
     RowMatrix node_points;                        ///< n_nodes x d reference coordinates
     mechanics::Material material;
-    /// Emptied by SceneSystem under small kinematics once its constant stiffness is assembled.
     std::vector<mechanics::ElementGeometry> elements;
     std::vector<std::vector<int>> element_dofs;  ///< full dofs of each element (local dof a*d+i order)
     int first_block = 0;                         ///< pattern block of elements[0]

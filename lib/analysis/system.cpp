@@ -225,11 +225,6 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
                              K0);
         }
         full_stiffness_ = std::move(K0);
-        // K0 is all the element geometry was kept for: its quadrature data (as large
-        // as the tangent in 3D) goes. A second SceneSystem on this scene fails its
-        // block check instead of assembling nothing.
-        for (BodyModel& body : scene_.bodies)
-            std::vector<mechanics::ElementGeometry>().swap(body.elements);
     }
     if (small) {
         r_full += *full_stiffness_ * u_full;
