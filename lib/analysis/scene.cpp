@@ -419,7 +419,10 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
     for (std::size_t k = 0; k < blocks.size(); ++k)
         if (!scene.partition.owns(static_cast<int>(k)))
             blocks[k].clear();
-    scene.pattern = std::make_unique<assembly::SparsePattern>(dofs, std::move(blocks));
+    // Small kinematics assembles the element blocks once (SceneSystem's constant
+    // stiffness): their entry positions would outweigh the tangent in 3D.
+    const int searched = scene.kinematics == mechanics::Kinematics::small ? scene.n_element_blocks : 0;
+    scene.pattern = std::make_unique<assembly::SparsePattern>(dofs, std::move(blocks), searched);
     return scene;
 }
 

@@ -70,6 +70,31 @@ std::string inadmissible_message(const std::string& body, const mechanics::Eleme
                        point_text(x));
 }
 
+/// K += the free x free block of A (over all dofs), K in a pattern that holds it.
+/// Free indices grow with full ones, so each column is one merge of sorted rows.
+void add_free_block(const SparseMatrix& A, const assembly::DofMap& map, SparseMatrix& K)
+{
+    const int* outer = K.outerIndexPtr();
+    const int* inner = K.innerIndexPtr();
+    double* values = K.valuePtr();
+    for (Index j = 0; j < A.outerSize(); ++j) {
+        const int fj = map.free_index(static_cast<int>(j));
+        if (fj < 0)
+            continue;
+        int p = outer[fj];
+        for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
+            const int fi = map.free_index(static_cast<int>(it.row()));
+            if (fi < 0)
+                continue;
+            while (p < outer[fj + 1] && inner[p] < fi)
+                ++p;
+            IGA_CHECK(p < outer[fj + 1] && inner[p] == fi,
+                      "SceneSystem: the elastic stiffness lies outside the sparsity pattern");
+            values[p] += it.value();
+        }
+    }
+}
+
 }  // namespace
 
 SceneSystem::SceneSystem(Scene& scene, RunContext& context, int requested_threads, const Communicator& comm)
@@ -188,11 +213,10 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
     // displacements), so f_int = K0 u is one sparse product per evaluation. The
     // element matrices are not kept: their assembled form streams a few times
     // less memory than the element-by-element products (3D degree 2: 81^2 entries
-    // per span), and a pattern extended by a new contact coupling takes K0's free
-    // block from it.
+    // per span), and each tangent takes K0's free block from it (no second copy).
     if (small && !full_stiffness_) {
         // A pattern over all dofs (none constrained) scatters the element matrices
-        // without triplets: 4 bytes of positions per entry, dropped afterwards.
+        // without triplets, and without stored positions (each block is added once).
         const assembly::DofMap& map = *scene_.dofs;
         std::vector<int> nodes_per_body;
         for (int b = 0; b < map.n_bodies(); ++b)
@@ -201,7 +225,7 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
         std::vector<std::vector<int>> blocks;
         for (int block = 0; block < scene_.n_element_blocks; ++block)
             blocks.push_back(owns(block) ? dofs_of(block) : std::vector<int>{});
-        const assembly::SparsePattern full_pattern(unconstrained, std::move(blocks));
+        const assembly::SparsePattern full_pattern(unconstrained, std::move(blocks), scene_.n_element_blocks);
         SparseMatrix K0 = full_pattern.make_matrix();
         for (int block = 0; block < scene_.n_element_blocks; ++block) {  // once per run: not worth threads
             if (!owns(block))
@@ -216,27 +240,6 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
         }
         full_stiffness_ = std::move(K0);
     }
-    if (small && need_tangent && (!small_stiffness_ || !pattern.matches(*small_stiffness_))) {
-        const assembly::DofMap& map = *scene_.dofs;
-        std::vector<Triplet> entries;
-        entries.reserve(static_cast<std::size_t>(full_stiffness_->nonZeros()));
-        for (Index j = 0; j < full_stiffness_->outerSize(); ++j) {
-            const int fj = map.free_index(static_cast<int>(j));
-            if (fj < 0)
-                continue;
-            for (SparseMatrix::InnerIterator it(*full_stiffness_, j); it; ++it)
-                if (const int fi = map.free_index(static_cast<int>(it.row())); fi >= 0)
-                    entries.emplace_back(fi, fj, it.value());
-        }
-        SparseMatrix free_block(map.n_free(), map.n_free());
-        free_block.setFromTriplets(entries.begin(), entries.end());
-        SparseMatrix K0 = pattern.make_matrix();
-        K0 = SparseMatrix(K0 + free_block);  // the pattern holds every element block: the union is the pattern
-        K0.makeCompressed();
-        IGA_CHECK(pattern.matches(K0), "SceneSystem: the elastic stiffness lies outside the sparsity pattern");
-        small_stiffness_ = std::move(K0);
-    }
-
     if (small) {
         r_full += *full_stiffness_ * u_full;
         // |K0| |u|: a rigid motion makes K0 u cancel to zero, but not its round-off.
@@ -244,7 +247,7 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
             for (SparseMatrix::InnerIterator it(*full_stiffness_, j); it; ++it)
                 magnitude(it.row()) += std::abs(it.value() * u_full(j));
         if (need_tangent)
-            K = *small_stiffness_;
+            add_free_block(*full_stiffness_, *scene_.dofs, K);
     } else {
         std::atomic<bool> failed{false};
         std::mutex message_mutex;

@@ -127,7 +127,6 @@ private:
     RunContext& context_;
     Communicator comm_;
     std::unique_ptr<assembly::ThreadTeam> team_;  // null: serial element loop
-    std::optional<SparseMatrix> small_stiffness_;  // small kinematics: its free block in the pattern
     struct BlockOwner {
         int body;
         int element;

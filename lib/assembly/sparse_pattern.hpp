@@ -23,7 +23,13 @@
 //
 // Shapes: a block with n dofs takes an n x n local matrix and n-vector in the
 // order of its dof list. Memory: 4 n^2 bytes of positions per block (18 dofs:
-// 1.3 kB, a 2D quadratic span; 81 dofs: 26 kB, a 3D quadratic span).
+// 1.3 kB, a 2D quadratic span; 81 dofs: 26 kB, a 3D quadratic span: 210 MB for
+// 8000 spans, more than the tangent itself). Blocks added once only (the element
+// blocks under small kinematics, whose constant stiffness is assembled once) are
+// better left without: the constructor's first n_searched blocks keep no
+// positions, and add() finds each of their entries by a binary search in its
+// column, the search that precomputing does, so a single add costs the same and
+// gives the same sums in the same order. Blocks from extend() keep their positions.
 //
 // Parallel assembly: the blocks are greedily colored so that no two blocks of
 // one color share a free dof; for_each_block runs the colors one after the
@@ -62,7 +68,8 @@ struct Execution {
 class SparsePattern {
 public:
     /// blocks: full dof indices of each block (any order; a dof may repeat).
-    SparsePattern(const DofMap& dofs, std::vector<std::vector<int>> blocks);
+    /// Blocks [0, n_searched) keep no positions (see above).
+    SparsePattern(const DofMap& dofs, std::vector<std::vector<int>> blocks, int n_searched = 0);
 
     int n_free() const { return n_free_; }
     int n_blocks() const { return static_cast<int>(blocks_.size()); }
@@ -110,6 +117,9 @@ public:
 
 private:
     void add_block_positions(std::size_t first_block);
+    /// Position of (row, column) in K.valuePtr() (both free and in the pattern).
+    int search_position(int row, int column) const;
+    bool searched(int block) const { return static_cast<std::size_t>(block) < n_searched_; }
 
     int n_free_;
     std::vector<int> free_of_full_;            // copy of the DofMap table (n_full)
@@ -119,6 +129,7 @@ private:
     std::vector<int> inner_;                   // row indices, sorted within each column
     std::vector<std::size_t> position_offset_; // n_blocks + 1, into positions_
     std::vector<int> positions_;               // per block, n x n column-major, -1 = skipped
+    std::size_t n_searched_ = 0;               // blocks [0, n_searched_) keep no positions
     std::vector<std::vector<int>> colors_;
 };
 

@@ -285,5 +285,42 @@ TEST(SparsePattern, ExtendedPatternEqualsPatternBuiltAtOnce)
     EXPECT_GT(Matrix(K_once).cwiseAbs().maxCoeff(), 0.0);
 }
 
+TEST(SparsePattern, SearchedPositionsGiveTheStoredSums)
+{
+    const Scene scene;
+    std::mt19937 rng(seed + 4);
+    const std::vector<Matrix> locals = random_locals(scene.blocks, rng);
+    const int n_elements = static_cast<int>(scene.blocks.size()) - 1;  // the contact block keeps its positions
+    const SparsePattern stored(scene.dofs, scene.blocks);
+    SparsePattern searched(scene.dofs, scene.blocks, n_elements);
+    ASSERT_TRUE(searched.matches(stored.make_matrix()));
+
+    SparseMatrix K_stored = stored.make_matrix(), K_searched = searched.make_matrix();
+    for (int b = 0; b < stored.n_blocks(); ++b) {
+        stored.add(b, locals[static_cast<std::size_t>(b)], K_stored);
+        searched.add(b, locals[static_cast<std::size_t>(b)], K_searched);
+    }
+    // A sub-block add into a searched block (an element) and into a stored one (contact).
+    const std::vector<int> gp = {0, 3, 4};
+    const Matrix K_sub = random_locals({std::vector<int>(3)}, rng).front();
+    for (int b : {0, n_elements}) {
+        stored.add(b, gp, K_sub, K_stored);
+        searched.add(b, gp, K_sub, K_searched);
+    }
+    for (Index k = 0; k < K_stored.nonZeros(); ++k)  // the same slots in the same order: bitwise
+        ASSERT_EQ(K_stored.valuePtr()[k], K_searched.valuePtr()[k]) << "entry " << k;
+
+    // Extending keeps the searched blocks searched and stores the new ones.
+    searched.extend({scene.blocks.front()});
+    SparseMatrix K_extended = searched.make_matrix();
+    searched.add(searched.n_blocks() - 1, locals.front(), K_extended);
+    searched.add(0, locals.front(), K_extended);
+    SparseMatrix K_twice = stored.make_matrix();
+    stored.add(0, locals.front(), K_twice);
+    stored.add(0, locals.front(), K_twice);
+    for (Index k = 0; k < K_twice.nonZeros(); ++k)
+        ASSERT_EQ(K_twice.valuePtr()[k], K_extended.valuePtr()[k]) << "entry " << k;
+}
+
 }  // namespace
 }  // namespace iga::assembly
