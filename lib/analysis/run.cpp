@@ -131,6 +131,12 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     assembly::limit_library_threads();  // CHOLMOD's OpenMP loops inline: nothing spins
     SceneSystem system(scene, context, options.threads, comm);
     system.set_collective_stop(stop);
+    if (scene.kinematics == mechanics::Kinematics::small) {
+        // K0 is all the element quadrature data serve under small kinematics: assembled
+        // now, then freed.
+        system.assemble_constant_stiffness(context.stop());
+        release_element_geometry(scene, [](int) { return false; });
+    }
     // The linear solver before the results file: a backend that starts MPI (PETSc in a
     // plain run starts a one-rank world, whose helper process inherits open files)
     // must not hold the results file open after the run.

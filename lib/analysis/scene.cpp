@@ -131,6 +131,14 @@ std::vector<int> coupling_full_dofs(const PairModel& pair, const contact::Coupli
     return full;
 }
 
+void release_element_geometry(Scene& scene, const std::function<bool(int block)>& keep)
+{
+    for (BodyModel& body : scene.bodies)
+        for (std::size_t e = 0; e < body.elements.size(); ++e)
+            if (!keep(body.first_block + static_cast<int>(e)))
+                std::vector<mechanics::QuadraturePoint>().swap(body.elements[e].points);
+}
+
 Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& stop, const Communicator& comm)
 {
     check_size(deck);  // refuse an absurd model before allocating any of it
@@ -423,6 +431,8 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
     // stiffness): their entry positions would outweigh the tangent in 3D.
     const int searched = scene.kinematics == mechanics::Kinematics::small ? scene.n_element_blocks : 0;
     scene.pattern = std::make_unique<assembly::SparsePattern>(dofs, std::move(blocks), searched);
+    if (comm.parallel())  // another rank evaluates those elements
+        release_element_geometry(scene, [&](int block) { return scene.partition.owns(block); });
     return scene;
 }
 

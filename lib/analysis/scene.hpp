@@ -30,6 +30,7 @@
 #include "nurbs/patch.hpp"
 #include "nurbs/topology.hpp"
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -145,6 +146,14 @@ struct Scene {
 
     bool has_contact() const { return !pairs.empty(); }
 };
+
+/// Frees the quadrature data (shape functions and gradients at the Gauss points) of
+/// the element blocks for which keep(block) is false; their dof lists stay. Nothing
+/// may evaluate those elements afterwards: on several ranks the blocks another rank
+/// assembles, under small kinematics every block once K0 is assembled
+/// (SceneSystem::assemble_constant_stiffness). In 3D quadratic elements they are a
+/// sixth of a run's memory (README "Memory in 3D").
+void release_element_geometry(Scene& scene, const std::function<bool(int block)>& keep);
 
 /// The sides a deck reference names on deformable body b of the scene.
 std::vector<BodySide> sides_of(const io::Deck& deck, const Scene& scene, const std::string& body,

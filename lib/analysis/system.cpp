@@ -188,6 +188,49 @@ RowMatrix SceneSystem::side_displacement(const Vector& u_full, int p, int k) con
     return u;
 }
 
+void SceneSystem::assemble_constant_stiffness(const StopRequest& stop)
+{
+    if (scene_.kinematics != mechanics::Kinematics::small || full_stiffness_)
+        return;
+    const int d = scene_.dim;
+    auto owns = [&](int block) { return scene_.partition.owns(block); };
+    auto element_of = [&](int block) -> const mechanics::ElementGeometry& {
+        const BlockOwner& o = owner_[static_cast<std::size_t>(block)];
+        return scene_.bodies[static_cast<std::size_t>(o.body)].elements[static_cast<std::size_t>(o.element)];
+    };
+    auto body_of = [&](int block) -> const BodyModel& {
+        return scene_.bodies[static_cast<std::size_t>(owner_[static_cast<std::size_t>(block)].body)];
+    };
+    auto dofs_of = [&](int block) -> const std::vector<int>& {
+        const BlockOwner& o = owner_[static_cast<std::size_t>(block)];
+        return scene_.bodies[static_cast<std::size_t>(o.body)].element_dofs[static_cast<std::size_t>(o.element)];
+    };
+    // A pattern over all dofs (none constrained) scatters the element matrices
+    // without triplets, and without stored positions (each block is added once).
+    const assembly::DofMap& map = *scene_.dofs;
+    std::vector<int> nodes_per_body;
+    for (int b = 0; b < map.n_bodies(); ++b)
+        nodes_per_body.push_back(map.n_nodes(b));
+    const assembly::DofMap unconstrained(d, nodes_per_body, {});
+    std::vector<std::vector<int>> blocks;
+    for (int block = 0; block < scene_.n_element_blocks; ++block)
+        blocks.push_back(owns(block) ? dofs_of(block) : std::vector<int>{});
+    const assembly::SparsePattern full_pattern(unconstrained, std::move(blocks), scene_.n_element_blocks);
+    SparseMatrix K0 = full_pattern.make_matrix();
+    for (int block = 0; block < scene_.n_element_blocks; ++block) {  // once per run: not worth threads
+        if (!owns(block))
+            continue;
+        stop.check();
+        const mechanics::ElementGeometry& geometry = element_of(block);
+        full_pattern.add(block,
+                         mechanics::element_response(geometry, body_of(block).material, scene_.kinematics,
+                                                     Matrix::Zero(geometry.n_local(), d))
+                             .K,
+                         K0);
+    }
+    full_stiffness_ = std::move(K0);
+    }
+
 void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vector& r_full, SparseMatrix& K,
                                     solver::Evaluation& out, Vector& magnitude,
                                     const StopRequest& stop)
@@ -214,32 +257,8 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
     // element matrices are not kept: their assembled form streams a few times
     // less memory than the element-by-element products (3D degree 2: 81^2 entries
     // per span), and each tangent takes K0's free block from it (no second copy).
-    if (small && !full_stiffness_) {
-        // A pattern over all dofs (none constrained) scatters the element matrices
-        // without triplets, and without stored positions (each block is added once).
-        const assembly::DofMap& map = *scene_.dofs;
-        std::vector<int> nodes_per_body;
-        for (int b = 0; b < map.n_bodies(); ++b)
-            nodes_per_body.push_back(map.n_nodes(b));
-        const assembly::DofMap unconstrained(d, nodes_per_body, {});
-        std::vector<std::vector<int>> blocks;
-        for (int block = 0; block < scene_.n_element_blocks; ++block)
-            blocks.push_back(owns(block) ? dofs_of(block) : std::vector<int>{});
-        const assembly::SparsePattern full_pattern(unconstrained, std::move(blocks), scene_.n_element_blocks);
-        SparseMatrix K0 = full_pattern.make_matrix();
-        for (int block = 0; block < scene_.n_element_blocks; ++block) {  // once per run: not worth threads
-            if (!owns(block))
-                continue;
-            stop.check();
-            const mechanics::ElementGeometry& geometry = element_of(block);
-            full_pattern.add(block,
-                             mechanics::element_response(geometry, body_of(block).material, scene_.kinematics,
-                                                         Matrix::Zero(geometry.n_local(), d))
-                                 .K,
-                             K0);
-        }
-        full_stiffness_ = std::move(K0);
-    }
+    if (small && !full_stiffness_)
+        assemble_constant_stiffness(stop);
     if (small) {
         r_full += *full_stiffness_ * u_full;
         // |K0| |u|: a rigid motion makes K0 u cancel to zero, but not its round-off.

@@ -88,6 +88,11 @@ public:
 
     int last_active() const { return last_active_; }
 
+    /// Small kinematics: assembles the constant elastic stiffness K0 now (otherwise at
+    /// the first evaluation); afterwards the elements' quadrature data are no longer
+    /// read (release_element_geometry). No effect under finite kinematics.
+    void assemble_constant_stiffness(const StopRequest& stop = {});
+
     /// Per rank (one entry each, the same on every rank): the element blocks and the
     /// contact couplings it assembles. Collective.
     std::vector<double> elements_per_rank() const;

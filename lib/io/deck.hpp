@@ -277,7 +277,6 @@ struct Solver {
     SolverBackend backend = SolverBackend::suitesparse;
     SolverType type = SolverType::direct;
     std::string options;  ///< PETSc options database text (backend petsc)
-    bool backend_given = false;  ///< the deck (or --set) named the backend
 
     bool operator==(const Solver&) const = default;
 };

@@ -421,7 +421,6 @@ Solver read_solver(const Cursor& root)
     const Cursor c = root.child("solver");
     if (!c.exists() || !c.allow_only({"backend", "type", "options"}))
         return s;
-    s.backend_given = c.child("backend").exists();
     s.backend = c.get_or("backend", s.backend);
     s.type = c.get_or("type", s.type);
     s.options = c.get_or<std::string>("options", s.options);

@@ -87,9 +87,15 @@ TEST(OverridesErrors, PathsTheFormatDoesNotHave)
     EXPECT_EQ(issue_of(minimal_deck, {"loads.first.force=[0,1]"}),
               "<command line>: error: loads.first.force = [0,1]: no item named 'first' in 'loads' (its items have no "
               "names: use an index)");
+    EXPECT_EQ(issue_of(minimal_deck, {"precision.tolerance=1"}),
+              "<command line>: error: precision.tolerance = 1: 'precision' is not a key of the deck (keys: format, "
+              "title, analysis, materials, bodies, constraints, loads, contact, steps, newton, solver, output)");
+    EXPECT_EQ(issue_of(minimal_deck, {"solvers.tolerance=1"}),
+              "<command line>: error: solvers.tolerance = 1: 'solvers' is not a key of the deck (did you mean "
+              "'solver'?)");
     EXPECT_EQ(issue_of(minimal_deck, {"solver.tolerance=1"}),
-              "<command line>: error: solver.tolerance = 1: 'solver' is not a key of the deck (keys: format, title, "
-              "analysis, materials, bodies, constraints, loads, contact, steps, newton, output)");
+              "<command line>: error: solver.tolerance = 1: 'tolerance' is not a key of 'solver' (keys: backend, type, "
+              "options)");
     EXPECT_EQ(issue_of(minimal_deck, {"format.x=1"}),
               "<command line>: error: format.x = 1: 'format' is a single value: nothing can follow it");
     EXPECT_EQ(issue_of(minimal_deck, {"steps..count=1"}),

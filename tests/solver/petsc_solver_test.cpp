@@ -1,0 +1,204 @@
+// Tests for solver/petsc_solver.hpp on one rank (the MPI runs are verification/mpi):
+// MUMPS and the Krylov methods against dense Eigen, statuses on singular and
+// non-finite input, the Levenberg-Marquardt shift against the SuiteSparse backend's,
+// a pattern that grows between factorizations, and preconditioner reuse.
+
+#include "core/parallel.hpp"
+#include "solver/petsc_solver.hpp"
+#include "solver/suitesparse_solver.hpp"
+#include "support/tolerance.hpp"
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+namespace iga::solver {
+namespace {
+
+// Matrices are strictly diagonally dominant (cond ~ 10): a direct solve errs by
+// ~cond * eps; a Krylov solve stops at a relative true residual of 1e-8, so its
+// error is below cond * 1e-8.
+constexpr double direct_tolerance = 1e-12;
+constexpr double krylov_tolerance = 1e-6;
+constexpr unsigned seed = 20261126;
+
+SparseMatrix dominant_matrix(int n, bool symmetric, std::mt19937& rng)
+{
+    std::uniform_real_distribution<double> value(-1.0, 1.0);
+    std::uniform_int_distribution<int> column(0, n - 1);
+    Matrix dense = Matrix::Zero(n, n);
+    for (int i = 0; i < n; ++i)
+        for (int k = 0; k < 2; ++k) {
+            const int j = column(rng);
+            if (j == i)
+                continue;
+            const double v = value(rng);
+            dense(i, j) += v;
+            dense(j, i) += symmetric ? v : value(rng);
+        }
+    for (int i = 0; i < n; ++i)
+        dense(i, i) = 2.0 + i % 3 + dense.row(i).cwiseAbs().sum() + dense.col(i).cwiseAbs().sum();
+    return dense.sparseView();
+}
+
+Vector random_vector(int n, std::mt19937& rng)
+{
+    std::uniform_real_distribution<double> value(-1.0, 1.0);
+    Vector v(n);
+    for (int i = 0; i < n; ++i)
+        v(i) = value(rng);
+    return v;
+}
+
+double relative_error(const Vector& x, const Vector& reference)
+{
+    return (x - reference).norm() / reference.norm();
+}
+
+LinearSolverPolicy petsc_policy(Method method, bool symmetric)
+{
+    LinearSolverPolicy policy;
+    policy.backend = Backend::petsc;
+    policy.method = method;
+    policy.symmetric = symmetric;
+    return policy;
+}
+
+struct Case {
+    const char* name;
+    Method method;
+    bool symmetric;
+    double tolerance;
+};
+
+const Case cases[] = {
+    {"MUMPS Cholesky", Method::direct, true, direct_tolerance},
+    {"MUMPS LU", Method::direct, false, direct_tolerance},
+    {"CG + BoomerAMG", Method::iterative, true, krylov_tolerance},
+    {"GMRES + BoomerAMG", Method::iterative, false, krylov_tolerance},
+};
+
+TEST(PetscSolver, EachMethodMatchesDenseSolves)
+{
+    for (const Case& c : cases) {
+        std::mt19937 rng(seed);
+        const SparseMatrix K = dominant_matrix(300, c.symmetric, rng);
+        const Vector b = random_vector(300, rng);
+        const Vector reference = Matrix(K).partialPivLu().solve(b);
+        PetscSolver solver(petsc_policy(c.method, c.symmetric), Communicator());
+        ASSERT_EQ(solver.factorize(K), LinearStatus::ok) << c.name;
+        Vector x;
+        ASSERT_EQ(solver.solve(b, x), LinearStatus::ok) << c.name;
+        EXPECT_TRUE(test::at_most(relative_error(x, reference), c.tolerance)) << c.name;
+        if (c.method == Method::iterative) {
+            EXPECT_GT(solver.statistics().iterations, 0) << c.name << ": a Krylov method iterates";
+        }
+    }
+}
+
+TEST(PetscSolver, SingularMatrixIsReportedNotSolved)
+{
+    for (const Case& c : cases) {
+        Matrix dense = Matrix::Identity(4, 4);
+        dense(3, 3) = 0.0;  // a zero row and column: singular, the diagonal entry stored
+        const SparseMatrix K = dense.sparseView(0.0, -1.0);
+        PetscSolver solver(petsc_policy(c.method, c.symmetric), Communicator());
+        LinearStatus status = solver.factorize(K);
+        Vector x;
+        if (status == LinearStatus::ok)
+            status = solver.solve(Vector::Ones(4), x);
+        EXPECT_EQ(status, LinearStatus::singular) << c.name;
+    }
+}
+
+TEST(PetscSolver, NonFiniteEntryFails)
+{
+    std::mt19937 rng(seed);
+    SparseMatrix K = dominant_matrix(20, true, rng);
+    K.coeffRef(3, 3) = std::numeric_limits<double>::quiet_NaN();
+    PetscSolver solver(petsc_policy(Method::direct, true), Communicator());
+    EXPECT_EQ(solver.factorize(K), LinearStatus::failed);
+}
+
+TEST(PetscSolver, ShiftedFactorizationEqualsTheSuiteSparseShift)
+{
+    // A semi-definite K (a free rigid mode of two springs) whose shift K + mu D both
+    // backends must build from the same D = |diag K| rule (solver/shift.hpp).
+    Matrix dense(3, 3);
+    dense << 1, -1, 0, -1, 2, -1, 0, -1, 1;
+    const SparseMatrix K = dense.sparseView();
+    const Vector b = (Vector(3) << 1, 0, -1).finished();
+    const double mu = 1e-2;
+    SuiteSparseSolver reference(SuiteSparseSolver::Kind::lu);
+    PetscSolver solver(petsc_policy(Method::direct, false), Communicator());
+    ASSERT_EQ(reference.factorize(K), LinearStatus::singular);
+    solver.factorize(K);
+    ASSERT_EQ(reference.factorize_shifted(mu), LinearStatus::ok);
+    ASSERT_EQ(solver.factorize_shifted(mu), LinearStatus::ok);
+    Vector x_reference, x;
+    ASSERT_EQ(reference.solve(b, x_reference), LinearStatus::ok);
+    ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+    EXPECT_TRUE(test::at_most(relative_error(x, x_reference), direct_tolerance));
+    // The shift is of the last factorize()'s K, not of an earlier shifted one.
+    ASSERT_EQ(solver.factorize_shifted(10 * mu), LinearStatus::ok);
+    ASSERT_EQ(reference.factorize_shifted(10 * mu), LinearStatus::ok);
+    ASSERT_EQ(reference.solve(b, x_reference), LinearStatus::ok);
+    ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+    EXPECT_TRUE(test::at_most(relative_error(x, x_reference), direct_tolerance));
+}
+
+TEST(PetscSolver, AGrownPatternIsAssembledAgain)
+{
+    // A contact coupling extends the pattern between Newton iterations.
+    std::mt19937 rng(seed);
+    const SparseMatrix small = dominant_matrix(50, true, rng);
+    SparseMatrix grown = small;
+    grown.coeffRef(0, 49) += 0.5;
+    grown.coeffRef(49, 0) += 0.5;
+    grown.coeffRef(0, 0) += 1.0;
+    grown.coeffRef(49, 49) += 1.0;
+    grown.makeCompressed();
+    const Vector b = random_vector(50, rng);
+    PetscSolver solver(petsc_policy(Method::direct, true), Communicator());
+    Vector x;
+    for (const SparseMatrix* K : {&small, static_cast<const SparseMatrix*>(&grown), &small}) {
+        ASSERT_EQ(solver.factorize(*K), LinearStatus::ok);
+        ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+        EXPECT_TRUE(test::at_most(relative_error(x, Matrix(*K).partialPivLu().solve(b)), direct_tolerance));
+    }
+    EXPECT_EQ(solver.statistics().symbolic, 3) << "one COO preallocation per pattern change";
+}
+
+TEST(PetscSolver, APreconditionerIsReusedWhileItServes)
+{
+    // Newton's tangents change a little from one iteration to the next: the
+    // preconditioner of the first serves the second, and the answer is still the
+    // second system's.
+    std::mt19937 rng(seed);
+    const SparseMatrix K1 = dominant_matrix(400, true, rng);
+    SparseMatrix K2 = K1;
+    for (int i = 0; i < 400; i += 7)
+        K2.coeffRef(i, i) *= 1.01;
+    const Vector b = random_vector(400, rng);
+    PetscSolver solver(petsc_policy(Method::iterative, true), Communicator());
+    Vector x;
+    ASSERT_EQ(solver.factorize(K1), LinearStatus::ok);
+    ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+    ASSERT_EQ(solver.factorize(K2), LinearStatus::ok);
+    ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+    EXPECT_EQ(solver.statistics().numeric, 1) << "the second tangent reuses the first preconditioner";
+    EXPECT_TRUE(test::at_most(relative_error(x, Matrix(K2).partialPivLu().solve(b)), krylov_tolerance));
+}
+
+// PETSc and MPI are finalized once, after the last test.
+class FinalizeParallel : public ::testing::Environment {
+public:
+    void TearDown() override { parallel::finalize(); }
+};
+const auto* const finalize_environment = ::testing::AddGlobalTestEnvironment(new FinalizeParallel);
+
+}  // namespace
+}  // namespace iga::solver
