@@ -9,6 +9,9 @@ packages=(
   libeigen3-dev libsuitesparse-dev libopenblas0-serial libyaml-cpp-dev libhdf5-dev hdf5-tools
   libcli11-dev libfmt-dev libtinyxml2-dev libgtest-dev libgmock-dev libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib python3-yaml
+  # The PETSc/MPI backend (solver.backend: petsc, mpirun): PETSc with MUMPS, hypre and
+  # SuperLU_dist, Open MPI, and the MPI build of HDF5 that PETSc links (one HDF5 per process).
+  petsc-dev openmpi-bin libhdf5-openmpi-dev
 )
 
 missing=()

@@ -77,6 +77,10 @@ solver::LinearSolverPolicy linear_solver_policy(const io::Deck& deck, const Scen
     // tangent is a Woodbury update on the active contact dofs (solver/woodbury.hpp)
     // as long as that costs fewer flops than a factorization (the solver decides).
     policy.updates = scene.kinematics == mechanics::Kinematics::small && scene.has_contact();
+    for (const PairModel& pair : scene.pairs)
+        if (pair.rule.modulus > 0.0)
+            policy.penalty_ratio = std::max(policy.penalty_ratio,
+                                            pair.pair.settings().penalty * pair.rule.element_size / pair.rule.modulus);
     if (policy.backend == solver::Backend::petsc && policy.method == solver::Method::iterative)
         policy.rigid_body_modes = rigid_body_modes(scene);
     return policy;

@@ -87,6 +87,10 @@ struct LinearSolverPolicy {
     bool semidefinite = false;  ///< every tangent positive semi-definite (small strain, rigid planes)
     bool updates = false;       ///< tangents change in a few rows between calls: Woodbury updates pay
     int dim = 2;                ///< space dimension: 3D orders by nested dissection, blocks of 3
+    /// The stiffest contact penalty against the elements it acts on, max eps h / E'
+    /// over the pairs (0 without contact): algebraic multigrid by aggregation loses
+    /// its way past ~1e2 (petsc_solver.hpp).
+    double penalty_ratio = 0.0;
     /// The rigid-body modes on the free dofs (n_free x 3 in 2D, x 6 in 3D), the
     /// near-null space of an algebraic multigrid preconditioner; may be empty.
     Matrix rigid_body_modes;

@@ -15,10 +15,10 @@
 //   direct:    MUMPS; Cholesky (LDL^T, so also indefinite) for symmetric tangents,
 //              else LU.
 //   iterative: CG for symmetric tangents, else GMRES(100) with right
-//              preconditioning, both on the true residual, rtol 1e-8; hypre
-//              BoomerAMG (penalty springs of 1e6 E/h left it at the same iteration
-//              count where smoothed aggregation needed hundreds), with the rigid-body
-//              modes attached as near-null space for `-pc_type gamg`. The
+//              preconditioning, both on the true residual, rtol 1e-8; smoothed
+//              aggregation (GAMG) with the rigid-body modes as near-null space, or,
+//              when a contact penalty is stiff against its elements (eps h / E' >
+//              1e2, where aggregation fails), hypre BoomerAMG. The
 //              preconditioner is reused across Newton iterations while the Krylov
 //              iterations stay within twice those of its first solve; a solve that
 //              fails with a reused one is repeated with a fresh one.

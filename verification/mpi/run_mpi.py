@@ -60,6 +60,9 @@ CASES = [
     ("sphere_on_block_3d", os.path.join(HERE, "sphere_on_block.yaml"), [], "direct"),
     ("sphere_octant_3d_iterative", os.path.join(HERE, "sphere_octant.yaml"), [], "iterative"),
     ("sphere_on_block_3d_iterative", os.path.join(HERE, "sphere_on_block.yaml"), [], "iterative"),
+    # A penalty stiff against its elements (eps h / E ~ 2e3): BoomerAMG instead of GAMG.
+    ("sphere_octant_3d_stiff_iterative", os.path.join(HERE, "sphere_octant.yaml"),
+     ["contact.0.penalty=1e8"], "iterative"),
 ]
 COMPARED = ("displacement", "contact", "reactions")
 
