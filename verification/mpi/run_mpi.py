@@ -21,6 +21,9 @@ checked: the root attribute `ranks` is N, the status is the serial one, and on
 
 Then the failure paths:
   - a bad deck under mpirun -np 2: exit code 2, the located message printed once;
+  - SIGTERM to mpirun in the middle of a run: every rank stops at the same
+    residual evaluation, exit 1, and the results file holds the converged
+    increments with status failed and an "interrupted" message;
   - one rank killed (SIGKILL) in the middle of a run: mpirun ends within
     KILL_LIMIT_S seconds with a non-zero code, and no results file is left behind.
 
@@ -245,6 +248,40 @@ def check_killed_rank(exe, work):
     return not problems
 
 
+def check_stop_request(exe, work):
+    """SIGTERM to mpirun mid-run: all ranks stop together, rank 0 writes the converged increments."""
+    deck = os.path.join(HERE, "sphere_on_block.yaml")
+    out = os.path.join(work, "stopped.h5")
+    if os.path.exists(out):
+        os.remove(out)
+    p = subprocess.Popen(mpirun(2) + [exe, deck, "-q", "-o", out, "--set", "steps.count=40"],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=environment(),
+                         start_new_session=True)
+    time.sleep(6.0)  # set-up done, inside the increments
+    p.send_signal(signal.SIGTERM)
+    problems = []
+    try:
+        p.communicate(timeout=KILL_LIMIT_S)
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)
+        p.communicate()
+        problems.append("still running %d s after SIGTERM (a hang)" % KILL_LIMIT_S)
+    steps = 0
+    if not problems:
+        if p.returncode != 1:
+            problems.append("exit %s (expected 1: an interrupted run)" % p.returncode)
+        try:
+            with h5py.File(out, "r") as f:
+                steps = len(f["steps"])
+                if f.attrs["status"] != "failed" or "interrupted" not in f.attrs["message"]:
+                    problems.append("status %s, message %r" % (f.attrs["status"], f.attrs["message"]))
+        except OSError as e:
+            problems.append("no readable results file: %s" % e)
+    print("%s SIGTERM under mpirun -np 2: exit %s, %d converged increment(s) written%s"
+          % ("FAIL" if problems else "ok  ", p.returncode, steps, ("; " + "; ".join(problems)) if problems else ""))
+    return not problems
+
+
 def main():
     exe, work = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
     only = set(sys.argv[3:])
@@ -255,6 +292,8 @@ def main():
             ok = check_case(exe, work, name, deck, sets, method) and ok
     if not only or "bad_deck" in only:
         ok = check_bad_deck(exe, work) and ok
+    if not only or "stop_request" in only:
+        ok = check_stop_request(exe, work) and ok
     if not only or "killed_rank" in only:
         ok = check_killed_rank(exe, work) and ok
     print("mpi suite:", "all checks passed" if ok else "FAILED")
