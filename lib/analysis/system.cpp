@@ -188,23 +188,29 @@ RowMatrix SceneSystem::side_displacement(const Vector& u_full, int p, int k) con
     return u;
 }
 
+const mechanics::ElementGeometry& SceneSystem::element_of(int block) const
+{
+    const BlockOwner& o = owner_[static_cast<std::size_t>(block)];
+    return scene_.bodies[static_cast<std::size_t>(o.body)].elements[static_cast<std::size_t>(o.element)];
+}
+
+const BodyModel& SceneSystem::body_of(int block) const
+{
+    return scene_.bodies[static_cast<std::size_t>(owner_[static_cast<std::size_t>(block)].body)];
+}
+
+const std::vector<int>& SceneSystem::dofs_of(int block) const
+{
+    const BlockOwner& o = owner_[static_cast<std::size_t>(block)];
+    return scene_.bodies[static_cast<std::size_t>(o.body)].element_dofs[static_cast<std::size_t>(o.element)];
+}
+
 void SceneSystem::assemble_constant_stiffness(const StopRequest& stop)
 {
     if (scene_.kinematics != mechanics::Kinematics::small || full_stiffness_)
         return;
     const int d = scene_.dim;
     auto owns = [&](int block) { return scene_.partition.owns(block); };
-    auto element_of = [&](int block) -> const mechanics::ElementGeometry& {
-        const BlockOwner& o = owner_[static_cast<std::size_t>(block)];
-        return scene_.bodies[static_cast<std::size_t>(o.body)].elements[static_cast<std::size_t>(o.element)];
-    };
-    auto body_of = [&](int block) -> const BodyModel& {
-        return scene_.bodies[static_cast<std::size_t>(owner_[static_cast<std::size_t>(block)].body)];
-    };
-    auto dofs_of = [&](int block) -> const std::vector<int>& {
-        const BlockOwner& o = owner_[static_cast<std::size_t>(block)];
-        return scene_.bodies[static_cast<std::size_t>(o.body)].element_dofs[static_cast<std::size_t>(o.element)];
-    };
     // A pattern over all dofs (none constrained) scatters the element matrices
     // without triplets, and without stored positions (each block is added once).
     const assembly::DofMap& map = *scene_.dofs;
@@ -239,17 +245,6 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
     const int d = scene_.dim;
     const bool small = scene_.kinematics == mechanics::Kinematics::small;
     auto owns = [&](int block) { return scene_.partition.owns(block); };
-    auto element_of = [&](int block) -> const mechanics::ElementGeometry& {
-        const BlockOwner& o = owner_[static_cast<std::size_t>(block)];
-        return scene_.bodies[static_cast<std::size_t>(o.body)].elements[static_cast<std::size_t>(o.element)];
-    };
-    auto body_of = [&](int block) -> const BodyModel& {
-        return scene_.bodies[static_cast<std::size_t>(owner_[static_cast<std::size_t>(block)].body)];
-    };
-    auto dofs_of = [&](int block) -> const std::vector<int>& {
-        const BlockOwner& o = owner_[static_cast<std::size_t>(block)];
-        return scene_.bodies[static_cast<std::size_t>(o.body)].element_dofs[static_cast<std::size_t>(o.element)];
-    };
 
     // Small kinematics: the elastic stiffness is assembled once over ALL dofs
     // (constrained rows give the reactions, constrained columns the prescribed

@@ -125,6 +125,10 @@ private:
     /// makes failures and stop requests collective.
     void sum_over_ranks(Vector& r_full, Vector& magnitude, Vector& f_int, double& follower_norm,
                         solver::Evaluation& out, RunContext* context) const;
+    // Element block -> its geometry, body and full dofs.
+    const mechanics::ElementGeometry& element_of(int block) const;
+    const BodyModel& body_of(int block) const;
+    const std::vector<int>& dofs_of(int block) const;
     /// Whether this rank assembles weak spring k (the rank of the first element block at its node).
     bool owns_spring(std::size_t k) const;
 

@@ -28,7 +28,8 @@
 // rigid-body mode): when the factorization or the solve reports singular, solve
 // (K + mu D) du = -r instead, D = diag(|K_ii|) with zero diagonal entries
 // replaced by the mean nonzero |K_ii| (or 1 if K has a zero diagonal), mu =
-// 1e-10, 1e-8, ... 1e0 until the solve succeeds. The residual is unchanged, so a
+// 1e-10, 1e-8, ... 1e0 until the solve succeeds (LinearSolver::factorize_shifted,
+// which knows the summed diagonal on several ranks). The residual is unchanged, so a
 // converged solution is exact; the huge steps along near-null directions are
 // tamed by max_step and the line search.
 //
@@ -148,12 +149,11 @@ struct NewtonReport {
 };
 
 /// Solves r(u; load_factor) = 0 starting from u. On success u holds the solution;
-/// on failure u is restored to its input value. If the system is not symmetric
-/// and the solver's kind is cholesky, the solver is switched to lu (a tangent
-/// that Cholesky refuses is factorized by LU inside LinearSolver, which tries
-/// Cholesky again later). context may be null; when given, the time in
-/// evaluate() is added to "assembly", factorize + solve to "linear_solve", and the
-/// steps to the counter "newton_iterations".
+/// on failure u is restored to its input value. Which factorization or method
+/// solves the steps (Cholesky for a symmetric system, LU otherwise, ...) is the
+/// solver's, chosen once by make_linear_solver (solver/linear.hpp). context may be
+/// null; when given, the time in evaluate() is added to "assembly", factorize +
+/// solve to "linear_solve", and the steps to the counter "newton_iterations".
 NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vector& u,
                           const NewtonSettings& settings, LinearSolver& solver, RunContext* context);
 

@@ -6,6 +6,7 @@
 #include "core/parallel.hpp"
 #include "solver/petsc_solver.hpp"
 #include "solver/suitesparse_solver.hpp"
+#include "support/random_matrices.hpp"
 #include "support/tolerance.hpp"
 
 #include <Eigen/Dense>
@@ -25,38 +26,9 @@ constexpr double direct_tolerance = 1e-12;
 constexpr double krylov_tolerance = 1e-6;
 constexpr unsigned seed = 20261126;
 
-SparseMatrix dominant_matrix(int n, bool symmetric, std::mt19937& rng)
-{
-    std::uniform_real_distribution<double> value(-1.0, 1.0);
-    std::uniform_int_distribution<int> column(0, n - 1);
-    Matrix dense = Matrix::Zero(n, n);
-    for (int i = 0; i < n; ++i)
-        for (int k = 0; k < 2; ++k) {
-            const int j = column(rng);
-            if (j == i)
-                continue;
-            const double v = value(rng);
-            dense(i, j) += v;
-            dense(j, i) += symmetric ? v : value(rng);
-        }
-    for (int i = 0; i < n; ++i)
-        dense(i, i) = 2.0 + i % 3 + dense.row(i).cwiseAbs().sum() + dense.col(i).cwiseAbs().sum();
-    return dense.sparseView();
-}
-
-Vector random_vector(int n, std::mt19937& rng)
-{
-    std::uniform_real_distribution<double> value(-1.0, 1.0);
-    Vector v(n);
-    for (int i = 0; i < n; ++i)
-        v(i) = value(rng);
-    return v;
-}
-
-double relative_error(const Vector& x, const Vector& reference)
-{
-    return (x - reference).norm() / reference.norm();
-}
+using test::dominant_matrix;
+using test::random_vector;
+using test::relative_error;
 
 LinearSolverPolicy petsc_policy(Method method, bool symmetric)
 {
