@@ -191,7 +191,13 @@ bool SuiteSparseSolver::same_pattern(const SparseMatrix& K) const
 
 LinearStatus SuiteSparseSolver::factorize(const SparseMatrix& K)
 {
-    shift_base_valid_ = false;  // a new K: the next shift starts from it
+    // A new K: the next shift starts from it, and the last one's copy (a tangent's
+    // worth of memory) is not kept meanwhile.
+    if (shift_base_valid_) {
+        shift_base_ = SparseMatrix();
+        std::vector<int>().swap(diagonal_position_);
+        shift_base_valid_ = false;
+    }
     return factorize_matrix(K);
 }
 
