@@ -371,7 +371,7 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     outcome.status = result.completed ? "completed" : "failed";
     outcome.message = result.message;
     // Name the cause of a Newton failure, read from its history, and what to change.
-    if (!result.completed && result.last_failure.status != solver::NewtonStatus::converged)
+    if (!result.completed && !result.stopped && result.last_failure.status != solver::NewtonStatus::converged)
         outcome.message += failure_advice(solver::failure_cause(result.last_failure), failure_context(scene));
     outcome.results_file = deck.output.file;
     outcome.increments = static_cast<int>(result.increments.size());

@@ -62,6 +62,7 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
                                                " (load factor " + format_g(lambda, 6) + ")") +
                              during;
             result.last_failure = NewtonReport{};  // a stop, not a failure of Newton
+            result.stopped = true;
             return result;
         };
         if ((callbacks.stop_requested && callbacks.stop_requested()) || (context && context->stop().requested()))

@@ -100,6 +100,7 @@ struct SteppingCallbacks {
 
 struct SteppingResult {
     bool completed = false;  ///< lambda = 1 reached
+    bool stopped = false;    ///< a stop request (SIGINT/SIGTERM) ended the run: no failure to diagnose
     /// Empty when completed; else why, e.g. "increment 7 (load factor 0.44 -> 0.47):
     /// Newton did not converge after 8 cutbacks; last relative residual 3.1e-04
     /// (tolerance 1e-10)", or that a stop was requested.
