@@ -28,4 +28,7 @@ fi
 build="${IGACONTACT_BUILD_DIR:-$root/build}"
 "$root/scripts/build.sh"
 cd "$build"
-ctest --output-on-failure -j "$jobs" "$@"
+# The tests labelled slow (level-2 refinements, minutes each on this machine; the
+# augmented-Lagrangian one exceeded its 30-minute limit in November 2026) run with
+# `ctest -L slow`, outside the suite's ~15-minute budget.
+ctest --output-on-failure -j "$jobs" -LE slow "$@"
