@@ -3,7 +3,7 @@
 
 Usage:  scripts/plot_pressure.py RESULTS.h5 [-o PNG] [--pair NAME] [--step KKKK] [--radial]
 
-Reads only the documented layout (shared/spec/results.md). It plots the pair of
+Reads only the documented layout (docs/results.md). It plots the pair of
 /reference if there is one (or --pair), else every pair, in deck order (the order
 of `contact` in the /deck text; HDF5 lists groups alphabetically). For each side
 carrying Gauss points it draws

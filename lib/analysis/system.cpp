@@ -363,7 +363,7 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
             out.tangent.coeffs().setZero();
     } else if (out.tangent.nonZeros() > 0) {
         // A line search's trial states need no tangent: a stale one would keep a
-        // tangent-sized block of memory per trial evaluation (README "Memory in 3D").
+        // tangent-sized block of memory per trial evaluation (docs/performance.md "Memory in 3D").
         out.tangent = SparseMatrix();
     }
 

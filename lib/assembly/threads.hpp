@@ -11,7 +11,7 @@
 // other jobs keep busy a second thread gains nothing and only adds jitter.
 // Results do not depend on the thread count (bitwise; sparse_pattern.hpp), so
 // a load-dependent choice costs no reproducibility. Numbers behind the
-// threshold: README "Threads" (scripts/bench_threads.py).
+// threshold: docs/performance.md "Threads" (scripts/bench_threads.py).
 //
 // Library threads: CHOLMOD in the Debian build uses OpenMP (libgomp) for a few
 // loops, and libgomp's idle threads spin by default (OMP_WAIT_POLICY is read at

@@ -2,7 +2,7 @@
 // One contact pair: its two surfaces (deformable sides -- curves in 2D, surfaces in
 // 3D -- or a rigid obstacle), the
 // Gauss points that carry the penalty, and the per-Newton-iteration evaluation
-// of its residual and tangent (Kopacka et al. eqs. 5-7; physics.md 3.4).
+// of its residual and tangent (Kopacka et al. eqs. 5-7; docs/theory.md "Contact formulation").
 //
 // Who carries Gauss points:
 //  - two_half_pass, both deformable: both sides; each is projected onto the

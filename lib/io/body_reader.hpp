@@ -1,6 +1,6 @@
 #pragma once
 // Reading the `bodies` entries of a deck (deformable NURBS patches, built-in
-// shapes, refinement, rigid planes: shared/spec/deck.md "bodies"), and the name
+// shapes, refinement, rigid obstacles: docs/deck.md "bodies"), and the name
 // bookkeeping that the later sections check their references against.
 //
 // Part of the deck reader (deck_reader.cpp); internal to io/. Checks made here:

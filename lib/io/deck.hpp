@@ -1,6 +1,6 @@
 #pragma once
 // The deck as plain typed structs: what io::read_deck produces from YAML
-// (shared/spec/deck.md, format 1) and what analysis/ turns into a scene.
+// (docs/deck.md, format 1) and what analysis/ turns into a scene.
 // Nothing below io/ sees YAML or key strings; only io/, analysis/ and app/
 // include this header.
 //

@@ -2,8 +2,8 @@
 // The deck spellings of the enums of io/deck.hpp: the one string <-> enum table,
 // used by the reader (parsing) and the writer (the resolved deck).
 //
-// Spellings equal the enumerator names (style §4.2) and the words of
-// shared/spec/deck.md. Side names live in core/side.hpp.
+// Spellings equal the enumerator names and the words of
+// docs/deck.md. Side names live in core/side.hpp.
 
 #include "io/deck.hpp"
 

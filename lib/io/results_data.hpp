@@ -1,5 +1,5 @@
 #pragma once
-// What one run writes to its results file (shared/spec/results.md, version 1),
+// What one run writes to its results file (docs/results.md, version 1),
 // as plain structs with no HDF5 types: analysis/ fills them, io::ResultsWriter
 // stores them. Names follow the groups and datasets of results.md.
 //

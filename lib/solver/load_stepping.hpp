@@ -1,6 +1,6 @@
 #pragma once
 // Load stepping: drives the load factor lambda from 0 to 1 in increments, each
-// solved by Newton (solver/newton.hpp), with adaptive cutbacks (physics.md §7.2).
+// solved by Newton (solver/newton.hpp), with adaptive cutbacks (docs/solver.md "Load stepping and cutbacks").
 //
 // Rules: the initial increment is 1/count, which is also the largest: the
 // user's count is an upper bound on the step size, never exceeded. A failed
