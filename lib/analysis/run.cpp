@@ -131,6 +131,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     assembly::limit_library_threads();  // CHOLMOD's OpenMP loops inline: nothing spins
     SceneSystem system(scene, context, options.threads, comm);
     system.set_collective_stop(stop);
+    // The factorizations' BLAS gets the assembly's cores; under MPI the ranks hold them.
+    assembly::set_blas_threads(comm.parallel() ? 1 : system.library_threads());
     if (scene.kinematics == mechanics::Kinematics::small) {
         // K0 is all the element quadrature data serve under small kinematics: assembled
         // now, then freed.
