@@ -51,8 +51,13 @@ io::HistoryRow history_row(const io::StepData& step)
     for (const io::ContactPairResult& pair : step.contact)
         for (const io::ContactSideResult& side : pair.sides) {
             const auto penetration = side.attributes.find("max_penetration");
+            const auto area = side.attributes.find("contact_measure");
+            const int d = side.gauss_points.coordinates.cols();
             row.contact.push_back({pair.name, side.side_name, side.normal_force,
-                                   penetration == side.attributes.end() ? 0.0 : penetration->second});
+                                   penetration == side.attributes.end() ? 0.0 : penetration->second,
+                                   side.friction_force.empty() ? std::vector<double>(static_cast<std::size_t>(d), 0.0)
+                                                               : side.friction_force,
+                                   area == side.attributes.end() ? 0.0 : area->second});
         }
     return row;
 }

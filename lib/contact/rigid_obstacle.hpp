@@ -80,10 +80,15 @@ struct RigidObstacle {
                                                                          : std::get<RigidSphere>(shape).center.size());
     }
 
+    /// The obstacle's translation at load_factor: load_factor * motion.
+    VecN shift(double load_factor) const
+    {
+        return motion.size() == dim() ? VecN(load_factor * motion) : VecN(VecN::Zero(dim()));
+    }
     /// The foot point data of x with the obstacle translated by load_factor * motion.
     ObstacleFoot foot(const VecN& x, double load_factor) const
     {
-        const VecN shift = motion.size() == x.size() ? VecN(load_factor * motion) : VecN(VecN::Zero(x.size()));
+        const VecN shift = this->shift(load_factor);
         ObstacleFoot out;
         if (const auto* plane = std::get_if<RigidPlane>(&shape)) {
             out.normal = plane->normal;

@@ -243,6 +243,15 @@ struct AugmentedLagrangian {
     bool operator==(const AugmentedLagrangian&) const = default;
 };
 
+/// contact.<pair>.friction: Coulomb friction with a tangential penalty.
+struct Friction {
+    double coefficient = 0.0;          ///< mu >= 0; 0 (or no key): frictionless
+    double tangential_penalty = 0.0;   ///< eps_T > 0, or `auto` (then 0 here and tangential_penalty_auto)
+    bool tangential_penalty_auto = true;  ///< `auto`: eps_T = the pair's normal penalty
+
+    bool operator==(const Friction&) const = default;
+};
+
 struct ContactPair {
     std::string name;
     ContactSurface first, second;
@@ -251,6 +260,7 @@ struct ContactPair {
     double penalty = 0.0;       ///< required: > 0, or `auto` (then 0 here and penalty_auto)
     bool penalty_auto = false;  ///< `penalty: auto`: chosen from the materials and element size (docs/deck.md)
     AugmentedLagrangian augmented_lagrangian;
+    Friction friction;
     int quadrature = 0;    ///< Gauss points per knot span; 0 means degree + 2 of the side
 
     bool operator==(const ContactPair&) const = default;

@@ -257,6 +257,13 @@ void write_contact(YAML::Emitter& out, const ContactPair& p)
         out << YAML::Key << "max_updates" << YAML::Value << std::to_string(p.augmented_lagrangian.max_updates);
         out << YAML::EndMap;
     }
+    if (p.friction.coefficient > 0.0) {
+        out << YAML::Key << "friction" << YAML::Value << YAML::Flow << YAML::BeginMap;
+        out << YAML::Key << "coefficient" << YAML::Value << format_number(p.friction.coefficient);
+        out << YAML::Key << "tangential_penalty" << YAML::Value
+            << (p.friction.tangential_penalty_auto ? std::string("auto") : format_number(p.friction.tangential_penalty));
+        out << YAML::EndMap;
+    }
     if (p.quadrature > 0)
         out << YAML::Key << "quadrature" << YAML::Value << std::to_string(p.quadrature);
     out << YAML::EndMap;

@@ -74,6 +74,7 @@ Schema make_deck_schema()
                               {"enforcement", v},
                               {"penalty", v},
                               {"augmented_lagrangian", map({{"gap_tolerance", v}, {"max_updates", v}})},
+                              {"friction", map({{"coefficient", v}, {"tangential_penalty", v}})},
                               {"quadrature", v}}))},
         {"steps", map({{"count", v}, {"adaptive", v}, {"max_cutbacks", v}})},
         {"newton", map({{"tolerance", v}, {"max_iterations", v}, {"line_search", v}})},
