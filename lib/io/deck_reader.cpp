@@ -365,7 +365,10 @@ void read_friction(const Cursor& c, ContactPair& p)
             mu.fail("must be a finite number >= 0 (0: frictionless)");
     }
     const Cursor eps = f.child("tangential_penalty");
-    if (eps.exists() && !(!eps.is_list() && !eps.is_map() && eps.value_text() == "auto")) {
+    const bool scalar = eps.exists() && !eps.is_list() && !eps.is_map();
+    if (scalar && !parse_number(eps.value_text()) && eps.value_text() != "auto") {
+        eps.fail("expected a number > 0 or auto (the pair's normal penalty)");
+    } else if (eps.exists() && !(scalar && eps.value_text() == "auto")) {
         p.friction.tangential_penalty_auto = false;
         if (const auto value = eps.to<double>()) {
             if (std::isfinite(*value) && *value > 0.0)
