@@ -24,7 +24,8 @@ const std::string block_shape = "{type: rectangle, corner: [0, 0], size: [2, 1]}
 /// minimal_deck with `transform: <steps>` on the block's shape (line 11 of the deck).
 std::string with_2d_steps(const std::string& steps)
 {
-    return replaced(minimal_deck, block_shape, "{type: rectangle, corner: [0, 0], size: [2, 1], transform: " + steps + "}");
+    return replaced(minimal_deck, block_shape,
+                    "{type: rectangle, corner: [0, 0], size: [2, 1], transform: " + steps + "}");
 }
 
 /// shapes_deck_3d with `transform: <steps>` on the ball (line 8 of the deck).
@@ -79,8 +80,8 @@ TEST(TransformReader, RawNurbsPatchesAndGeometryFilesTakeSteps)
                                          "        nurbs: {degrees: [1, 1], knots: [[0, 0, 1, 1], [0, 0, 1, 1]], "
                                          "control_points: [[0, 0, 1], [1, 0, 1], [0, 1, 1], [1, 1, 1]], "
                                          "transform: [{translate: [1, 0]}, {scale: 2}]}\n");
-    const std::string one_patch = replaced(
-        replaced(replaced(patches, "block.v0", "block.left.v0"), "side: u0", "side: left.u0"), "side: v1", "side: left.v1");
+    const std::string renamed = replaced(patches, "block.v0", "block.left.v0");
+    const std::string one_patch = replaced(replaced(renamed, "side: u0", "side: left.u0"), "side: v1", "side: left.v1");
     const Deck m = read(one_patch);
     ASSERT_EQ(m.bodies[0].patches.size(), 1u);
     EXPECT_EQ(m.bodies[0].patches[0].nurbs.transform.size(), 2u);
@@ -91,9 +92,9 @@ TEST(TransformReader, RawNurbsPatchesAndGeometryFilesTakeSteps)
     const std::string imported = replaced(
         replaced(replaced(one_patch, "block.left.v0", "block.p2.v0"), "side: left.u0", "side: p0.u0"), "side: left.v1",
         "side: p0.v1");
-    const std::string from_file =
-        imported.substr(0, imported.find("    patches:")) + "    geometry: {file: " + file +
-        ", transform: [{mirror: {normal: [1, 0], point: [0.5, 0]}}]}\n" + imported.substr(imported.find("  - name: floor"));
+    const std::string from_file = imported.substr(0, imported.find("    patches:")) + "    geometry: {file: " + file +
+                                  ", transform: [{mirror: {normal: [1, 0], point: [0.5, 0]}}]}\n" +
+                                  imported.substr(imported.find("  - name: floor"));
     const Deck g = read(from_file);
     ASSERT_EQ(g.bodies[0].patches.size(), 4u);
     EXPECT_EQ(g.bodies[0].geometry_transform.size(), 1u);
@@ -176,7 +177,8 @@ TEST(TransformReaderErrors, TwoDimensional)
          at + "96: " + path + ".0.rotate: unknown key 'abut' (did you mean 'about'?)"},
         {"zero normal", "[{mirror: {normal: [0, 0]}}]",
          at + "90: " + path + ".0.mirror.normal = [0, 0]: must have non-zero length"},
-        {"missing normal", "[{mirror: {point: [0, 0]}}]", at + "81: " + path + ".0.mirror: missing required key 'normal'"},
+        {"missing normal", "[{mirror: {point: [0, 0]}}]",
+         at + "81: " + path + ".0.mirror: missing required key 'normal'"},
         {"point length", "[{mirror: {normal: [1, 0], point: [1, 2, 3]}}]",
          at + "105: " + path + ".0.mirror.point = [1, 2, 3]: expected a list of 2 numbers"},
         {"scale zero", "[{scale: 0}]",

@@ -115,7 +115,8 @@ std::vector<std::pair<std::string, Affine>> maps_3d()
 {
     return {{"translate", translation(vec({0.3, -7.25, 1e3}))},
             {"rotate 90 about z", rotation(vec({0.0, 0.0, 1.0}), 90.0, vec({0.0, 0.0, 0.0}))},
-            {"rotate 123 about (1, 1, 1) through (1, 2, 3)", rotation(vec({1.0, 1.0, 1.0}), 123.0, vec({1.0, 2.0, 3.0}))},
+            {"rotate 123 about (1, 1, 1) through (1, 2, 3)",
+             rotation(vec({1.0, 1.0, 1.0}), 123.0, vec({1.0, 2.0, 3.0}))},
             {"mirror y = -1", mirror(vec({0.0, 2.0, 0.0}), vec({0.0, -1.0, 0.0}))},
             {"mirror oblique", mirror(vec({1.0, -1.0, 0.5}), vec({0.2, 0.0, 1.0}))},
             {"scale 0.1", scaling(0.1, 3)}};
@@ -193,7 +194,8 @@ TEST(Transform, StepsComposeInListOrder)
     EXPECT_EQ(shift.then(turn).apply(x), vec({0.0, 2.0}));
     EXPECT_EQ(turn.then(shift).apply(x), vec({1.0, 1.0}));
     const Patch patch = quarter_disc(vec({0.0, 0.0}), 1.0);
-    EXPECT_NE(transformed(patch, shift.then(turn)).control_points(), transformed(patch, turn.then(shift)).control_points());
+    EXPECT_NE(transformed(patch, shift.then(turn)).control_points(),
+              transformed(patch, turn.then(shift)).control_points());
     EXPECT_EQ(transformed(transformed(patch, shift), turn).control_points(),
               transformed(patch, shift.then(turn)).control_points());
 }
@@ -201,7 +203,8 @@ TEST(Transform, StepsComposeInListOrder)
 TEST(Transform, QuarterTurnsAreExact)
 {
     for (const auto& [angle, c, s] : std::vector<std::tuple<double, double, double>>{
-             {0, 1, 0}, {90, 0, 1}, {180, -1, 0}, {270, 0, -1}, {360, 1, 0}, {-90, 0, -1}, {450, 0, 1}, {-540, -1, 0}}) {
+             {0, 1, 0}, {90, 0, 1}, {180, -1, 0}, {270, 0, -1}, {360, 1, 0}, {-90, 0, -1}, {450, 0, 1},
+             {-540, -1, 0}}) {
         const auto [cos, sin] = cos_sin_deg(angle);
         EXPECT_EQ(cos, c) << angle;
         EXPECT_EQ(sin, s) << angle;
