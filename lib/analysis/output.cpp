@@ -1,5 +1,6 @@
 #include "analysis/output.hpp"
 
+#include "analysis/geometry.hpp"
 #include "analysis/point_contact_reference.hpp"
 #include "io/deck_names.hpp"
 
@@ -130,8 +131,8 @@ std::vector<io::BodyGeometry> body_geometry(const io::Deck& deck, const Scene& s
                 g.control_points = std::move(p.control_points);
             }
         }
-        if (deck.bodies[k].shape)
-            g.side_names = nurbs::shape_side_names(std::string(io::deck_name(deck.bodies[k].shape->type)));
+        // The table `check` prints: extruded shapes have six sides, a mirror swaps u0 and u1.
+        g.side_names = side_meanings(deck.bodies[k]);
         out.push_back(std::move(g));
     }
     return out;

@@ -84,6 +84,11 @@ struct DeckNames<ReferenceType> {
          {"hertz_two_spheres", ReferenceType::hertz_two_spheres}}};
 };
 
+/// The keys of the steps of a `transform:` list, in the order of the
+/// alternatives of io::TransformStep (index() selects the key).
+inline constexpr std::array<std::string_view, 4> transform_step_keys{"translate", "rotate", "mirror", "scale"};
+static_assert(std::variant_size_v<TransformStep> == transform_step_keys.size());
+
 /// The deck spelling of an enumerator ("linear_elastic", ...).
 template <class E>
 constexpr std::string_view deck_name(E value)
