@@ -248,6 +248,10 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
         result.text_attributes["enforcement"] = model.augmented ? "augmented_lagrangian" : "penalty";
         if (model.augmented)
             result.attributes["gap_tolerance"] = model.gap_tolerance_used;
+        if (model.pair.settings().friction.active()) {
+            result.attributes["friction_coefficient"] = model.pair.settings().friction.coefficient;
+            result.attributes["tangential_penalty"] = model.pair.settings().friction.tangential_penalty;
+        }
         if (model.penalty_auto) {  // the inputs of the rule eps = min(kappa_side E*/l, c_max E'/h)
             result.attributes["penalty_modulus"] = model.rule.modulus;
             result.attributes["penalty_element_size"] = model.rule.element_size;
