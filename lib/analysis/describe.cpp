@@ -43,8 +43,11 @@ std::string side_corners(const nurbs::SidePatch& sp)
     const std::vector<int> rows = n1 == 1 ? std::vector<int>{0, n0 - 1}
                                           : std::vector<int>{0, n0 - 1, n0 * (n1 - 1), n0 * n1 - 1};
     std::string out;
-    for (int r : rows)
-        out += (out.empty() ? "" : " ") + point_text(P.row(r).transpose());
+    for (int r : rows) {
+        if (!out.empty())
+            out += ' ';
+        out += point_text(P.row(r).transpose());
+    }
     return out;
 }
 

@@ -96,7 +96,7 @@ struct PairSettings {
     double penalty = 0.0;         ///< eps_N > 0, pressure per unit penetration
     int quadrature = 0;           ///< Gauss points per knot span of a carrying side; 0 = degree + 2
     double search_distance = 0.0; ///< global search margin; 0 = auto (a tenth of the larger side's size)
-    FrictionLaw friction;         ///< Coulomb friction (against a rigid obstacle); mu = 0: frictionless
+    FrictionLaw friction{};       ///< Coulomb friction (against a rigid obstacle); mu = 0: frictionless
 };
 
 /// One patch side of a deformable contact surface, in its REFERENCE configuration.

@@ -278,7 +278,7 @@ std::optional<ContactSurface> read_surface(const Cursor& c, const KnownNames& kn
     const std::string sides = "(sides: " + join_names(side_names(known.dim)) + ")";
     if (const auto* body = known.find_body(*text)) {
         if (body->second)
-            return ContactSurface{*text, std::nullopt};
+            return ContactSurface{*text, std::nullopt, {}, {}};
         c.fail("a deformable body's surface needs a side, e.g. '" + *text + ".v0' " + sides);
         return std::nullopt;
     }

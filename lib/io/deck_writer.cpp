@@ -23,11 +23,6 @@ std::string word(E value)
     return std::string(deck_name(value));
 }
 
-std::string word(Side side)
-{
-    return std::string(side_name(side));
-}
-
 /// Starts a block list of items, or writes `[]` when there are none (a block
 /// emitter would put the empty list on a line of its own).
 template <class T>

@@ -167,7 +167,7 @@ TEST_P(LameConvergence, ErrorsConvergeAtOptimalRates)
 }
 
 INSTANTIATE_TEST_SUITE_P(Degrees, LameConvergence, ::testing::Values(2, 3),
-                         [](const ::testing::TestParamInfo<int>& info) { return "p" + std::to_string(info.param); });
+                         [](const ::testing::TestParamInfo<int>& info) { return std::string("p") + std::to_string(info.param); });
 
 // Small kinematics without contact: the residual is affine in u, so every
 // increment is one linear solve (deck.md, "analysis"), and the solution scales

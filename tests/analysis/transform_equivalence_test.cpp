@@ -67,9 +67,11 @@ TEST(TransformEquivalence, TheMirroredShapesSideNamesFollowTheReversal)
     ASSERT_EQ(names.strings.size(), 12u);  // six sides of the extruded shape, (side, meaning) each
     // half_disc: u0 is the left end of the diameter as built; the mirror reversed u,
     // so that side is now called u1.
-    for (std::size_t k = 0; k < names.strings.size(); k += 2)
-        if (names.strings[k] == "u1")
+    for (std::size_t k = 0; k < names.strings.size(); k += 2) {
+        if (names.strings[k] == "u1") {
             EXPECT_NE(names.strings[k + 1].find("left end"), std::string::npos) << names.strings[k + 1];
+        }
+    }
 }
 
 }  // namespace iga::test

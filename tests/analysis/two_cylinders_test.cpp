@@ -283,8 +283,8 @@ TEST(TwoCylinders, DissimilarImbalanceFallsWithH)
     const auto dir = scratch_dir("two_cylinders_dissimilar_h");
     std::vector<double> error;
     for (const int n : {16, 64}) {
-        const std::string refine = "{elevate: [0, 1], spans: [" + std::to_string(n) + ", 8]}";
-        const auto file = dir / ("n" + std::to_string(n) + ".h5");
+        const std::string refine = std::string("{elevate: [0, 1], spans: [") + std::to_string(n) + ", 8]}";
+        const auto file = dir / (std::string("n") + std::to_string(n) + ".h5");
         const analysis::RunOutcome outcome =
             run_deck(deck_path(), dissimilar({"bodies.upper.refine=" + refine, "bodies.lower.refine=" + refine}), file);
         ASSERT_EQ(outcome.status, "completed") << outcome.message;

@@ -289,8 +289,9 @@ TEST(ContactPair, TangentBlocksArePerCouplingAndCandidatesCoverThem)
         const std::vector<Coupling> candidates = pair.candidate_couplings();
         for (std::size_t k = 0; k < ev.tangent.size(); ++k) {
             const LocalBlock& block = ev.tangent[k];
-            if (k > 0)
+            if (k > 0) {
                 EXPECT_LT(ev.tangent[k - 1].element, block.element) << "sorted, each coupling once";
+            }
             EXPECT_EQ(block.dofs, pair.coupling_dofs(block.element));
             constexpr int max_element_dofs = 4 * 2;  // sides of degree <= 3: 4 control points x d = 2
             EXPECT_LE(static_cast<int>(block.dofs.size()), 2 * max_element_dofs) << "two elements' dofs at most";

@@ -66,7 +66,7 @@ TEST(DeckReader, ReadsEveryValueOfACompleteHertzDeck)
     EXPECT_EQ(floor.plane->normal, (std::vector<double>{0.0, 1.0}));
 
     ASSERT_EQ(d.constraints.size(), 1u);
-    EXPECT_EQ(d.constraints[0], (Constraint{"cylinder", Side::u0, {true, false}, {0.0, 0.0}}));
+    EXPECT_EQ(d.constraints[0], (Constraint{"cylinder", Side::u0, {true, false}, {0.0, 0.0}, {}, {}}));
     ASSERT_EQ(d.loads.size(), 1u);
     EXPECT_EQ(d.loads[0].body, "cylinder");
     EXPECT_EQ(d.loads[0].side, Side::v1);
@@ -76,8 +76,8 @@ TEST(DeckReader, ReadsEveryValueOfACompleteHertzDeck)
     ASSERT_EQ(d.contact.size(), 1u);
     const ContactPair& pair = d.contact[0];
     EXPECT_EQ(pair.name, "cyl_floor");
-    EXPECT_EQ(pair.first, (ContactSurface{"cylinder", Side::v0}));
-    EXPECT_EQ(pair.second, (ContactSurface{"floor", std::nullopt}));
+    EXPECT_EQ(pair.first, (ContactSurface{"cylinder", Side::v0, {}, {}}));
+    EXPECT_EQ(pair.second, (ContactSurface{"floor", std::nullopt, {}, {}}));
     EXPECT_EQ(pair.formulation, Formulation::two_half_pass);
     EXPECT_EQ(pair.penalty, 1.0e6);
     EXPECT_EQ(pair.quadrature, 4);
@@ -103,8 +103,8 @@ TEST(DeckReader, Reads3dDeckWithEveryLoadAndConstraintKind)
     EXPECT_EQ(d.bodies[0].refine.spans, (std::vector<int>{2, 2, 2}));
     // Unit length up to round-off (0.36 + 0.64 in floating point): kept as written.
     EXPECT_EQ(d.bodies[1].plane->normal, (std::vector<double>{0.6, 0.0, 0.8}));
-    EXPECT_EQ(d.constraints[0], (Constraint{"cube", Side::w1, {true, true, true}, {0.0, 0.0, -0.2}}));
-    EXPECT_EQ(d.constraints[1], (Constraint{"cube", Side::u0, {true, false, true}, {0.0, 0.0, 0.0}}));
+    EXPECT_EQ(d.constraints[0], (Constraint{"cube", Side::w1, {true, true, true}, {0.0, 0.0, -0.2}, {}, {}}));
+    EXPECT_EQ(d.constraints[1], (Constraint{"cube", Side::u0, {true, false, true}, {0.0, 0.0, 0.0}, {}, {}}));
     EXPECT_EQ(d.loads[0].kind, LoadKind::gravity);
     EXPECT_FALSE(d.loads[0].side.has_value());
     EXPECT_EQ(d.loads[0].vector, (std::vector<double>{0.0, 0.0, -9.81}));
@@ -112,8 +112,8 @@ TEST(DeckReader, Reads3dDeckWithEveryLoadAndConstraintKind)
     EXPECT_EQ(d.loads[1].kind, LoadKind::pressure);
     EXPECT_EQ(d.loads[1].side, Side::v1);
     EXPECT_EQ(d.loads[1].pressure, 2.5);
-    EXPECT_EQ(d.contact[0].first, (ContactSurface{"table", std::nullopt}));
-    EXPECT_EQ(d.contact[0].second, (ContactSurface{"cube", Side::w0}));
+    EXPECT_EQ(d.contact[0].first, (ContactSurface{"table", std::nullopt, {}, {}}));
+    EXPECT_EQ(d.contact[0].second, (ContactSurface{"cube", Side::w0, {}, {}}));
     EXPECT_EQ(d.contact[0].formulation, Formulation::single_pass);
 }
 

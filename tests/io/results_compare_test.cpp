@@ -69,15 +69,18 @@ SampleRun sample_run()
         ContactSideResult side;
         side.side_name = "cylinder.v0";
         side.normal_force = 100.0 * k;
-        side.gauss_points = GaussPointData{.coordinates = ramp(4, 2, 0.0), .reference_coordinates = ramp(4, 2, 0.1),
-                                           .parameter = ramp(4, 1, 0.0), .gap = Vector::LinSpaced(4, -1e-3, 1e-3),
-                                           .pressure = Vector::LinSpaced(4, 0.0, 1e3),
-                                           .weight = Vector::Constant(4, 0.25), .patch = {}};
-        side.postprocessed = PostProcessedData{.control_point_pressure = Vector::LinSpaced(3, 1.0, 3.0),
-                                               .coordinates = ramp(5, 2, 2.0),
-                                               .reference_coordinates = ramp(5, 2, 2.5),
-                                               .pressure = Vector::LinSpaced(5, 0.0, 4.0),
-                                               .grid = {0, 0}, .patch_grids = {}};
+        GaussPointData& gauss = side.gauss_points;
+        gauss.coordinates = ramp(4, 2, 0.0);
+        gauss.reference_coordinates = ramp(4, 2, 0.1);
+        gauss.parameter = ramp(4, 1, 0.0);
+        gauss.gap = Vector::LinSpaced(4, -1e-3, 1e-3);
+        gauss.pressure = Vector::LinSpaced(4, 0.0, 1e3);
+        gauss.weight = Vector::Constant(4, 0.25);
+        PostProcessedData& post = side.postprocessed;
+        post.control_point_pressure = Vector::LinSpaced(3, 1.0, 3.0);
+        post.coordinates = ramp(5, 2, 2.0);
+        post.reference_coordinates = ramp(5, 2, 2.5);
+        post.pressure = Vector::LinSpaced(5, 0.0, 4.0);
         ContactPairResult pair;
         pair.name = "cyl_floor";
         pair.sides = {side};
@@ -92,7 +95,7 @@ SampleRun sample_run()
         run.steps.push_back(step);
         run.history.push_back(HistoryRow{.load_factor = 0.5 * k,
                                          .reactions = step.reactions,
-                                         .contact = {{"cyl_floor", "cylinder.v0", 100.0 * k, 1e-3 * k}}});
+                                         .contact = {{"cyl_floor", "cylinder.v0", 100.0 * k, 1e-3 * k, {0.0, 0.0}, 0.0}}});
     }
     run.summary.status = "completed";
     run.summary.warnings = "contact pair cyl_floor: penalty is large";

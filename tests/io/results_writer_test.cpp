@@ -484,7 +484,7 @@ HistoryRow history_row(double load_factor)
     row.load_factor = load_factor;
     row.reactions = {{"cylinder.v1", {1.0 * load_factor, 2.0 * load_factor}},
                      {"cylinder.u0", {-3.0 * load_factor, 0.25}}};
-    row.contact = {{"cyl_floor", "cylinder.v0", 100.0 * load_factor, 1e-4 * load_factor}};
+    row.contact = {{"cyl_floor", "cylinder.v0", 100.0 * load_factor, 1e-4 * load_factor, {0.0, 0.0}, 0.0}};
     return row;
 }
 

@@ -82,8 +82,9 @@ TEST(FailureCause, ClassifiesEachHistory)
         const std::string text = cause_text(report);
         EXPECT_NE(text.find(c.text), std::string::npos) << text;
         // Only the round-off class may speak of round-off as the cause.
-        if (c.expected != FailureCause::round_off_floor)
+        if (c.expected != FailureCause::round_off_floor) {
             EXPECT_EQ(text.find("is at its round-off"), std::string::npos) << text;
+        }
     }
 }
 
