@@ -4,8 +4,10 @@
 // stepper after every converged Newton solve (solver::SteppingCallbacks::outer).
 //
 // At the converged state of a solve it measures each augmented pair's largest
-// penetration g_max (over its Gauss points, both half passes):
-//  - every pair has g_max <= gap_tolerance: accept the increment;
+// penetration g_max (over its Gauss points, both half passes), and the widest open
+// gap that still carries a pressure <lambda + eps g_N> > 0 (multipliers left from a
+// larger load: a contact that is being released, docs/deck.md "Load paths"):
+//  - every pair has both <= gap_tolerance: accept the increment;
 //  - else, if max_updates updates were already made in this attempt: reject it (the
 //    load stepper cuts the increment back; multipliers are rolled back with it);
 //  - else update the multipliers of every augmented pair, lambda <- <lambda + eps g_N>

@@ -58,6 +58,18 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
     double lambda_previous = 0.0;
     std::size_t next_stop = 0;  // the breakpoint the increments are heading for
 
+    // The forces in play over the path so far (see the header): Newton and the
+    // predictor measure residuals against at least the largest force scale of the
+    // converged increments, so that a path back to zero load (a release) converges.
+    double reference_force = 0.0;
+    double last_force_scale = 0.0;  // of the latest evaluation, as the system gave it
+    NonlinearSystem referenced = system;
+    referenced.evaluate = [&](const Vector& v, double t, bool need_tangent, Evaluation& out) {
+        system.evaluate(v, t, need_tangent, out);
+        last_force_scale = out.force_scale;
+        out.force_scale = std::max(out.force_scale, reference_force);
+    };
+
     while (next_stop < path.breakpoints.size()) {
         const int index = static_cast<int>(result.increments.size()) + 1;
         // Worded for the user who pressed Ctrl-C: the app's stop request is SIGINT/SIGTERM.
@@ -91,7 +103,7 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
             OuterDecision decision;
             try {
                 PredictionReport prediction;
-                u = predict(system, stepping.predictor, u_converged, lambda, target,
+                u = predict(referenced, stepping.predictor, u_converged, lambda, target,
                             {u_previous.size() > 0 ? &u_previous : nullptr, lambda_previous}, solver, context,
                             prediction);
                 if (!prediction.note.empty()) {
@@ -100,7 +112,7 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
                         context->log(Verbosity::verbose, increment_text(index, lambda, target) + ": predictor: " +
                                                              prediction.note);
                 }
-                report = solve_newton(system, target, u, newton, solver, context);
+                report = solve_newton(referenced, target, u, newton, solver, context);
                 result.total_iterations += report.iterations;
                 first_solve_iterations = report.iterations;
                 outer_updates = 0;
@@ -110,7 +122,7 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
                     if (decision.action != OuterDecision::Action::resolve)
                         break;
                     ++outer_updates;
-                    NewtonReport again = solve_newton(system, target, u, newton, solver, context);
+                    NewtonReport again = solve_newton(referenced, target, u, newton, solver, context);
                     result.total_iterations += again.iterations;
                     again.iterations += report.iterations;
                     again.residual_history.insert(again.residual_history.begin(), report.residual_history.begin(),
@@ -171,6 +183,7 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
         lambda_previous = lambda;
         if (target == path.breakpoints[next_stop])
             ++next_stop;
+        reference_force = std::max(reference_force, last_force_scale);  // Newton's last evaluation: the converged state
         lambda = target;
         u_converged = u;
         if (callbacks.commit)

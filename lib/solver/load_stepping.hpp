@@ -25,6 +25,15 @@
 // T/count]. An increment that needs more iterations than the target shrinks the
 // next one before it fails; an easy one lets it grow back quickly after cutbacks.
 //
+// Reference force: Newton's relative residual is ||r|| / force_scale, force_scale
+// the forces in play at the state (Evaluation). Along a path that returns to zero
+// load (a release) those forces vanish with the load, and so would any residual
+// the solve can reach: every force is round-off and the ratio stays O(1). So the
+// stepper raises each evaluation's force_scale to at least the largest one of the
+// converged increments so far, as Abaqus measures residuals against the
+// time-averaged force of the step. Under a load that only grows the current
+// forces are the largest, and nothing changes.
+//
 // Predictor (systems with prescribed_motion, solver/predictor.hpp): each attempt
 // starts Newton from the predicted state instead of the last converged one.
 // Force-driven systems (no prescribed_motion) start from the converged state.
