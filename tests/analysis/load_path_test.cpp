@@ -160,9 +160,11 @@ TEST(LoadPath, APrescribedDisplacementFollowsItsAmplitude)
     const Amplitude a({{0.0, 0.0}, {1.0, 1.0}, {3.0, 0.5}});
     const RowMatrix points = results.matrix("bodies/block/control_points");
     for (const Step& s : steps)
-        for (Index k = 0; k < points.rows(); ++k)
-            if (points(k, 1) == 1.0)  // a prescribed dof holds a(t) * value: the same product, exactly
+        for (Index k = 0; k < points.rows(); ++k) {
+            if (points(k, 1) == 1.0) {  // a prescribed dof holds a(t) * value: the same product, exactly
                 EXPECT_EQ(s.u(k, 1), a(s.t) * -0.01) << "t = " << s.t << ", point " << k;
+            }
+        }
     // The whole field scales with the amplitude (linear elasticity).
     const double scale = max_abs(steps[1].u);
     EXPECT_TRUE(at_most(max_abs(steps[5].u - 0.5 * steps[1].u), linear_tolerance * scale));
