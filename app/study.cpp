@@ -1,5 +1,5 @@
 // `igacontact study DECK [--levels N] [--jobs J] [--set PATH=VALUE]... [-q]`:
-// a uniform h-refinement study of any deck (README "Refinement study").
+// a uniform h-refinement study of any deck (docs/cli.md "study", docs/theory.md "Refinement study").
 //
 // Level k is an ordinary run of the same executable (/proc/self/exe) with
 // `--refine-levels k -o <deck>_study/level<k>.h5` and the same --set values,

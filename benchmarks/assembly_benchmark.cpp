@@ -26,7 +26,7 @@
 // than it saves: 2 threads were slower in wall time by default and only tied
 // with OMP_WAIT_POLICY=passive. A speed-up on idle cores could not be measured
 // here. (Those figures are for the former OpenMP loop; the ThreadTeam loop that
-// replaced it waits passively and never for an absent helper: README "Threads".)
+// replaced it waits passively and never for an absent helper: docs/solver.md "Threads".)
 
 #include "assembly/dof_map.hpp"
 #include "assembly/sparse_pattern.hpp"

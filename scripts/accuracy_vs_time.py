@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """What accuracy costs in time: the Hertz benchmark over degree, mesh and penalty.
 
-Runs inputs/hertz.yaml (quarter cylinder on a rigid plane, physics.md section 1) over
+Runs inputs/hertz.yaml (quarter cylinder on a rigid plane, docs/theory.md "The Hertz benchmark") over
   - degree p = 2, 3, 4 in both directions (elevate [p-2, p-1]: quarter_disc is
     degree (2, 1) as built, and its arc is an exact conic, which needs degree >= 2;
     degree 1 would be a faceted polygon, a different geometry, so it is not run),
@@ -33,7 +33,7 @@ p0 and a from /reference/<pair>):
            highest degree), same norm as l2: sqrt(int (p_h - p_ref)^2 dx) /
            (p0 sqrt(a)) over |x| <= 1.2a, a half model counting its half twice.
            Against Hertz, no setting can show much less than ~0.6 % (the finite
-           cylinder differs from the half-space theory, physics.md section 1);
+           cylinder differs from the half-space theory, docs/theory.md "The Hertz benchmark");
            l2_ref measures the discretization alone.
 
 Writes OUT/accuracy.csv, OUT/accuracy.md and OUT/*.png (default OUT = docs/accuracy).
@@ -64,7 +64,7 @@ import hertz_mesh  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PAIR = "cyl_floor"
-WINDOW = 1.2  # |x| <= 1.2 a: the window of igacontact's L2 error (physics.md section 1)
+WINDOW = 1.2  # |x| <= 1.2 a: the window of igacontact's L2 error (docs/theory.md "The Hertz benchmark")
 GRID = 4001  # samples of the window for the L2 integrals (curves are piecewise smooth)
 ONE_SIDED_SLACK = 1e-8  # relative round-off allowed on the empty side of x = 0
 
@@ -339,7 +339,7 @@ def write_markdown(rows, path, args, elapsed, load_before, load_after):
                      f"{describe(cheapest(rows, 'l2_ref', level))}.")
     lines += ["", "Below about 0.6 % the L2 error against Hertz stops measuring the discretization: the finite "
               "cylinder (a/R ~ 0.1) itself differs from Hertz's half-space theory by about that much "
-              "(physics.md section 1), so the column `L2 ref` measures every run against the converged run "
+              "([theory.md, \"The Hertz benchmark\"](../theory.md#the-hertz-benchmark)), so the column `L2 ref` measures every run against the converged run "
               + (f"(p = {ref['degree']}, h_edge = {ref['h_edge']:g}, eps = {ref['penalty']:.0e}, {ref['dofs']} DOFs; "
                  "its own entry is 0 by construction and it still carries its own penalty error)"
                  if ref else "(none completed)") + ". Runs with a softer penalty than the converged run keep "

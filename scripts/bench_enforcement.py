@@ -3,7 +3,7 @@
 
 Runs inputs/hertz.yaml (quarter cylinder, degree 2, graded knots, 3080 DOFs) with
 `--set` for each enforcement and penalty, `--repeat` times each (median wall time),
-and prints a Markdown table read from the results files (shared/spec/results.md):
+and prints a Markdown table read from the results files (docs/results.md):
 post-processed L2, peak and half-width errors against Hertz (/reference/cyl_floor),
 Newton iterations and Uzawa updates of the increment (/steps/0001 attributes), the
 penalty in effect at the end (raised by the augmented Lagrangian's safeguard) and the

@@ -3,7 +3,7 @@
 
 Each deck runs once under /usr/bin/time -v (peak RSS = its "Maximum resident set
 size", the high-water mark of the whole process); dofs are read from the results
-file's /counters (docs/results.md). README "Memory in 3D".
+file's /counters (docs/results.md). docs/performance.md "Memory in 3D".
 
 Usage: /usr/bin/python3 scripts/bench_memory.py DECK.yaml [DECK.yaml ...]
            [--binary build/bin/igacontact] [--out-dir /tmp] [-- extra igacontact args]

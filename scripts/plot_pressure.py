@@ -3,7 +3,7 @@
 
 Usage:  scripts/plot_pressure.py RESULTS.h5 [-o PNG] [--pair NAME] [--step KKKK] [--radial]
 
-Reads only the documented layout (shared/spec/results.md). It plots the pair of
+Reads only the documented layout (docs/results.md). It plots the pair of
 /reference if there is one (or --pair), else every pair, in deck order (the order
 of `contact` in the /deck text; HDF5 lists groups alphabetically). For each side
 carrying Gauss points it draws
@@ -26,6 +26,9 @@ contact resultant (the pair's obstacle_force, else the pressure-weighted normal 
 the best-fit plane of the pressed Gauss points), zoomed to the contact zone, with
 the pressed Gauss points as dots. --radial draws instead the pressure against the
 distance r from the peak in that plane (Gauss points and samples).
+A 2D pair with friction gets a second panel below the pressure: the tangential
+traction (gauss_points/tangential_traction, markers by stick/slip status, and the
+post-processed line) with the Coulomb bound +-mu p of the post-processed pressure.
 Writes RESULTS_pressure.png (or -o) with the Agg backend and prints its path.
 Needs numpy, h5py and matplotlib (/usr/bin/python3 on the project machines).
 """
@@ -268,6 +271,46 @@ def plot_pairs(ax, group, group_name, pairs, args, colours):
         f", /{group_name}"
 
 
+def has_friction(group, pairs):
+    return any("tangential_traction" in side["gauss_points"] for pair in pairs for side in contact_sides(group, pair))
+
+
+def plot_tangential(ax, group, pairs, colours):
+    """The tangential traction (local tangent component) of every frictional side, with the Coulomb bound mu p."""
+    series = 0
+    for pair in pairs:
+        mu = group["contact"][pair].attrs.get("friction_coefficient")
+        for side in contact_sides(group, pair):
+            gauss = side["gauss_points"]
+            if "tangential_traction" not in gauss:
+                continue
+            name = side.name.rsplit("/", 1)[-1]
+            axis = SideAbscissa(side["postprocessed"]["reference_coordinates"][()])
+            colour = colours[series % len(colours)]
+            series += 1
+            x = axis(gauss["reference_coordinates"][()])
+            t = np.asarray(gauss["tangential_traction"][()], dtype=float).reshape(len(x), -1)[:, 0]
+            status = np.asarray(gauss["status"][()])
+            for code, marker, what in ((1, "o", "stick"), (2, "x", "slip")):
+                chosen = status == code
+                if chosen.any():
+                    ax.plot(x[chosen], t[chosen], marker=marker, linestyle="none", markersize=4, color=colour,
+                            label=f"{pair} {name}: Gauss points, {what}")
+            post = side["postprocessed"]
+            xp = axis(post["reference_coordinates"][()])
+            tp = np.asarray(post["tangential_traction"][()], dtype=float).reshape(len(xp), -1)[:, 0]
+            order = np.argsort(xp)
+            ax.plot(xp[order], tp[order], color=colour, linewidth=1.5, label=f"{pair} {name}: post-processed")
+            if mu is not None:
+                p = np.asarray(post["pressure"][()], dtype=float)
+                ax.plot(xp[order], mu * p[order], color=colour, linestyle="--", linewidth=0.8, label=f"± μp (μ = {mu:g})")
+                ax.plot(xp[order], -mu * p[order], color=colour, linestyle="--", linewidth=0.8)
+    ax.set_ylabel("tangential traction t_T")
+    ax.axhline(0.0, color="grey", linewidth=0.5)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+
+
 def contact_sides(group, pair):
     return [s for s in group["contact"][pair].values() if isinstance(s, h5py.Group) and "gauss_points" in s]
 
@@ -460,7 +503,11 @@ def main(argv):
             plot_faces(h5, group, group_name, pairs, args).savefig(output, dpi=120)
             print(output)
             return 0
-        fig, ax = plt.subplots(figsize=(8, 5))
+        friction = has_friction(group, pairs)
+        if friction:  # the tangential traction in a second panel below the pressure
+            fig, (ax, ax_t) = plt.subplots(2, 1, figsize=(8, 8), sharex=True)
+        else:
+            fig, ax = plt.subplots(figsize=(8, 5))
         colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
         if with_reference:
             title = plot_with_reference(ax, h5, group, group_name, pairs[0], args, colours)
@@ -470,6 +517,10 @@ def main(argv):
         ax.axhline(0.0, color="grey", linewidth=0.5)
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)
+        if friction:
+            plot_tangential(ax_t, group, pairs, colours)
+            ax_t.set_xlabel(ax.get_xlabel())
+            ax.set_xlabel("")
         fig.tight_layout()
         fig.savefig(output, dpi=120)
     print(output)

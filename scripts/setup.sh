@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config
-  libeigen3-dev libsuitesparse-dev libopenblas0-serial libyaml-cpp-dev libhdf5-dev hdf5-tools
+  libeigen3-dev libsuitesparse-dev libopenblas0-pthread libyaml-cpp-dev libhdf5-dev hdf5-tools
   libcli11-dev libfmt-dev libtinyxml2-dev libgtest-dev libgmock-dev libbenchmark-dev
   python3-numpy python3-h5py python3-matplotlib python3-yaml
   # The PETSc/MPI backend (solver.backend: petsc, mpirun): PETSc with MUMPS, hypre and

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Set up, build and run all tests through CTest (the README's test command; .ci/run calls it).
+# Set up, build and run all tests through CTest (the README's test command; .ci/run calls it),
+# after checking that the references between the repository's files resolve
+# (scripts/check_references.py, a second or so, after the build; docs/architecture.md).
 # Usage: scripts/test.sh [--sanitize] [ctest options...]     e.g. scripts/test.sh -R nurbs
 #   --sanitize  build with AddressSanitizer + UBSan (RelWithDebInfo) in build-sanitize/
 #               (or $IGACONTACT_SANITIZE_BUILD_DIR) and run the fast tests (not labelled slow).
@@ -26,7 +28,9 @@ if [ "${1:-}" = "--sanitize" ]; then
 fi
 
 build="${IGACONTACT_BUILD_DIR:-$root/build}"
-"$root/scripts/build.sh"
+"$root/scripts/build.sh"  # (runs scripts/setup.sh first, which installs /usr/bin/python3)
+# Dangling references to files (docs, decks, sources) fail the suite before its tests run.
+/usr/bin/python3 "$root/scripts/check_references.py"
 cd "$build"
 # The tests labelled slow (level-2 refinements, minutes each on this machine; the
 # augmented-Lagrangian one exceeded its 30-minute limit in November 2026) run with

@@ -42,7 +42,7 @@ namespace iga::analysis {
 /// (inputs/hertz.yaml, inputs/hertz_two_cylinders_2d.yaml: a/l = 0.07, kappa = 690)
 /// the errors are then within 0.1 % (L2) of a penalty so stiff it no longer matters,
 /// and Newton takes the two cylinders' load in one increment at refinement levels
-/// 0-2; measured in README "What accuracy costs".
+/// 0-2; measured in docs/performance.md "penalty: auto".
 constexpr double auto_penalty_kappa_side = 1.0e4;
 /// c_max in the cap eps <= c_max E'/h: two digits of conditioning at most.
 constexpr double auto_penalty_cap = 100.0;

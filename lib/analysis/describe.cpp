@@ -27,21 +27,88 @@ std::string point_text(const VecN& x)
     return out + ")";
 }
 
-/// Patches, interfaces, boundary sides with their end points, named surfaces.
+/// Control points of a patch coincide when closer than this: round-off of the
+/// shapes' and transforms' arithmetic, relative to the coordinates' size.
+double coincidence_tolerance(const nurbs::Patch& patch)
+{
+    return 1e-12 * (1.0 + patch.control_points().cwiseAbs().maxCoeff());
+}
+
+/// The corners of a side (open knot vectors interpolate them): 2 in 2D, 4 in 3D,
+/// in the side's own parameter order (first direction fastest).
+std::string side_corners(const nurbs::SidePatch& sp)
+{
+    const RowMatrix& P = sp.patch.control_points();
+    const int n0 = sp.patch.n_basis(0), n1 = sp.patch.n_par() > 1 ? sp.patch.n_basis(1) : 1;
+    const std::vector<int> rows = n1 == 1 ? std::vector<int>{0, n0 - 1}
+                                          : std::vector<int>{0, n0 - 1, n0 * (n1 - 1), n0 * n1 - 1};
+    std::string out;
+    for (int r : rows)
+        out += (out.empty() ? "" : " ") + point_text(P.row(r).transpose());
+    return out;
+}
+
+/// " (collapsed to a point)" when all control points of the side coincide, " (collapsed
+/// to a line)" when a face's control points coincide along one of its directions (the
+/// axis of a revolved solid, an extruded corner), "" for a side of positive measure.
+std::string collapse_note(const nurbs::SidePatch& sp, double tolerance)
+{
+    if (nurbs::is_collapsed(sp, tolerance))
+        return " (collapsed to a point)";
+    if (sp.patch.n_par() < 2)
+        return "";
+    const RowMatrix& P = sp.patch.control_points();
+    const int n0 = sp.patch.n_basis(0), n1 = sp.patch.n_basis(1);
+    const auto along = [&](int dir) {  // every line of control points along `dir` is one point
+        for (int line = 0; line < (dir == 0 ? n1 : n0); ++line)
+            for (int k = 1; k < (dir == 0 ? n0 : n1); ++k) {
+                const int a = dir == 0 ? line * n0 : line;
+                const int b = dir == 0 ? line * n0 + k : line + k * n0;
+                if ((P.row(a) - P.row(b)).norm() > tolerance)
+                    return false;
+            }
+        return true;
+    };
+    return along(0) || along(1) ? " (collapsed to a line)" : "";
+}
+
+/// "#     <label>: <meaning>; corners ... (collapsed ...)"
+std::string side_line(const std::string& label, const std::string& meaning, const nurbs::SidePatch& sp,
+                      double tolerance)
+{
+    return fmt::format("#     {}: {}; corners {}{}\n", label, meaning, side_corners(sp), collapse_note(sp, tolerance));
+}
+
+/// The line that says a mirror reversed u, with where u0 and u1 are now.
+std::string reversal_line(const std::string& what, const nurbs::Patch& patch, const std::string& before)
+{
+    const nurbs::SidePatch u0 = nurbs::extract_side(patch, Side::u0);
+    const nurbs::SidePatch u1 = nurbs::extract_side(patch, Side::u1);
+    return fmt::format("#     {}mirror reversed u (to keep the patch right-handed): side u0 is now at {}, side u1 at "
+                       "{} (the {} u1 and u0 before the transform)\n",
+                       what, side_corners(u0), side_corners(u1), before);
+}
+
+std::string degrees_and_spans(const nurbs::Patch& patch)
+{
+    std::string degrees, spans;
+    for (int dir = 0; dir < patch.n_par(); ++dir) {
+        degrees += fmt::format("{}{}", dir ? ", " : "", patch.degree(dir));
+        spans += fmt::format("{}{}", dir ? ", " : "", patch.knots(dir).n_spans());
+    }
+    return fmt::format("degrees [{}], spans [{}], {} control points", degrees, spans, patch.n_control_points());
+}
+
+/// Patches, interfaces, every patch side with its corners, named surfaces.
 std::string describe_multi_patch(const io::Deck& deck, const io::Body& body)
 {
     const BodyPatches built = build_body_patches(deck, body);
     std::string out = fmt::format("#   {}: {} patches, {} interfaces, {} distinct control points\n", body.name,
                                   built.patches.size(), built.topology.interfaces.size(), built.topology.n_nodes);
     for (std::size_t p = 0; p < built.patches.size(); ++p) {
-        const nurbs::Patch& patch = built.patches[p];
-        std::string degrees, spans;
-        for (int dir = 0; dir < patch.n_par(); ++dir) {
-            degrees += fmt::format("{}{}", dir ? ", " : "", patch.degree(dir));
-            spans += fmt::format("{}{}", dir ? ", " : "", patch.knots(dir).n_spans());
-        }
-        out += fmt::format("#     patch {}: degrees [{}], spans [{}], {} control points\n", built.names[p], degrees,
-                           spans, patch.n_control_points());
+        out += fmt::format("#     patch {}: {}\n", built.names[p], degrees_and_spans(built.patches[p]));
+        if (p < body.patches.size() && io::reverses_u(body.patches[p].nurbs.transform))
+            out += reversal_line("patch " + built.names[p] + ": ", built.patches[p], "control points'");
     }
     for (const nurbs::Interface& i : built.topology.interfaces)
         out += fmt::format("#     interface {}.{} = {}.{}\n", built.names[static_cast<std::size_t>(i.patch_a)],
@@ -50,20 +117,11 @@ std::string describe_multi_patch(const io::Deck& deck, const io::Body& body)
         const nurbs::Patch& patch = built.patches[p];
         for (int k = 0; k < 2 * patch.n_par(); ++k) {
             const Side side = static_cast<Side>(k);
+            std::string meaning = generic_side_meaning(side);
             if (built.topology.is_interface(static_cast<int>(p), side))
-                continue;
-            const nurbs::SidePatch sp = nurbs::extract_side(patch, side);
-            const RowMatrix& P = sp.patch.control_points();
-            // The corners of the side (open knot vectors interpolate them).
-            std::string corners;
-            const int n0 = sp.patch.n_basis(0), n1 = sp.patch.n_par() > 1 ? sp.patch.n_basis(1) : 1;
-            const std::vector<int> corner_rows = n1 == 1 ? std::vector<int>{0, n0 - 1}
-                                                         : std::vector<int>{0, n0 - 1, n0 * (n1 - 1), n0 * n1 - 1};
-            for (int r : corner_rows)
-                corners += (corners.empty() ? "" : " ") + point_text(P.row(r).transpose());
-            const bool collapsed = nurbs::is_collapsed(sp, 1e-12 * (1.0 + P.cwiseAbs().maxCoeff()));
-            out += fmt::format("#     {}.{}.{}: {} from {}{}\n", body.name, built.names[p], side_name(side),
-                               generic_side_meaning(side), corners, collapsed ? " (collapsed)" : "");
+                meaning += " (interface)";
+            out += side_line(fmt::format("{}.{}.{}", body.name, built.names[p], side_name(side)), meaning,
+                             nurbs::extract_side(patch, side), coincidence_tolerance(patch));
         }
     }
     for (const io::NamedSurface& surface : body.surfaces) {
@@ -79,7 +137,7 @@ std::string describe_multi_patch(const io::Deck& deck, const io::Body& body)
 
 std::string describe_bodies(const io::Deck& deck)
 {
-    std::string out = "# bodies and their sides:\n";
+    std::string out = "# bodies and their sides (corners of the analysed patch, after any transform):\n";
     const int d = deck.analysis.dimension;
     for (const io::Body& body : deck.bodies) {
         if (body.rigid) {
@@ -100,13 +158,10 @@ std::string describe_bodies(const io::Deck& deck)
                                                   std::string("cannot build the patch: ") + e.what()));
             }
         }();
-        std::string degrees, spans;
-        for (int dir = 0; dir < patch.n_par(); ++dir) {
-            degrees += fmt::format("{}{}", dir ? ", " : "", patch.degree(dir));
-            spans += fmt::format("{}{}", dir ? ", " : "", patch.knots(dir).n_spans());
-        }
-        out += fmt::format("#   {}: degrees [{}], spans [{}], {} control points\n", body.name, degrees, spans,
-                           patch.n_control_points());
+        out += fmt::format("#   {}: {}\n", body.name, degrees_and_spans(patch));
+        const std::vector<io::TransformStep>& steps = body.shape ? body.shape->transform : body.nurbs->transform;
+        if (io::reverses_u(steps))
+            out += reversal_line("", patch, body.shape ? "shape's" : "control points'");
         const std::vector<std::pair<std::string, std::string>> meanings = side_meanings(body);
         for (int k = 0; k < 2 * patch.n_par(); ++k) {
             const Side side = static_cast<Side>(k);
@@ -114,10 +169,8 @@ std::string describe_bodies(const io::Deck& deck)
             for (const auto& [name, text] : meanings)
                 if (name == side_name(side))
                     meaning = text;
-            const nurbs::SidePatch sp = nurbs::extract_side(patch, side);
-            const bool collapsed = nurbs::is_collapsed(sp, 1e-12 * (1.0 + patch.control_points().cwiseAbs().maxCoeff()));
-            out += fmt::format("#     {}.{}: {}{}\n", body.name, side_name(side), meaning,
-                               collapsed && meaning.find("collapsed") == std::string::npos ? " (collapsed)" : "");
+            out += side_line(body.name + "." + std::string(side_name(side)), meaning, nurbs::extract_side(patch, side),
+                             coincidence_tolerance(patch));
         }
         for (const io::NamedSurface& surface : body.surfaces) {
             std::string sides;

@@ -10,7 +10,7 @@ namespace iga::analysis {
 namespace {
 
 /// A penalty above 1e6 E makes the tangent's condition number, and so the amplified
-/// round-off, the likely reason (README "What accuracy costs": 1e2-1e3 E/h is plenty).
+/// round-off, the likely reason (docs/performance.md "penalty: auto": 1e2-1e3 E/h is plenty).
 constexpr double stiff_penalty_ratio = 1e6;
 
 std::string penalty_facts(const FailureContext& c)

@@ -148,6 +148,11 @@ Matrix holding_rows(const Scene& scene, const std::vector<int>& bodies, const Gr
         for (int parent : pair.parent_index[static_cast<std::size_t>(k)]) {
             const int a = offset + parent;
             const VecN& X = nodes.X[static_cast<std::size_t>(a)];
+            if (pair.pair.settings().friction.active()) {  // a sticking point is held in every direction
+                for (int i = 0; i < d; ++i)
+                    add_row(a, VecN::Unit(d, i));
+                continue;
+            }
             if (const auto* plane = std::get_if<contact::RigidPlane>(&obstacle.shape)) {
                 add_row(a, plane->normal);
             } else {

@@ -11,7 +11,8 @@
 //    along the obstacle's normal there: n(X_a) . u(X_a) != 0 (the normal of a
 //    plane is constant, that of a sphere points from its centre: a plane holds
 //    the translation along its normal (one-sided) and not the tangential ones, a
-//    sphere does not hold rotations about its centre).
+//    sphere does not hold rotations about its centre); a contact with friction
+//    holds every direction (its points stick until the load overcomes mu p).
 // Two bodies joined by a contact pair are taken to hold each other's relative
 // motion (their contact is not examined): they form one group, whose rigid modes
 // move all its bodies together. The free modes are the null space of the rows

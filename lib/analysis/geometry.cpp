@@ -4,7 +4,26 @@
 #include "nurbs/refine.hpp"
 #include "nurbs/shapes.hpp"
 
+#include <variant>
+
 namespace iga::analysis {
+
+nurbs::Affine placement(const std::vector<io::TransformStep>& steps, int dimension)
+{
+    nurbs::Affine map = nurbs::identity(dimension);
+    for (const io::TransformStep& step : steps) {
+        if (const auto* t = std::get_if<io::Translate>(&step))
+            map = map.then(nurbs::translation(to_vec(t->offset)));
+        else if (const auto* r = std::get_if<io::Rotate>(&step))
+            map = map.then(dimension == 3 ? nurbs::rotation(to_vec(r->axis), r->angle_deg, to_vec(r->about))
+                                          : nurbs::rotation_2d(r->angle_deg, to_vec(r->about)));
+        else if (const auto* m = std::get_if<io::Mirror>(&step))
+            map = map.then(nurbs::mirror(to_vec(m->normal), to_vec(m->point)));
+        else
+            map = map.then(nurbs::scaling(std::get<io::Scale>(step).factor, dimension));
+    }
+    return map;
+}
 
 nurbs::Patch raw_patch(const io::NurbsData& data, int dimension)
 {
@@ -20,7 +39,8 @@ nurbs::Patch raw_patch(const io::NurbsData& data, int dimension)
             points(a, i) = row[static_cast<std::size_t>(i)];
         weights(a) = row[static_cast<std::size_t>(dimension)];
     }
-    return nurbs::Patch(std::move(knots), std::move(points), std::move(weights));
+    nurbs::Patch patch(std::move(knots), std::move(points), std::move(weights));
+    return data.transform.empty() ? patch : nurbs::transformed(patch, placement(data.transform, dimension));
 }
 
 namespace {
@@ -40,7 +60,9 @@ nurbs::Patch planar_or_solid_shape(const io::Shape& shape)
 nurbs::Patch shape_patch(const io::Shape& shape)
 {
     nurbs::Patch patch = planar_or_solid_shape(shape);
-    return shape.extrude ? nurbs::extrude(patch, *shape.extrude) : patch;
+    if (shape.extrude)
+        patch = nurbs::extrude(patch, *shape.extrude);
+    return shape.transform.empty() ? patch : nurbs::transformed(patch, placement(shape.transform, patch.dim()));
 }
 
 }  // namespace
@@ -49,7 +71,22 @@ std::vector<std::pair<std::string, std::string>> side_meanings(const io::Body& b
 {
     if (!body.shape)
         return {};
-    return nurbs::shape_side_names(std::string(io::deck_name(body.shape->type)), body.shape->extrude.has_value());
+    auto meanings =
+        nurbs::shape_side_names(std::string(io::deck_name(body.shape->type)), body.shape->extrude.has_value());
+    if (body.shape->transform.empty())
+        return meanings;
+    const bool reversed = io::reverses_u(body.shape->transform);
+    for (auto& [side, text] : meanings) {
+        if (reversed && (side == "u0" || side == "u1")) {
+            // The mirror reversed u: the shape's u0 is now called u1, and its u1 u0.
+            const std::string built = side;
+            side = built == "u0" ? "u1" : "u0";
+            text += " (as built, where it was side " + built + "; placed by the transform, whose mirror reversed u)";
+        } else {
+            text += " (as built; placed by the transform)";
+        }
+    }
+    return meanings;
 }
 
 nurbs::Patch build_patch(const io::Body& body, int dimension, int halvings)

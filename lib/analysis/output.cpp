@@ -1,5 +1,6 @@
 #include "analysis/output.hpp"
 
+#include "analysis/geometry.hpp"
 #include "analysis/point_contact_reference.hpp"
 #include "io/deck_names.hpp"
 
@@ -130,8 +131,8 @@ std::vector<io::BodyGeometry> body_geometry(const io::Deck& deck, const Scene& s
                 g.control_points = std::move(p.control_points);
             }
         }
-        if (deck.bodies[k].shape)
-            g.side_names = nurbs::shape_side_names(std::string(io::deck_name(deck.bodies[k].shape->type)));
+        // The table `check` prints: extruded shapes have six sides, a mirror swaps u0 and u1.
+        g.side_names = side_meanings(deck.bodies[k]);
         out.push_back(std::move(g));
     }
     return out;
@@ -149,6 +150,59 @@ std::vector<io::Reaction> reactions(const Scene& scene, const Vector& r_full)
     }
     return out;
 }
+
+namespace {
+
+/// The friction part of a contact side's results: the converged increment's
+/// tangential state (ContactPair::converged_friction: the evaluation behind these
+/// results comes after the commit), in space and in the local tangent basis of the
+/// obstacle's normal (contact::tangent_basis along the x axis, or y where the
+/// normal is near x), recovered at the samples component by component as the
+/// pressure is, and its resultant.
+void add_friction(io::ContactSideResult& r, const PairModel& model, int carrier_index,
+                  const contact::CarrierResult& carrier, const contact::DeformableSide& side,
+                  const RowMatrix& side_displacement, double load_factor, int samples_per_span)
+{
+    const contact::FrictionState& state = model.pair.converged_friction(carrier_index);
+    const auto& obstacle = std::get<contact::RigidObstacle>(model.pair.surface(1 - carrier.surface));
+    const Index n_g = carrier.coordinates.rows();
+    const Index d = carrier.coordinates.cols();
+    auto local = [&](const RowMatrix& points, const RowMatrix& traction) {
+        RowMatrix out(points.rows(), d - 1);
+        for (Index i = 0; i < points.rows(); ++i) {
+            const contact::ObstacleFoot foot = obstacle.foot(points.row(i).transpose(), load_factor);
+            VecN along = VecN::Zero(d);
+            along(std::abs(foot.normal(0)) > 0.9 ? 1 : 0) = 1.0;
+            out.row(i) = (contact::tangent_basis(foot.normal, along).transpose() * traction.row(i).transpose())
+                             .transpose();
+        }
+        return out;
+    };
+    io::GaussPointData& gp = r.gauss_points;
+    gp.tangential_traction_vector = state.traction;
+    gp.tangential_traction = local(carrier.coordinates, state.traction);
+    gp.status.resize(static_cast<std::size_t>(n_g));
+    for (Index g = 0; g < n_g; ++g)
+        gp.status[static_cast<std::size_t>(g)] = static_cast<int>(state.status[static_cast<std::size_t>(g)]);
+    gp.slip_increment = state.slip_increment;
+    gp.slip = state.slip;
+    r.friction_force.assign(static_cast<std::size_t>(d), 0.0);
+    for (Index g = 0; g < n_g; ++g)
+        for (Index i = 0; i < d; ++i)
+            r.friction_force[static_cast<std::size_t>(i)] += carrier.weight(g) * state.traction(g, i);
+
+    contact::CarrierResult component = carrier;
+    io::PostProcessedData& pp = r.postprocessed;
+    pp.tangential_traction_vector.resize(pp.coordinates.rows(), d);
+    for (Index i = 0; i < d; ++i) {
+        component.pressure = state.traction.col(i);
+        pp.tangential_traction_vector.col(i) =
+            contact::recover_pressure(side, side_displacement, component, samples_per_span).pressure;
+    }
+    pp.tangential_traction = local(pp.coordinates, pp.tangential_traction_vector);
+}
+
+}  // namespace
 
 io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_free, double load_factor,
                        int samples_per_span)
@@ -194,6 +248,10 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
         result.text_attributes["enforcement"] = model.augmented ? "augmented_lagrangian" : "penalty";
         if (model.augmented)
             result.attributes["gap_tolerance"] = model.gap_tolerance_used;
+        if (model.pair.settings().friction.active()) {
+            result.attributes["friction_coefficient"] = model.pair.settings().friction.coefficient;
+            result.attributes["tangential_penalty"] = model.pair.settings().friction.tangential_penalty;
+        }
         if (model.penalty_auto) {  // the inputs of the rule eps = min(kappa_side E*/l, c_max E'/h)
             result.attributes["penalty_modulus"] = model.rule.modulus;
             result.attributes["penalty_element_size"] = model.rule.element_size;
@@ -207,7 +265,8 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
             for (Index k = 0; k < state.residual.size(); ++k)
                 result.obstacle_force[static_cast<std::size_t>(k % d)] += state.residual(k);
         }
-        for (const contact::CarrierResult& computed : state.carriers) {
+        for (std::size_t c = 0; c < state.carriers.size(); ++c) {
+            const contact::CarrierResult& computed = state.carriers[c];
             // Small kinematics know one area, the reference one: a pressure integrated over
             // the current surface (two-half-pass) is shown per unit reference area, p j/J,
             // the traction the linear-elastic body carries (docs/theory.md "Two-half-pass balance").
@@ -256,6 +315,10 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
             r.attributes["n_active"] = active;
             r.attributes["max_penetration"] = penetration;
             r.attributes["contact_measure"] = contact_measure;  // length (area in 3D) in contact, measured as the weights
+            if (model.pair.settings().friction.active())
+                add_friction(r, model, static_cast<int>(c), carrier, *side,
+                             system.side_displacement(u_full, static_cast<int>(p), carrier.surface), load_factor,
+                             samples_per_span);
             result.sides.push_back(std::move(r));
         }
         step.contact.push_back(std::move(result));

@@ -51,8 +51,13 @@ io::HistoryRow history_row(const io::StepData& step)
     for (const io::ContactPairResult& pair : step.contact)
         for (const io::ContactSideResult& side : pair.sides) {
             const auto penetration = side.attributes.find("max_penetration");
+            const auto area = side.attributes.find("contact_measure");
+            const int d = side.gauss_points.coordinates.cols();
             row.contact.push_back({pair.name, side.side_name, side.normal_force,
-                                   penetration == side.attributes.end() ? 0.0 : penetration->second});
+                                   penetration == side.attributes.end() ? 0.0 : penetration->second,
+                                   side.friction_force.empty() ? std::vector<double>(static_cast<std::size_t>(d), 0.0)
+                                                               : side.friction_force,
+                                   area == side.attributes.end() ? 0.0 : area->second});
         }
     return row;
 }
@@ -132,6 +137,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     assembly::limit_library_threads();  // CHOLMOD's OpenMP loops inline: nothing spins
     SceneSystem system(scene, context, options.threads, comm);
     system.set_collective_stop(stop);
+    // The factorizations' BLAS gets the assembly's cores; under MPI the ranks hold them.
+    assembly::set_blas_threads(comm.parallel() ? 1 : system.library_threads());
     if (scene.kinematics == mechanics::Kinematics::small) {
         // K0 is all the element quadrature data serve under small kinematics: assembled
         // now, then freed.

@@ -391,6 +391,9 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
                 rule = auto_penalty(sides, materials);
                 if (c.penalty_auto)
                     settings.penalty = rule.penalty;
+                settings.friction.coefficient = c.friction.coefficient;
+                settings.friction.tangential_penalty =
+                    c.friction.tangential_penalty_auto ? settings.penalty : c.friction.tangential_penalty;
                 return contact::ContactPair(settings, std::move(first), std::move(second));
             } catch (const Error& e) {
                 std::string reason = e.what();

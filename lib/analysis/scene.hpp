@@ -170,7 +170,7 @@ struct Scene {
 /// may evaluate those elements afterwards: on several ranks the blocks another rank
 /// assembles, under small kinematics every block once K0 is assembled
 /// (SceneSystem::assemble_constant_stiffness). In 3D quadratic elements they are a
-/// sixth of a run's memory (README "Memory in 3D").
+/// sixth of a run's memory (docs/performance.md "Memory in 3D").
 void release_element_geometry(Scene& scene, const std::function<bool(int block)>& keep);
 
 /// The sides a deck reference names on deformable body b of the scene.

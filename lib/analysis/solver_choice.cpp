@@ -47,6 +47,22 @@ Matrix rigid_body_modes(const Scene& scene)
     return modes;
 }
 
+int point_block_size(const Scene& scene)
+{
+    // Free dofs are numbered in increasing full order, node by node (assembly/dof_map.hpp),
+    // so they form blocks of d exactly when no node is partly constrained (a roller).
+    const assembly::DofMap& dofs = *scene.dofs;
+    const int d = scene.dim;
+    for (int node = 0; node < dofs.n_full() / d; ++node) {
+        int n_free = 0;
+        for (int i = 0; i < d; ++i)
+            n_free += dofs.free_index(dofs.dof(node, i)) >= 0 ? 1 : 0;
+        if (n_free != 0 && n_free != d)
+            return 1;
+    }
+    return d;
+}
+
 solver::LinearSolverPolicy linear_solver_policy(const io::Deck& deck, const Scene& scene,
                                                 const solver::NonlinearSystem& system, const Communicator& comm)
 {
@@ -81,8 +97,10 @@ solver::LinearSolverPolicy linear_solver_policy(const io::Deck& deck, const Scen
         if (pair.rule.modulus > 0.0)
             policy.penalty_ratio = std::max(policy.penalty_ratio,
                                             pair.pair.settings().penalty * pair.rule.element_size / pair.rule.modulus);
-    if (policy.backend == solver::Backend::petsc && policy.method == solver::Method::iterative)
+    if (policy.backend == solver::Backend::petsc && policy.method == solver::Method::iterative) {
         policy.rigid_body_modes = rigid_body_modes(scene);
+        policy.block_size = point_block_size(scene);
+    }
     return policy;
 }
 

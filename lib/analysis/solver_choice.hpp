@@ -22,4 +22,8 @@ solver::LinearSolverPolicy linear_solver_policy(const io::Deck& deck, const Scen
 /// near-null space of elasticity that algebraic multigrid needs to coarsen it well.
 Matrix rigid_body_modes(const Scene& scene);
 
+/// d when the free dofs come in blocks of the d components of one control point
+/// (no node partly constrained), else 1 (solver::LinearSolverPolicy::block_size).
+int point_block_size(const Scene& scene);
+
 }  // namespace iga::analysis

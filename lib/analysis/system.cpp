@@ -109,13 +109,12 @@ SceneSystem::SceneSystem(Scene& scene, RunContext& context, int requested_thread
             work += n_local * n_local;
         }
     IGA_CHECK(static_cast<int>(owner_.size()) == scene.n_element_blocks, "element blocks do not match the bodies");
-    // Small kinematics only multiplies cached element stiffnesses: always serial.
-    if (scene.kinematics == mechanics::Kinematics::finite) {
-        const int n = assembly::choose_threads(requested_threads, work, assembly::hardware_threads(),
-                                                   requested_threads >= 1 ? 0.0 : assembly::system_load());
-        if (n > 1)
-            team_ = std::make_unique<assembly::ThreadTeam>(n);
-    }
+    // The factorization's BLAS scales with the same work measure (the tangent's size);
+    // small kinematics only multiplies cached element stiffnesses: assembly serial.
+    library_threads_ = assembly::choose_threads(requested_threads, work, assembly::hardware_threads(),
+                                                requested_threads >= 1 ? 0.0 : assembly::system_load());
+    if (scene.kinematics == mechanics::Kinematics::finite && library_threads_ > 1)
+        team_ = std::make_unique<assembly::ThreadTeam>(library_threads_);
     if (comm.parallel()) {
         first_block_of_dof_.assign(static_cast<std::size_t>(scene.dofs->n_full()), scene.n_element_blocks);
         for (int block = scene.n_element_blocks - 1; block >= 0; --block) {
@@ -140,10 +139,13 @@ solver::NonlinearSystem SceneSystem::nonlinear_system()
     // Symmetric unless a follower load or a two-half-pass pair of two deformable sides
     // (each half pass assembles only its slave rows) makes it otherwise: elastic
     // tangents, rigid-obstacle and single-pass contact are Hessians of an energy.
-    bool half_passes = false;
-    for (const PairModel& pair : scene_.pairs)
+    // Coulomb friction's slip tangent is not symmetric either (contact/friction.hpp).
+    bool half_passes = false, friction = false;
+    for (const PairModel& pair : scene_.pairs) {
         half_passes = half_passes || (pair.obstacle < 0 && pair.formulation == contact::Formulation::two_half_pass);
-    system.symmetric = !half_passes && !follower;
+        friction = friction || pair.pair.settings().friction.active();
+    }
+    system.symmetric = !half_passes && !follower && !friction;
     if (comm_.parallel())
         system.sum_over_ranks = [this](Vector& v) { comm_.sum(v); };
     // A trust radius only where a singular first touch can send a step far away.
@@ -363,7 +365,7 @@ void SceneSystem::evaluate_into(const Vector& u_free, double t, bool need_tangen
             out.tangent.coeffs().setZero();
     } else if (out.tangent.nonZeros() > 0) {
         // A line search's trial states need no tangent: a stale one would keep a
-        // tangent-sized block of memory per trial evaluation (README "Memory in 3D").
+        // tangent-sized block of memory per trial evaluation (docs/performance.md "Memory in 3D").
         out.tangent = SparseMatrix();
     }
 

@@ -67,6 +67,9 @@ public:
 
     /// Threads of the element loop (1 for small kinematics, whose loop is serial).
     int n_threads() const { return team_ ? team_->n_threads() : 1; }
+    /// Threads worth giving the linear solver's BLAS (the automatic choice for the
+    /// tangent's size, or --threads), also where the assembly stays serial.
+    int library_threads() const { return library_threads_; }
 
     /// The NonlinearSystem view for the solver (captures this object).
     solver::NonlinearSystem nonlinear_system();
@@ -140,6 +143,7 @@ private:
     RunContext& context_;
     Communicator comm_;
     std::unique_ptr<assembly::ThreadTeam> team_;  // null: serial element loop
+    int library_threads_ = 1;
     struct BlockOwner {
         int body;
         int element;

@@ -6,11 +6,11 @@
 // Line contact.
 //
 // Reference: Johnson, "Contact Mechanics", CUP 1985, ch. 4-5; formulas as in
-// shared/physics.md §2.1. With P the force per unit thickness:
+// docs/theory.md "Hertz formulas". With P the force per unit thickness:
 //   1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2,   1/R* = 1/R1 + 1/R2,
 //   a = sqrt(4 P R* / (pi E*)),   p0 = 2P/(pi a) = sqrt(P E* / (pi R*)),
 //   p(x) = p0 sqrt(1 - x^2/a^2) for |x| <= a, 0 outside;   int p dx = P.
-// Small-strain, half-space theory: valid for a << R (see physics.md §2.2).
+// Small-strain, half-space theory: valid for a << R (docs/theory.md "Hertz formulas").
 //
 // Point contact (Johnson, ch. 4.2). With F the total normal force:
 //   1/E* and 1/R* as above (R1, R2 the sphere radii),

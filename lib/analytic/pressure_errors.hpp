@@ -1,10 +1,10 @@
 #pragma once
 // Error measures of a computed contact-pressure curve against the Hertz
 // solution (hertz.hpp); the numbers stored in /reference/<pair> and quoted in
-// the README. Notation: p_h the computed pressure, p_H the Hertz pressure,
+// docs/theory.md "Error measures against Hertz". Notation: p_h the computed pressure, p_H the Hertz pressure,
 // a and p0 the Hertz half-width and peak, x the signed distance from the
 // contact centre measured in the reference configuration (Hertz is a
-// small-strain theory, physics.md §1).
+// small-strain theory, docs/theory.md "The Hertz benchmark").
 //
 // The discrete curve. The samples (x_i, p_i) are sorted by x; samples whose x
 // agree to 1e-12 of the data extent max|x_i| are merged into one with the

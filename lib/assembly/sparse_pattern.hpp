@@ -41,7 +41,7 @@
 // never for a helper to show up. So a helper that another process holds off its
 // core costs at most the chunk it holds, and the loop is never much slower than
 // the serial one on a loaded machine (OpenMP's spin-waiting barriers were, up
-// to 100x; README "Threads"). The serial path visits the blocks in the same
+// to 100x; docs/performance.md "Threads"). The serial path visits the blocks in the same
 // color order, so both give bitwise identical results. Measured with
 // benchmarks/assembly_benchmark.cpp (64 x 64 quadratic 2D spans, 18-dof blocks):
 // the indexed add costs 0.6x the CPU time of triplets + setFromTriplets; coloring

@@ -9,6 +9,10 @@
 #include <omp.h>
 #endif
 
+// OpenBLAS's run-time control, present when the BLAS loaded is OpenBLAS (weak:
+// null with another BLAS).
+extern "C" void openblas_set_num_threads(int) __attribute__((weak));
+
 namespace iga::assembly {
 
 int choose_threads(int requested, std::int64_t work, int hardware_threads, double load)
@@ -38,6 +42,14 @@ void limit_library_threads()
     omp_set_num_threads(1);
     omp_set_dynamic(0);
 #endif
+}
+
+bool set_blas_threads(int n)
+{
+    if (openblas_set_num_threads == nullptr)
+        return false;
+    openblas_set_num_threads(std::max(1, n));
+    return true;
 }
 
 }  // namespace iga::assembly

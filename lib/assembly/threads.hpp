@@ -11,14 +11,17 @@
 // other jobs keep busy a second thread gains nothing and only adds jitter.
 // Results do not depend on the thread count (bitwise; sparse_pattern.hpp), so
 // a load-dependent choice costs no reproducibility. Numbers behind the
-// threshold: README "Threads" (scripts/bench_threads.py).
+// threshold: docs/performance.md "Threads" (scripts/bench_threads.py).
 //
 // Library threads: CHOLMOD in the Debian build uses OpenMP (libgomp) for a few
 // loops, and libgomp's idle threads spin by default (OMP_WAIT_POLICY is read at
 // program start). limit_library_threads() sets the calling thread's OpenMP team
-// size to one, so those loops run inline and nothing spins; BLAS is the serial
-// OpenBLAS (scripts/setup.sh installs libopenblas0-serial). Our own code is not
-// compiled with OpenMP, so Eigen never starts threads either.
+// size to one, so those loops run inline and nothing spins. BLAS carries the
+// dense work of a supernodal factorization (CHOLMOD, MUMPS): with a threaded
+// OpenBLAS (scripts/setup.sh installs libopenblas0-pthread) set_blas_threads()
+// gives it the cores the assembly would use -- one per rank under MPI, where the
+// ranks already fill the cores. Our own code is not compiled with OpenMP, so
+// Eigen never starts threads either.
 
 #include <cstdint>
 
@@ -44,5 +47,9 @@ double system_load();
 /// OpenMP team size one for the libraries called from this thread (CHOLMOD); a
 /// no-op without OpenMP.
 void limit_library_threads();
+
+/// Threads for the BLAS behind the sparse factorizations (at least 1). Returns
+/// false when the BLAS has no such control (not OpenBLAS): it then runs as built.
+bool set_blas_threads(int n);
 
 }  // namespace iga::assembly

@@ -213,6 +213,14 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
                                 std::holds_alternative<DeformableSide>(surfaces_[1])};
     if (!deformable[0] && !deformable[1])
         throw Error("contact: a pair of two rigid obstacles has no unknowns");
+    IGA_CHECK(std::isfinite(settings_.friction.coefficient) && settings_.friction.coefficient >= 0.0,
+              "contact: the friction coefficient must be >= 0");
+    IGA_CHECK(!settings_.friction.active() || (std::isfinite(settings_.friction.tangential_penalty) &&
+                                               settings_.friction.tangential_penalty > 0.0),
+              "contact: friction needs a tangential penalty > 0");
+    if (settings_.friction.active() && deformable[0] && deformable[1])
+        throw Error("contact: friction between two deformable surfaces is not available in this version "
+                    "(only against rigid obstacles)");
 
     if (deformable[0] && deformable[1]) {
         if (settings_.formulation == Formulation::two_half_pass)
@@ -319,6 +327,22 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
     committed_xi_ = trial_xi_;
     committed_multiplier_ = multiplier_;
     initial_overlap_ = multiplier_;  // zeros: no overclosure until set_initial_overlap()
+    // Friction: every point anchored where it starts (a rigid obstacle at its
+    // load-factor-0 place, no translation).
+    committed_friction_.resize(carriers_.size());
+    converged_friction_.resize(carriers_.size());
+    for (std::size_t c = 0; c < carriers_.size(); ++c) {
+        const Index n_g = static_cast<Index>(carriers_[c].points.size());
+        for (const GaussPoint& gp : carriers_[c].points)
+            committed_friction_[c].push_back(FrictionHistory{gp.reference, 0.0});
+        FrictionState& state = converged_friction_[c];
+        state.status.assign(static_cast<std::size_t>(n_g), StickSlip::open);
+        state.traction = RowMatrix::Zero(n_g, dim_);
+        state.slip_increment = Vector::Zero(n_g);
+        state.slip = Vector::Zero(n_g);
+    }
+    trial_friction_ = committed_friction_;
+    trial_friction_state_ = converged_friction_;
 }
 
 bool ContactPair::has_initial_overlap() const
@@ -477,6 +501,12 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
         cr.weight.resize(n_g);
         cr.stretch = Vector::Ones(n_g);
         cr.state.assign(n_g, PointState::far);
+        cr.friction.status.assign(static_cast<std::size_t>(n_g), StickSlip::open);
+        cr.friction.traction = RowMatrix::Zero(n_g, d);
+        cr.friction.slip_increment = Vector::Zero(n_g);
+        cr.friction.slip.resize(n_g);
+        for (int g = 0; g < n_g; ++g)
+            cr.friction.slip(g) = committed_friction_[ci][static_cast<std::size_t>(g)].slip;
         for (int g = 0; g < n_g; ++g) {
             const GaussPoint& gp = c.points[g];
             VecN x = VecN::Zero(d);
@@ -556,15 +586,31 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
                 cr.state[g] = PointState::ok;
                 KernelSettings point_settings = kernel_base;
                 point_settings.multiplier = shifted_multiplier(g);
-                const KernelResult kr = gpts_rigid_kernel(c.points[g].N, c.points[g].weight, foot.normal, foot.gap,
-                                                          point_settings, foot.radius);
+                KernelResult kr = gpts_rigid_kernel(c.points[g].N, c.points[g].weight, foot.normal, foot.gap,
+                                                    point_settings, foot.radius);
                 cr.pressure(g) = kr.pressure;
+                if (settings_.friction.active()) {
+                    // Slip in the obstacle's frame; dp/dy = -eps n where the point presses.
+                    const VecN y = x - obstacle->shift(load_factor);
+                    const VecN d_pressure = kr.pressure > 0.0 ? VecN(-settings_.penalty * foot.normal)
+                                                              : VecN(VecN::Zero(d));
+                    const FrictionHistory& committed = committed_friction_[ci][static_cast<std::size_t>(g)];
+                    const TangentialResponse t = coulomb_response(settings_.friction, committed, y, foot.normal,
+                                                                  kr.pressure, d_pressure, foot.radius);
+                    add_tangential(kr, c.points[g].N, c.points[g].weight, t);
+                    trial_friction_[ci][static_cast<std::size_t>(g)] = t.next;
+                    cr.friction.status[static_cast<std::size_t>(g)] = t.status;
+                    cr.friction.traction.row(g) = t.traction.transpose();
+                    cr.friction.slip_increment(g) = t.slip_increment;
+                    cr.friction.slip(g) = t.next.slip;
+                }
                 if (kr.pressure > 0.0) {
                     ++ev.n_active;
                     ev.max_penetration = std::max(ev.max_penetration, foot.gap);
                     scatter(kr, c.points[g], {}, -1);
                 }
             }
+            trial_friction_state_[ci] = cr.friction;
             ev.carriers.push_back(std::move(cr));
             continue;
         }

@@ -2,7 +2,7 @@
 // One contact pair: its two surfaces (deformable sides -- curves in 2D, surfaces in
 // 3D -- or a rigid obstacle), the
 // Gauss points that carry the penalty, and the per-Newton-iteration evaluation
-// of its residual and tangent (Kopacka et al. eqs. 5-7; physics.md 3.4).
+// of its residual and tangent (Kopacka et al. eqs. 5-7; docs/theory.md "Contact formulation").
 //
 // Who carries Gauss points:
 //  - two_half_pass, both deformable: both sides; each is projected onto the
@@ -66,6 +66,7 @@
 // Both surfaces live in the same dimension d (2 or 3), else the constructor throws
 // iga::Error.
 
+#include "contact/friction.hpp"
 #include "contact/gpts_kernel.hpp"
 #include "contact/projection.hpp"
 #include "contact/rigid_obstacle.hpp"
@@ -95,6 +96,7 @@ struct PairSettings {
     double penalty = 0.0;         ///< eps_N > 0, pressure per unit penetration
     int quadrature = 0;           ///< Gauss points per knot span of a carrying side; 0 = degree + 2
     double search_distance = 0.0; ///< global search margin; 0 = auto (a tenth of the larger side's size)
+    FrictionLaw friction;         ///< Coulomb friction (against a rigid obstacle); mu = 0: frictionless
 };
 
 /// One patch side of a deformable contact surface, in its REFERENCE configuration.
@@ -143,6 +145,15 @@ enum class PointState {
     at_kink,  ///< nearest master point at a C0 corner, not orthogonal: inactive
 };
 
+/// The tangential state of a carrying side's Gauss points (zeros and `open`
+/// without friction).
+struct FrictionState {
+    std::vector<StickSlip> status;  ///< n_g: open, stick or slip
+    RowMatrix traction;             ///< n_g x d, t_T on the slave (tangential, force per area)
+    Vector slip_increment;          ///< n_g, slip length since the last converged increment
+    Vector slip;                    ///< n_g, accumulated slip length (with this increment's)
+};
+
 /// Gauss point data of one carrying side, n_g points in element order.
 struct CarrierResult {
     int surface = 0;                    ///< 0: the pair's first surface, 1: the second
@@ -157,6 +168,7 @@ struct CarrierResult {
     Vector stretch;                     ///< n_g, W / (w_g * reference area element): the surface stretch j/J
                                         ///< of a current-measure carrier, 1 elsewhere
     std::vector<PointState> state;      ///< n_g
+    FrictionState friction;             ///< tangential traction, stick/slip, slip
 };
 
 /// A coupling: element number on the first and second surface (-1 on a rigid obstacle).
@@ -215,15 +227,27 @@ public:
     PairEvaluation evaluate(const RowMatrix& disp_first, const RowMatrix& disp_second, bool need_tangent,
                             RunContext* ctx = nullptr, double load_factor = 0.0) const;
 
+    /// Keeps the state of the last evaluate() (call it after a converged increment,
+    /// whose final evaluation is the last one): foot points, multipliers, friction
+    /// anchors and slip, and the friction state of that increment.
     void commit()
     {
         committed_xi_ = trial_xi_;
         committed_multiplier_ = multiplier_;
+        committed_friction_ = trial_friction_;
+        converged_friction_ = trial_friction_state_;
     }
     void rollback()
     {
         trial_xi_ = committed_xi_;
         multiplier_ = committed_multiplier_;
+        trial_friction_ = committed_friction_;
+    }
+    /// The friction state of carrier c at the last committed increment (what the
+    /// results report; an evaluation after the commit measures slip from there).
+    const FrictionState& converged_friction(int carrier) const
+    {
+        return converged_friction_[static_cast<std::size_t>(carrier)];
     }
 
     /// Uzawa update lambda_g <- <lambda_g + eps g_N,g> = p_g for every Gauss point,
@@ -287,6 +311,12 @@ private:
     std::vector<Vector> committed_multiplier_;  ///< per carrier: at the last commit()
     std::vector<Vector> initial_overlap_;       ///< per carrier, n_g: g_0 >= 0, released up to release_end_
     double release_end_ = 1.0;                  ///< load factor by which the initial overlap is released
+    /// Friction history per carrier and Gauss point: at the last commit, and of the
+    /// last evaluation (mutable, like trial_xi_).
+    std::vector<std::vector<FrictionHistory>> committed_friction_;
+    mutable std::vector<std::vector<FrictionHistory>> trial_friction_;
+    mutable std::vector<FrictionState> trial_friction_state_;
+    std::vector<FrictionState> converged_friction_;
     bool releasing_ = false;                    ///< release_overlap() called
 
     /// A master surface's pieces at given control points, with their element searches.

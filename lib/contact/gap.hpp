@@ -9,7 +9,7 @@
 // p = eps_N <g_N> (eq. 3) with the Macaulay bracket <a> = (|a| + a) / 2. The same
 // sign is stored in results files (/steps/*/contact/*/gauss_points/gap).
 //
-// physics.md sections 3-4 write the opposite sign (g = (x - xbar) . n < 0 for
+// Much of the contact literature writes the opposite sign (g = (x - xbar) . n < 0 for
 // penetration, p = eps <-g>); the kernels translate g = -g_N at their boundary,
 // nowhere else.
 //

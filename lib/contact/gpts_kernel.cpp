@@ -154,4 +154,19 @@ KernelResult gpts_rigid_kernel(const Vector& N, double W, const VecN& normal, do
     return out;
 }
 
+void add_tangential(KernelResult& result, const Vector& N, double W, const TangentialResponse& friction)
+{
+    if (friction.status == StickSlip::open)
+        return;
+    const Index d = friction.traction.size();
+    IGA_CHECK(result.residual.size() == N.size() * d, "friction: the kernel result has another size");
+    for (Index a = 0; a < N.size(); ++a)
+        result.residual.segment(a * d, d) -= W * N(a) * friction.traction;
+    if (result.tangent.size() == 0)
+        return;
+    for (Index a = 0; a < N.size(); ++a)
+        for (Index b = 0; b < N.size(); ++b)
+            result.tangent.block(a * d, b * d, d, d) -= W * N(a) * N(b) * friction.d_traction;
+}
+
 }  // namespace iga::contact

@@ -33,6 +33,7 @@
 // the master basis order). Residual has (n_s + n_m) d entries; the tangent is
 // (n_s + n_m) d square. Rows not assembled are zero.
 
+#include "contact/friction.hpp"
 #include "contact/projection.hpp"
 #include "core/types.hpp"
 
@@ -88,5 +89,10 @@ KernelResult gpts_kernel(const Vector& N, double W, const Projection& master, co
 KernelResult gpts_rigid_kernel(const Vector& N, double W, const VecN& normal, double gap,
                                const KernelSettings& settings,
                                double normal_radius = std::numeric_limits<double>::infinity());
+
+/// Adds a slave Gauss point's tangential traction (basis N, fixed weight W) to a
+/// rigid-obstacle kernel result: r_a -= W N_a t_T and K_ab -= W N_a N_b dt_T/dy
+/// (friction.hpp; y moves with the slave point, the obstacle's motion is no unknown).
+void add_tangential(KernelResult& result, const Vector& N, double W, const TangentialResponse& friction);
 
 }  // namespace iga::contact

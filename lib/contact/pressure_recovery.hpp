@@ -1,6 +1,6 @@
 #pragma once
 // Sauer's post-processing of the Gauss-point contact pressure (Sauer, Comput Mech
-// 52 (2013) 301; Kopacka et al. eqs. 10-11; physics.md section 3.6):
+// 52 (2013) 301; Kopacka et al. eqs. 10-11; docs/theory.md "Sauer's pressure post-processing"):
 //
 //   p_A = sum_g R_A(eta_g) p_g W_g / sum_g R_A(eta_g) W_g,     p^h = sum_A R_A p_A,
 //

@@ -6,7 +6,7 @@
 // (Kopacka et al. eq. 9; Piegl & Tiller, The NURBS Book, section 6.1), i.e. a
 // local minimum of f(xi) = 1/2 |x - x_m(xi)|^2, the nearest over the candidates.
 //
-// Algorithm (docs/theory.md, "Closest-point projection"; README, "Projection rules"):
+// Algorithm (docs/theory.md, "Closest-point projection" and "Contact formulation"):
 //  - Regions. Each parameter direction is split at its C0 knots (multiplicity
 //    >= degree) into pieces on which the parametrization is C1; a region is a
 //    product of pieces (a run of spans in 2D, a block of Bezier elements in 3D).

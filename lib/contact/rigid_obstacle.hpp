@@ -89,10 +89,15 @@ struct RigidObstacle {
                                                                          : std::get<RigidSphere>(shape).center.size());
     }
 
+    /// The obstacle's translation at pseudo-time t: a(t) * motion.
+    VecN shift(double t) const
+    {
+        return motion.size() == dim() ? VecN(amplitude(t) * motion) : VecN(VecN::Zero(dim()));
+    }
     /// The foot point data of x with the obstacle translated by a(t) * motion.
     ObstacleFoot foot(const VecN& x, double t) const
     {
-        const VecN shift = motion.size() == x.size() ? VecN(amplitude(t) * motion) : VecN(VecN::Zero(x.size()));
+        const VecN shift = this->shift(t);
         ObstacleFoot out;
         if (const auto* plane = std::get_if<RigidPlane>(&shape)) {
             out.normal = plane->normal;

@@ -3,6 +3,7 @@
 #include "io/amplitude_reader.hpp"
 #include "io/gismo_xml.hpp"
 #include "io/knot_checks.hpp"
+#include "io/transform_reader.hpp"
 
 #include <fmt/format.h>
 
@@ -159,7 +160,7 @@ bool check_knots(const Cursor& c, const std::vector<double>& u, int p)
 
 std::optional<NurbsData> read_nurbs(const Cursor& c, int dim, std::optional<Parametrization>& param)
 {
-    if (!c.allow_only({"degrees", "knots", "control_points"}))
+    if (!c.allow_only({"degrees", "knots", "control_points", "transform"}))
         return std::nullopt;
     NurbsData nurbs;
     bool degrees_ok = false;
@@ -210,8 +211,19 @@ std::optional<NurbsData> read_nurbs(const Cursor& c, int dim, std::optional<Para
                                            expected, product, cps->size()));
         }
     }
-    if (degrees_ok && knots_ok)
+    if (c.has("transform"))
+        nurbs.transform = read_transform(c.child("transform"), dim);
+    if (degrees_ok && knots_ok) {
         param = Parametrization{nurbs.degrees, nurbs.knots};
+        if (reverses_u(nurbs.transform)) {
+            // `refine` applies to the placed patch, whose u runs backwards (nurbs/transform.hpp).
+            std::vector<double>& u = param->knots.front();
+            const double sum = u.front() + u.back();
+            std::reverse(u.begin(), u.end());
+            for (double& x : u)
+                x = sum - x;
+        }
+    }
     return nurbs;
 }
 
@@ -231,7 +243,7 @@ Parametrization shape_parametrization(const Shape& shape)
 
 std::optional<Shape> read_shape(const Cursor& c, int dim, std::optional<Parametrization>& param)
 {
-    if (!c.allow_only({"type", "center", "radius", "corner", "size", "extrude"}))
+    if (!c.allow_only({"type", "center", "radius", "corner", "size", "extrude", "transform"}))
         return std::nullopt;
     const auto type = c.get<ShapeType>("type");
     if (!type)
@@ -286,6 +298,8 @@ std::optional<Shape> read_shape(const Cursor& c, int dim, std::optional<Parametr
                         size->item(i).fail("must be > 0");
             }
     }
+    if (c.has("transform"))  // acts on the 3D solid after an extrusion: d = dim numbers either way
+        s.transform = read_transform(c.child("transform"), dim);
     return s;
 }
 
@@ -596,7 +610,7 @@ Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names)
         b.patches = read_patches(c.child("patches"), known.dim, b.refine);
     if (has_file && alone) {
         const Cursor g = c.child("geometry");
-        if (g.allow_only({"file"}))
+        if (g.allow_only({"file", "transform"}))
             if (const auto file = g.get<std::string>("file")) {
                 b.geometry_file = *file;
                 const std::filesystem::path p(*file);
@@ -604,6 +618,11 @@ Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names)
                                              ? p.lexically_normal().string()
                                              : (std::filesystem::path(known.deck_dir) / p).lexically_normal().string();
                 read_geometry_file(g.child("file"), path, known.dim, b);
+                if (g.has("transform")) {
+                    b.geometry_transform = read_transform(g.child("transform"), known.dim);
+                    for (PatchData& patch : b.patches)
+                        patch.nurbs.transform = b.geometry_transform;
+                }
             }
     }
     BodyParts parts;

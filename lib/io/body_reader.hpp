@@ -1,6 +1,6 @@
 #pragma once
 // Reading the `bodies` entries of a deck (deformable NURBS patches, built-in
-// shapes, refinement, rigid planes: shared/spec/deck.md "bodies"), and the name
+// shapes, refinement, rigid obstacles: docs/deck.md "bodies"), and the name
 // bookkeeping that the later sections check their references against.
 //
 // Part of the deck reader (deck_reader.cpp); internal to io/. Checks made here:
@@ -8,7 +8,7 @@
 // control-point count = prod(n_knots - degree - 1) with rows [x, y, (z,) w],
 // w > 0; refine lists with one entry per parametric direction; inserted knots
 // strictly inside the parameter interval; rigid plane normals of non-zero
-// length (normalized here).
+// length (normalized here); `transform:` lists (io/transform_reader.hpp).
 
 #include "io/deck.hpp"
 #include "io/yaml_cursor.hpp"

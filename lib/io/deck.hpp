@@ -1,6 +1,6 @@
 #pragma once
 // The deck as plain typed structs: what io::read_deck produces from YAML
-// (shared/spec/deck.md, format 1) and what analysis/ turns into a scene.
+// (docs/deck.md, format 1) and what analysis/ turns into a scene.
 // Nothing below io/ sees YAML or key strings; only io/, analysis/ and app/
 // include this header.
 //
@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace iga::io {
@@ -48,11 +49,60 @@ struct Material {
     bool operator==(const Material&) const = default;
 };
 
+// The steps of a `transform:` list (docs/deck.md, "Placing geometry"), applied in
+// list order to the Cartesian control points of a shape or a raw NURBS patch
+// (weights kept); d = analysis.dimension. Vectors are kept as written (not
+// normalized), so a resolved deck reads back identically.
+
+/// `{translate: [..]}`: x -> x + offset.
+struct Translate {
+    std::vector<double> offset;  ///< d numbers
+
+    bool operator==(const Translate&) const = default;
+};
+
+/// `{rotate: {axis, angle_deg, about}}`: counter-clockwise by the right-hand rule about `axis`.
+struct Rotate {
+    std::vector<double> axis;   ///< 3D: 3 numbers, non-zero; 2D: empty (the rotation is about z)
+    double angle_deg = 0.0;
+    std::vector<double> about;  ///< d numbers, a point of the axis (the origin when not given)
+
+    bool operator==(const Rotate&) const = default;
+};
+
+/// `{mirror: {normal, point}}`: reflection across the plane (a line in 2D) through `point`.
+/// It turns the patch left-handed, so u is reversed after it (sides u0 and u1 trade places).
+struct Mirror {
+    std::vector<double> normal;  ///< d numbers, non-zero
+    std::vector<double> point;   ///< d numbers (the origin when not given)
+
+    bool operator==(const Mirror&) const = default;
+};
+
+/// `{scale: s}`: x -> s x, s > 0 (uniform, about the origin).
+struct Scale {
+    double factor = 1.0;
+
+    bool operator==(const Scale&) const = default;
+};
+
+using TransformStep = std::variant<Translate, Rotate, Mirror, Scale>;
+
+/// True when the steps turn orientations over (an odd number of mirrors): the
+/// placed patch then has its u direction reversed.
+inline bool reverses_u(const std::vector<TransformStep>& steps)
+{
+    const auto mirrors = std::count_if(steps.begin(), steps.end(),
+                                       [](const TransformStep& s) { return std::holds_alternative<Mirror>(s); });
+    return mirrors % 2 == 1;
+}
+
 /// Raw NURBS data of one patch as written in the deck.
 struct NurbsData {
     std::vector<int> degrees;                       ///< one per parametric direction
     std::vector<std::vector<double>> knots;         ///< one open knot vector per direction
     std::vector<std::vector<double>> control_points;///< rows [x, y, (z,) w]; u index fastest
+    std::vector<TransformStep> transform;           ///< applied to the control points; side names refer to the result
 
     bool operator==(const NurbsData&) const = default;
 };
@@ -67,6 +117,7 @@ struct Shape {
     std::vector<double> corner;    ///< rectangle, box
     std::vector<double> size;      ///< rectangle, box
     std::optional<double> extrude; ///< 2D shape in a 3D deck: swept along z over [0, extrude] (required there)
+    std::vector<TransformStep> transform;  ///< applied after the extrusion; side names refer to the result
 
     bool operator==(const Shape&) const = default;
 };
@@ -171,6 +222,8 @@ struct Body {
     std::optional<Shape> shape;
     std::vector<PatchData> patches;  ///< a multi-patch body: its patches; empty otherwise
     std::string geometry_file;       ///< `geometry: {file}` as written (relative to the deck folder); "" if inline
+    /// `geometry: {transform}`: copied into every imported patch's nurbs.transform.
+    std::vector<TransformStep> geometry_transform;
     Refine refine;                   ///< applies to every patch
     Quadrature quadrature;           ///< applies to every patch
     std::vector<NamedSurface> surfaces;
@@ -247,6 +300,15 @@ struct AugmentedLagrangian {
     bool operator==(const AugmentedLagrangian&) const = default;
 };
 
+/// contact.<pair>.friction: Coulomb friction with a tangential penalty.
+struct Friction {
+    double coefficient = 0.0;          ///< mu >= 0; 0 (or no key): frictionless
+    double tangential_penalty = 0.0;   ///< eps_T > 0, or `auto` (then 0 here and tangential_penalty_auto)
+    bool tangential_penalty_auto = true;  ///< `auto`: eps_T = the pair's normal penalty
+
+    bool operator==(const Friction&) const = default;
+};
+
 struct ContactPair {
     std::string name;
     ContactSurface first, second;
@@ -255,6 +317,7 @@ struct ContactPair {
     double penalty = 0.0;       ///< required: > 0, or `auto` (then 0 here and penalty_auto)
     bool penalty_auto = false;  ///< `penalty: auto`: chosen from the materials and element size (docs/deck.md)
     AugmentedLagrangian augmented_lagrangian;
+    Friction friction;
     int quadrature = 0;    ///< Gauss points per knot span; 0 means degree + 2 of the side
 
     bool operator==(const ContactPair&) const = default;

@@ -2,8 +2,8 @@
 // The deck spellings of the enums of io/deck.hpp: the one string <-> enum table,
 // used by the reader (parsing) and the writer (the resolved deck).
 //
-// Spellings equal the enumerator names (style §4.2) and the words of
-// shared/spec/deck.md. Side names live in core/side.hpp.
+// Spellings equal the enumerator names and the words of
+// docs/deck.md. Side names live in core/side.hpp.
 
 #include "io/deck.hpp"
 
@@ -83,6 +83,11 @@ struct DeckNames<ReferenceType> {
          {"hertz_sphere_plane", ReferenceType::hertz_sphere_plane},
          {"hertz_two_spheres", ReferenceType::hertz_two_spheres}}};
 };
+
+/// The keys of the steps of a `transform:` list, in the order of the
+/// alternatives of io::TransformStep (index() selects the key).
+inline constexpr std::array<std::string_view, 4> transform_step_keys{"translate", "rotate", "mirror", "scale"};
+static_assert(std::variant_size_v<TransformStep> == transform_step_keys.size());
 
 /// The deck spelling of an enumerator ("linear_elastic", ...).
 template <class E>

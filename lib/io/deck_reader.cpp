@@ -357,6 +357,41 @@ void read_augmented_lagrangian(const Cursor& c, ContactPair& p)
     p.augmented_lagrangian.max_updates = al.integer_at_least("max_updates", p.augmented_lagrangian.max_updates, 1);
 }
 
+/// contact.<pair>.friction: {coefficient, tangential_penalty: <value | auto>}.
+void read_friction(const Cursor& c, ContactPair& p)
+{
+    const Cursor f = c.child("friction");
+    if (!f.exists() || !f.expect_map() || !f.allow_only({"coefficient", "tangential_penalty"}))
+        return;
+    const Cursor mu = f.child("coefficient");
+    if (!mu.exists()) {
+        f.fail_missing("coefficient");
+        return;
+    }
+    if (const auto value = mu.to<double>()) {
+        if (std::isfinite(*value) && *value >= 0.0)
+            p.friction.coefficient = *value;
+        else
+            mu.fail("must be a finite number >= 0 (0: frictionless)");
+    }
+    const Cursor eps = f.child("tangential_penalty");
+    const bool scalar = eps.exists() && !eps.is_list() && !eps.is_map();
+    if (scalar && !parse_number(eps.value_text()) && eps.value_text() != "auto") {
+        eps.fail("expected a number > 0 or auto (the pair's normal penalty)");
+    } else if (eps.exists() && !(scalar && eps.value_text() == "auto")) {
+        p.friction.tangential_penalty_auto = false;
+        if (const auto value = eps.to<double>()) {
+            if (std::isfinite(*value) && *value > 0.0)
+                p.friction.tangential_penalty = *value;
+            else
+                eps.fail("must be > 0, or auto (the pair's normal penalty)");
+        }
+    }
+    if (p.friction.coefficient > 0.0 && p.first.deformable() && p.second.deformable())
+        f.fail_here("friction is available against rigid obstacles only in this version (both surfaces of "
+                    "this pair are deformable)");
+}
+
 std::vector<ContactPair> read_contact(const Cursor& root, KnownNames& known)
 {
     std::vector<ContactPair> out;
@@ -366,7 +401,7 @@ std::vector<ContactPair> read_contact(const Cursor& root, KnownNames& known)
     NameRegistry names("contact pair");
     for (const Cursor& c : list.items()) {
         if (!c.allow_only({"name", "between", "formulation", "enforcement", "penalty", "augmented_lagrangian",
-                           "quadrature"}))
+                           "friction", "quadrature"}))
             continue;
         ContactPair p;
         if (const auto name = read_name(c)) {
@@ -395,6 +430,7 @@ std::vector<ContactPair> read_contact(const Cursor& root, KnownNames& known)
         p.enforcement = c.get_or("enforcement", p.enforcement);
         read_penalty(c, p);
         read_augmented_lagrangian(c, p);
+        read_friction(c, p);
         p.quadrature = c.integer_at_least("quadrature", p.quadrature, 1);
         out.push_back(p);
     }

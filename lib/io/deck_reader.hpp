@@ -1,6 +1,6 @@
 #pragma once
 // Reading a deck: YAML text -> --set overrides -> validated io::Deck
-// (shared/spec/deck.md, format 1).
+// (docs/deck.md, format 1).
 //
 // Every problem becomes a located DeckIssue ("hertz.yaml:14:7: error:
 // materials.steel.nu = 0.6: must lie in (-1, 0.5)"); all independent issues are

@@ -4,6 +4,7 @@
 #include "io/yaml_cursor.hpp"
 
 #include <algorithm>
+#include <variant>
 
 namespace iga::io {
 namespace {
@@ -72,6 +73,40 @@ std::string surface(const ContactSurface& s)
     return s.deformable() ? s.body + "." + side_text(s.patch, s.side.value_or(Side::u0), s.surface) : s.body;
 }
 
+/// `transform: [...]` in flow style, each step a one-key map; nothing when there are no steps.
+void write_transform(YAML::Emitter& out, const std::vector<TransformStep>& steps)
+{
+    if (steps.empty())
+        return;
+    out << YAML::Key << "transform" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (const TransformStep& step : steps) {
+        out << YAML::BeginMap << YAML::Key << std::string(transform_step_keys[step.index()]) << YAML::Value;
+        if (const auto* t = std::get_if<Translate>(&step)) {
+            numbers(out, t->offset);
+        } else if (const auto* r = std::get_if<Rotate>(&step)) {
+            out << YAML::BeginMap;
+            if (!r->axis.empty()) {  // 2D: about z, no axis
+                out << YAML::Key << "axis" << YAML::Value;
+                numbers(out, r->axis);
+            }
+            out << YAML::Key << "angle_deg" << YAML::Value << format_number(r->angle_deg);
+            out << YAML::Key << "about" << YAML::Value;
+            numbers(out, r->about);
+            out << YAML::EndMap;
+        } else if (const auto* m = std::get_if<Mirror>(&step)) {
+            out << YAML::BeginMap << YAML::Key << "normal" << YAML::Value;
+            numbers(out, m->normal);
+            out << YAML::Key << "point" << YAML::Value;
+            numbers(out, m->point);
+            out << YAML::EndMap;
+        } else {
+            out << format_number(std::get<Scale>(step).factor);
+        }
+        out << YAML::EndMap;
+    }
+    out << YAML::EndSeq;
+}
+
 void write_nurbs(YAML::Emitter& out, const NurbsData& nurbs)
 {
     out << YAML::BeginMap;
@@ -84,7 +119,9 @@ void write_nurbs(YAML::Emitter& out, const NurbsData& nurbs)
     out << YAML::Key << "control_points" << YAML::Value << YAML::BeginSeq;
     for (const auto& p : nurbs.control_points)
         numbers(out, p);
-    out << YAML::EndSeq << YAML::EndMap;
+    out << YAML::EndSeq;
+    write_transform(out, nurbs.transform);
+    out << YAML::EndMap;
 }
 
 void write_refine(YAML::Emitter& out, const Refine& r)
@@ -145,7 +182,9 @@ void write_body(YAML::Emitter& out, const Body& b)
     }
     if (!b.geometry_file.empty()) {
         out << YAML::Key << "geometry" << YAML::Value << YAML::Flow << YAML::BeginMap;
-        out << YAML::Key << "file" << YAML::Value << b.geometry_file << YAML::EndMap;
+        out << YAML::Key << "file" << YAML::Value << b.geometry_file;
+        write_transform(out, b.geometry_transform);
+        out << YAML::EndMap;
     } else if (b.multi_patch()) {
         out << YAML::Key << "patches" << YAML::Value << YAML::BeginSeq;
         for (const PatchData& patch : b.patches) {
@@ -173,6 +212,7 @@ void write_body(YAML::Emitter& out, const Body& b)
         }
         if (s.extrude)
             out << YAML::Key << "extrude" << YAML::Value << format_number(*s.extrude);
+        write_transform(out, s.transform);
         out << YAML::EndMap;
     }
     write_refine(out, b.refine);
@@ -272,6 +312,13 @@ void write_contact(YAML::Emitter& out, const ContactPair& p)
         if (p.augmented_lagrangian.gap_tolerance > 0.0)  // 0: automatic, left out as quadrature 0 is
             out << YAML::Key << "gap_tolerance" << YAML::Value << format_number(p.augmented_lagrangian.gap_tolerance);
         out << YAML::Key << "max_updates" << YAML::Value << std::to_string(p.augmented_lagrangian.max_updates);
+        out << YAML::EndMap;
+    }
+    if (p.friction.coefficient > 0.0) {
+        out << YAML::Key << "friction" << YAML::Value << YAML::Flow << YAML::BeginMap;
+        out << YAML::Key << "coefficient" << YAML::Value << format_number(p.friction.coefficient);
+        out << YAML::Key << "tangential_penalty" << YAML::Value
+            << (p.friction.tangential_penalty_auto ? std::string("auto") : format_number(p.friction.tangential_penalty));
         out << YAML::EndMap;
     }
     if (p.quadrature > 0)

@@ -1,7 +1,7 @@
 #pragma once
 // The resolved deck: an io::Deck written back as YAML, after --set overrides and
-// with every default explicit (shared/spec/deck.md). It is stored as /deck in
-// the results file (shared/spec/results.md) and printed by `igacontact check`.
+// with every default explicit (docs/deck.md). It is stored as /deck in
+// the results file (docs/results.md) and printed by `igacontact check`.
 //
 // Invariants (tests/io/deck_reader_test.cpp): reading the text back with
 // read_deck_text(text, label, "") gives an equal Deck (apart from source_file

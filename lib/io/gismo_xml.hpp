@@ -1,7 +1,7 @@
 #pragma once
 // Reading NURBS patches from a G+Smo XML file (the format of G+Smo's gsFileData,
 // as in its filedata/ folder): the geometry of a multi-patch body
-// (shared/spec/deck.md, "Multi-patch bodies and named surfaces").
+// (docs/deck.md, "Multi-patch bodies and named surfaces").
 //
 // Supported subset, under the root element <xml>:
 //   <Geometry type="TensorBSpline2|TensorBSpline3" id="i">

@@ -40,6 +40,12 @@ Schema list(Schema item)
 Schema make_deck_schema()
 {
     const auto v = value();
+    // `transform:` steps: each item is a map with one of these keys (io/transform_reader.hpp).
+    const Schema transform = list(map({{"translate", v},
+                                       {"rotate", map({{"axis", v}, {"angle_deg", v}, {"about", v}})},
+                                       {"mirror", map({{"normal", v}, {"point", v}})},
+                                       {"scale", v}}));
+    const Schema nurbs = map({{"degrees", v}, {"knots", v}, {"control_points", v}, {"transform", transform}});
     return map({
         {"format", v},
         {"title", v},
@@ -47,12 +53,18 @@ Schema make_deck_schema()
         {"materials", list(map({{"name", v}, {"model", v}, {"E", v}, {"nu", v}}))},
         {"bodies", list(map({{"name", v},
                              {"material", v},
-                             {"nurbs", map({{"degrees", v}, {"knots", v}, {"control_points", v}})},
-                             {"shape", map({{"type", v}, {"center", v}, {"radius", v}, {"corner", v}, {"size", v}, {"extrude", v}})},
+                             {"nurbs", nurbs},
+                             {"shape", map({{"type", v},
+                                            {"center", v},
+                                            {"radius", v},
+                                            {"corner", v},
+                                            {"size", v},
+                                            {"extrude", v},
+                                            {"transform", transform}})},
                              {"patches", list(map({{"name", v},
-                                                   {"nurbs", map({{"degrees", v}, {"knots", v}, {"control_points", v}})},
+                                                   {"nurbs", nurbs},
                                                    {"refine", map({{"elevate", v}, {"spans", v}, {"insert", v}})}}))},
-                             {"geometry", map({{"file", v}})},
+                             {"geometry", map({{"file", v}, {"transform", transform}})},
                              {"refine", map({{"elevate", v}, {"spans", v}, {"insert", v}})},
                              {"quadrature", map({{"element", v}, {"side", v}})},
                              {"surfaces", v},  // a map of user-chosen names: set as a whole
@@ -76,6 +88,7 @@ Schema make_deck_schema()
                               {"enforcement", v},
                               {"penalty", v},
                               {"augmented_lagrangian", map({{"gap_tolerance", v}, {"max_updates", v}})},
+                              {"friction", map({{"coefficient", v}, {"tangential_penalty", v}})},
                               {"quadrature", v}}))},
         {"steps", map({{"count", v}, {"adaptive", v}, {"max_cutbacks", v}})},
         {"newton", map({{"tolerance", v}, {"max_iterations", v}, {"line_search", v}})},

@@ -1,5 +1,5 @@
 #pragma once
-// `--set PATH=VALUE` overrides (shared/spec/deck.md "General rules"), applied to
+// `--set PATH=VALUE` overrides (docs/deck.md "General rules"), applied to
 // a deck's YAML tree before it is read, so that what gets validated, run and
 // stored is the deck after overrides.
 //

@@ -1,6 +1,6 @@
 #pragma once
 // The engine of `igacontact compare REF NEW`: compares two results files
-// (shared/spec/results.md) item by item, for regression tests.
+// (docs/results.md) item by item, for regression tests.
 //
 // Every group, dataset and attribute present in REF is looked up in NEW (things
 // only in NEW are not errors; the hard link /results is compared like any

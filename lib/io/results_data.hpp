@@ -1,5 +1,5 @@
 #pragma once
-// What one run writes to its results file (shared/spec/results.md, version 1),
+// What one run writes to its results file (docs/results.md, version 1),
 // as plain structs with no HDF5 types: analysis/ fills them, io::ResultsWriter
 // stores them. Names follow the groups and datasets of results.md.
 //
@@ -49,6 +49,14 @@ struct GaussPointData {
     Vector pressure;                  ///< n_g, contact pressure <lambda + eps_N g_N> (lambda = 0: penalty)
     Vector weight;                    ///< n_g, quadrature weight times Jacobian (extra; written when non-empty)
     Vector multiplier;                ///< n_g, augmented-Lagrangian multipliers lambda (written when non-empty)
+    // Friction (written when the pair has friction): the tangential traction on this
+    // side in the local tangent basis (n_g x (d-1)) and in space (n_g x d), the state
+    // (0 open, 1 stick, 2 slip), the slip length of this increment and accumulated.
+    RowMatrix tangential_traction;
+    RowMatrix tangential_traction_vector;
+    std::vector<int> status;
+    Vector slip_increment;
+    Vector slip;
     /// Surfaces of several patch sides: n_g, the index into ContactSideResult::patch_sides
     /// of each Gauss point's patch side (gauss_points/patch, int); empty otherwise.
     std::vector<int> patch;
@@ -60,6 +68,10 @@ struct PostProcessedData {
     RowMatrix coordinates;            ///< n_s x d, sample points, current configuration
     RowMatrix reference_coordinates;  ///< n_s x d, the same points, reference configuration
     Vector pressure;                  ///< n_s, sum_A R_A p_A at the sample points
+    /// Friction: the tangential traction recovered the same way, per component, in the
+    /// local tangent basis (n_s x (d-1)) and in space (n_s x d); empty without friction.
+    RowMatrix tangential_traction;
+    RowMatrix tangential_traction_vector;
     /// Surface sides (3D): the samples form an n_v x n_u grid (u fastest), written as
     /// the attribute grid_shape = [n_v, n_u] of postprocessed/; {0, 0} on curves.
     std::array<long long, 2> grid{0, 0};
@@ -78,6 +90,9 @@ struct ContactSideResult {
     GaussPointData gauss_points;
     PostProcessedData postprocessed;
     double normal_force = 0.0;                ///< resultant of the contact pressure on this side
+    /// Friction: the resultant of the tangential traction on this side (the force the
+    /// contact exerts on its body, d); empty without friction.
+    std::vector<double> friction_force;
     std::map<std::string, double> attributes;  ///< extra numbers (n_active, max_penetration, ...)
 };
 
@@ -146,6 +161,8 @@ struct HistoryRow {
         std::string side;               ///< "body.side"
         double normal_force = 0.0;
         double max_penetration = 0.0;
+        std::vector<double> friction_force;  ///< d; zeros without friction
+        double contact_area = 0.0;           ///< length (2D) or area (3D) in contact
     };
     std::vector<ContactSide> contact;
 };

@@ -27,6 +27,9 @@ struct HistoryColumns {
     std::vector<std::pair<std::string, std::string>> contact_sides;  ///< (pair, side)
     std::vector<std::vector<double>> normal_force;     ///< per contact side, n_rows
     std::vector<std::vector<double>> max_penetration;  ///< per contact side, n_rows
+    std::size_t friction_dimension = 0;                ///< entries of each friction force (d)
+    std::vector<std::vector<double>> friction_force;   ///< per contact side, n_rows x friction_dimension
+    std::vector<std::vector<double>> contact_area;     ///< per contact side, n_rows
 };
 
 }  // namespace
@@ -109,6 +112,8 @@ void write_side(hid_t pair, const ContactSideResult& side)
     IGA_CHECK(!side.side_name.empty(), "a contact side needs a name (body.side)");
     h5::Handle group = h5::create_group(pair, side.side_name);
     h5::write_attribute(group.id(), "normal_force", side.normal_force);
+    if (!side.friction_force.empty())
+        h5::write_attribute(group.id(), "friction_force", std::span<const double>(side.friction_force));
     for (const auto& [name, value] : side.attributes)
         h5::write_attribute(group.id(), name, value);
 
@@ -128,6 +133,15 @@ void write_side(hid_t pair, const ContactSideResult& side)
         h5::write_dataset(gauss.id(), "weight", gp.weight);
     if (gp.multiplier.size() > 0)
         h5::write_dataset(gauss.id(), "multiplier", gp.multiplier);
+    if (gp.tangential_traction_vector.size() > 0) {
+        IGA_CHECK(gp.status.size() == static_cast<std::size_t>(gp.gap.size()),
+                  "contact side " + side.side_name + ": one friction status per Gauss point");
+        h5::write_dataset(gauss.id(), "tangential_traction", gp.tangential_traction);
+        h5::write_dataset(gauss.id(), "tangential_traction_vector", gp.tangential_traction_vector);
+        h5::write_dataset(gauss.id(), "status", std::span<const int>(gp.status));
+        h5::write_dataset(gauss.id(), "slip_increment", gp.slip_increment);
+        h5::write_dataset(gauss.id(), "slip", gp.slip);
+    }
     if (!side.patch_sides.empty()) {
         IGA_CHECK(gp.patch.size() == static_cast<std::size_t>(gp.gap.size()),
                   "contact side " + side.side_name + ": one patch index per Gauss point");
@@ -141,6 +155,10 @@ void write_side(hid_t pair, const ContactSideResult& side)
     h5::write_dataset(post.id(), "coordinates", pp.coordinates);
     h5::write_dataset(post.id(), "reference_coordinates", pp.reference_coordinates);
     h5::write_dataset(post.id(), "pressure", pp.pressure);
+    if (pp.tangential_traction_vector.size() > 0) {
+        h5::write_dataset(post.id(), "tangential_traction", pp.tangential_traction);
+        h5::write_dataset(post.id(), "tangential_traction_vector", pp.tangential_traction_vector);
+    }
     if (!pp.patch_grids.empty()) {
         IGA_CHECK(pp.patch_grids.size() == side.patch_sides.size(),
                   "contact side " + side.side_name + ": one sample grid per patch side");
@@ -255,6 +273,9 @@ void write_history(hid_t file, const HistoryColumns& h)
             h5::Handle side_group = h5::create_group(pair_group.id(), side);
             h5::write_dataset(side_group.id(), "normal_force", std::span<const double>(h.normal_force[k]), {n});
             h5::write_dataset(side_group.id(), "max_penetration", std::span<const double>(h.max_penetration[k]), {n});
+            h5::write_dataset(side_group.id(), "friction_force", std::span<const double>(h.friction_force[k]),
+                              {n, static_cast<hsize_t>(h.friction_dimension)});
+            h5::write_dataset(side_group.id(), "contact_area", std::span<const double>(h.contact_area[k]), {n});
         }
     }
 }
@@ -430,6 +451,9 @@ void ResultsWriter::append_history(const HistoryRow& row)
         }
         h.normal_force.assign(row.contact.size(), {});
         h.max_penetration.assign(row.contact.size(), {});
+        h.friction_force.assign(row.contact.size(), {});
+        h.contact_area.assign(row.contact.size(), {});
+        h.friction_dimension = row.contact.empty() ? 0 : row.contact.front().friction_force.size();
     }
     IGA_CHECK(row.reactions.size() == h.reaction_names.size() && row.contact.size() == h.contact_sides.size(),
               "every /history row has the reactions and contact sides of the first");
@@ -445,6 +469,11 @@ void ResultsWriter::append_history(const HistoryRow& row)
                       row.contact[k].side + "' does not match the first row's");
         h.normal_force[k].push_back(row.contact[k].normal_force);
         h.max_penetration[k].push_back(row.contact[k].max_penetration);
+        IGA_CHECK(row.contact[k].friction_force.size() == h.friction_dimension,
+                  "history row " + std::to_string(h.n_rows + 1) + ": a friction force needs d components");
+        h.friction_force[k].insert(h.friction_force[k].end(), row.contact[k].friction_force.begin(),
+                                   row.contact[k].friction_force.end());
+        h.contact_area[k].push_back(row.contact[k].contact_area);
     }
     IGA_CHECK((row.uzawa_updates >= 0) == (h.n_rows == 0 ? row.uzawa_updates >= 0 : !h.uzawa_updates.empty()),
               "every /history row has uzawa_updates, or none has");

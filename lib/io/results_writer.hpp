@@ -1,5 +1,5 @@
 #pragma once
-// ResultsWriter: writes one run's HDF5 results file (shared/spec/results.md,
+// ResultsWriter: writes one run's HDF5 results file (docs/results.md,
 // format "igacontact-results", version 1).
 //
 // Crash safety (results.md, last paragraph): everything goes to

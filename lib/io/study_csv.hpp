@@ -1,6 +1,6 @@
 #pragma once
 // The table of `igacontact study`: one row per refinement level and quantity,
-// written as <deck>_study.csv (shared/spec/results.md, "Additions") with the
+// written as <deck>_study.csv (docs/results.md, "Refinement study files") with the
 // columns
 //   level,dofs,wall_s,quantity,value,extrapolated,observed_order,estimated_rel_error
 // and, when the deck has an analytic reference, after them

@@ -1,6 +1,6 @@
 #pragma once
 // What `igacontact study` reads from the results file of one refinement level
-// (shared/spec/results.md): the run's status, its size, the lowest polynomial
+// (docs/results.md): the run's status, its size, the lowest polynomial
 // degree of its patches, and the quantities of interest of the last converged
 // increment (/results), named as in the study CSV:
 //   normal_force:<pair>:<body.side>    attribute normal_force of the side group

@@ -3,7 +3,7 @@
 // `materials.steel.nu`, `loads.0.force`) and its source (file:line:col, or
 // "<command line>" for a node that --set put in). The deck reader reads every
 // value through a Cursor, so every problem it finds is located
-// (shared/spec/deck.md "General rules", style §4.4).
+// (docs/deck.md "General rules").
 //
 // Problems are recorded in an IssueList instead of thrown, so one pass reports
 // all independent issues; the reader throws a single DeckError at the end.

@@ -61,7 +61,7 @@ Patch half_disc(const VecN& center, double radius)
     check_point(center, "half_disc center");
     check_radius(radius);
     const double R = radius;
-    // Single-span rational cubic lower half circle (physics.md 5.2, rotated by pi):
+    // Single-span rational cubic lower half circle (docs/theory.md "Exact circles", rotated by pi):
     // weights 1, 1/3, 1/3, 1. The diameter row has the same x and weights, so
     // x(u, v) has the x-coordinate of the arc point at every v.
     return two_row_patch(KnotVector(3, {0, 0, 0, 0, 1, 1, 1, 1}), center,
@@ -76,7 +76,7 @@ Patch quarter_disc(const VecN& center, double radius)
     check_radius(radius);
     const double R = radius;
     const double s = std::sqrt(2.0) / 2.0;
-    // Degree-2 quarter arc from the lowest point to the right end (physics.md 5.2).
+    // Degree-2 quarter arc from the lowest point to the right end (docs/theory.md "Exact circles").
     return two_row_patch(KnotVector(2, {0, 0, 0, 1, 1, 1}), center,
                          {{0, -R}, {R, -R}, {R, 0},  // v = 0: arc
                           {0, 0}, {R, 0}, {R, 0}},   // v = 1: top line

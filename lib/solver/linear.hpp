@@ -94,6 +94,10 @@ struct LinearSolverPolicy {
     /// The rigid-body modes on the free dofs (n_free x 3 in 2D, x 6 in 3D), the
     /// near-null space of an algebraic multigrid preconditioner; may be empty.
     Matrix rigid_body_modes;
+    /// The free dofs come in consecutive blocks of this many, the components of one
+    /// control point (every point all free or all fixed), or 1: smoothed aggregation
+    /// then aggregates points, not single components (fewer, better aggregates).
+    int block_size = 1;
 };
 
 /// The backend the policy asks for. Throws Error when the backend is not built in

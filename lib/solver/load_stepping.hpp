@@ -1,9 +1,10 @@
 #pragma once
 // Load stepping: drives the pseudo-time t of the load path (core/amplitude.hpp)
 // from 0 to its end T in increments, each solved by Newton (solver/newton.hpp),
-// with adaptive cutbacks (docs/theory.md, "Load paths"). The system sees t as
-// its "load factor": every item scales by its amplitude at t. Without amplitudes
-// T = 1 and t is the classic load factor lambda (the names below keep lambda).
+// with adaptive cutbacks (docs/solver.md "Load stepping and cutbacks"; load paths:
+// docs/theory.md "Load paths"). The system sees t as its "load factor": every item
+// scales by its amplitude at t. Without amplitudes T = 1 and t is the classic load
+// factor lambda (the names below keep lambda).
 //
 // Rules: the initial increment is T/count, which is also the largest: the
 // user's count is an upper bound on the step size, never exceeded. An increment

@@ -9,7 +9,7 @@
 // Newton step solves K du = -r. Shapes: u and r have n_free entries, K is
 // n_free x n_free. References: Nocedal & Wright, "Numerical Optimization", 2nd
 // ed., §3.1 (Armijo backtracking) and §11.2 (Levenberg-Marquardt), applied to
-// the merit function ||r||; physics.md §7.2 and §7.5 (why contact needs them).
+// the merit function ||r||; docs/solver.md "The first touch" (why contact needs them).
 //
 // Convergence: the residual is small against the forces in play, or it is at its
 // own round-off floor and the displacement no longer moves:

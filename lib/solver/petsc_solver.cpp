@@ -219,9 +219,11 @@ LinearStatus PetscSolver::factorize(const SparseMatrix& K)
     } else {
         s.destroy_matrix();
         s.n = n;
-        const auto [first, last] = comm_.block_range(n);
-        s.first = static_cast<PetscInt>(first);
-        s.last = static_cast<PetscInt>(last);
+        // Rows split at point boundaries: PETSc's blocks may not straddle ranks.
+        const PetscInt bs = policy_.block_size > 1 && n % policy_.block_size == 0 ? policy_.block_size : 1;
+        const auto [first, last] = comm_.block_range(n / bs);
+        s.first = static_cast<PetscInt>(first) * bs;
+        s.last = static_cast<PetscInt>(last) * bs;
         s.outer.assign(M->outerIndexPtr(), M->outerIndexPtr() + n + 1);
         s.inner.assign(M->innerIndexPtr(), M->innerIndexPtr() + nnz);
         // COO: the summand's entries (global row, column), then every owned diagonal.
@@ -238,6 +240,7 @@ LinearStatus PetscSolver::factorize(const SparseMatrix& K)
         check(MatCreate(PETSC_COMM_WORLD, &s.A), "MatCreate");
         check(MatSetSizes(s.A, s.last - s.first, s.last - s.first, n, n), "MatSetSizes");
         check(MatSetType(s.A, MATAIJ), "MatSetType");
+        check(MatSetBlockSize(s.A, bs), "MatSetBlockSize");
         check(MatSetPreallocationCOO(s.A, n_coo, rows.data(), cols.data()), "MatSetPreallocationCOO");
         s.values.assign(static_cast<std::size_t>(n_coo), 0.0);
         check(MatCreateVecs(s.A, &s.x, &s.b), "MatCreateVecs");

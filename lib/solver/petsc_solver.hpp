@@ -11,7 +11,7 @@
 // diagonal entry is in the pattern, so the Levenberg-Marquardt shift needs no new one.
 //
 // Methods (policy.method), defaults chosen for penalty and augmented-Lagrangian
-// contact (README "Parallel runs and PETSc"):
+// contact (docs/parallel.md):
 //   direct:    MUMPS; Cholesky (LDL^T, so also indefinite) for symmetric tangents,
 //              else LU.
 //   iterative: CG for symmetric tangents, else GMRES(100) with right

@@ -2,7 +2,7 @@
 // SuiteSparseSolver: the embedded backend of LinearSolver (solver/linear.hpp), a
 // serial sparse direct solver for K x = b, wrapping SuiteSparse through
 // Eigen's support modules: UMFPACK (general LU, for the non-symmetric tangent of
-// two-half-pass contact, physics.md §7.10) and CHOLMOD (supernodal LL^T, for a
+// two-half-pass contact, docs/solver.md "Linear solvers") and CHOLMOD (supernodal LL^T, for a
 // tangent known to be symmetric positive definite).
 //
 // Kind::cholesky means "expected symmetric positive definite": a matrix CHOLMOD

@@ -10,7 +10,7 @@
 //    rho = k/(k + eps), at every Gauss point (closed form);
 //  - contact patch tests (2D and 3D, non-matching): the zero-gap pressure
 //    E Delta / H at every Gauss point, whatever the penalty;
-//  - Hertz (physics.md §1-§2): with the constraint enforced, the errors of a
+//  - Hertz (docs/theory.md "The Hertz benchmark"): with the constraint enforced, the errors of a
 //    penalty so stiff that it no longer matters (eps = 1e8, hertz_test.cpp).
 
 #include "analysis/uzawa.hpp"
@@ -357,7 +357,7 @@ TEST(AugmentedLagrangian, HertzAtPenalty1e4ReachesThePenalty1e8Accuracy)
 }
 
 // A second mesh: finer graded knots (scripts/hertz_mesh.py 0.003 0.0007, the "fine"
-// row of README "What accuracy costs"), where the penalty at 1e8 measures L2 0.64 %.
+// row of docs/performance.md "What accuracy costs (Hertz)"), where the penalty at 1e8 measures L2 0.64 %.
 const std::string fine_graded_mesh =
     "bodies.cylinder.refine.insert=[[0.003,0.006,0.009,0.012,0.015,0.018,0.021,0.024,0.027,0.03,0.033,0.0"
     "36,0.039,0.042,0.045,0.048,0.051,0.054,0.0547,0.0554,0.0561,0.0568,0.0575,0.0582,0.0589,0.0596,0.060"

@@ -1,4 +1,4 @@
-// Contact patch test (physics.md §6.1; Taylor & Papadopoulos 1991, Crisfield
+// Contact patch test (docs/theory.md "Verification problems"; Taylor & Papadopoulos 1991, Crisfield
 // 2000) on inputs/contact_patch_test_2d.yaml: two elastic blocks (E = 1e6,
 // nu = 0, lower [0,1] x [0,0.5], upper [0,1] x [0.5,1]) pressed together by a top
 // displacement Delta = 0.01, through non-matching degree-2 meshes (3 and 4 spans

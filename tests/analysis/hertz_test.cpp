@@ -2,15 +2,17 @@
 // a quarter cylinder (R = 1, E = 1000, nu = 0.3, plane strain) pressed on a rigid
 // plane by F/2 = 5, two-half-pass GPTS penalty, Sauer's post-processing.
 //
-// Oracles (physics.md §1-§2): the Hertz curve a = 0.10764, p0 = 59.143, and the
+// Oracles (docs/theory.md "The Hertz benchmark", "Hertz formulas"): the Hertz curve
+// a = 0.10764, p0 = 59.143, and the
 // run's own errors against it, stored in /reference/cyl_floor (definitions in
 // analytic/pressure_errors.hpp; reference coordinates, mirrored half model):
 // peak, half_width, l2 for the post-processed pressure. The tolerances are the
 // known non-discretization effects plus the measured discretization error of the
 // deck's graded mesh (du ~ a/70 at the contact edge), with a margin:
-//  - a finite cylinder is not Hertz's half-space: ~0.3 % low peak, ~0.6 % L2 (§1);
+//  - a finite cylinder is not Hertz's half-space: ~0.3 % low peak, ~0.6 % L2 (docs/theory.md
+//    "The Hertz benchmark");
 //  - a finite penalty lowers and widens the curve, by a function of
-//    kappa = eps a / E* only (§2.3): kappa = 98 (eps 1e6): peak -0.3 %, a +1 %;
+//    kappa = eps a / E* only (docs/theory.md "Effect of a finite penalty"): kappa = 98 (eps 1e6): peak -0.3 %, a +1 %;
 //    kappa = 9800 (eps 1e8): negligible; kappa = 0.98 (eps 1e4): p_max/p0 = 0.80,
 //    a/a_H = 1.39.
 // Also: the contact force balances the load (the cylinder is held only by
@@ -65,7 +67,8 @@ TEST(Hertz, PenaltyOneMillionMatchesHertz)
     // 1 % allows mesh and sampling changes; a penalty 10x softer (kappa 9.8) is -3 %.
     constexpr double peak_tolerance = 0.01;
     // Half-width: +1 % from the penalty, plus the 1 % crossing read on a du ~ a/70
-    // mesh; measured +2.2 %. A penalty 10x softer widens the zone by 7 % (§2.3).
+    // mesh; measured +2.2 %. A penalty 10x softer widens the zone by 7 % (docs/theory.md
+    // "Effect of a finite penalty").
     constexpr double half_width_tolerance = 0.03;
     // L2: 0.6 % floor of the finite cylinder, penalty and discretization on top;
     // measured 1.75 %. A pressure 3 % off in scale alone already gives 3.5 %.
@@ -80,7 +83,7 @@ TEST(Hertz, PenaltyOneMillionMatchesHertz)
 // it: the sum over the carrier's Gauss points of p W (computed here from the
 // stored pressure and weight), the side's normal_force attribute, and the
 // reference's normal_force (the post-processed resultant, which equals the Gauss
-// sum by partition of unity, physics.md §3.6).
+// sum by partition of unity, docs/theory.md "Sauer's pressure post-processing").
 TEST(Hertz, ContactForceBalancesTheLoad)
 {
     const auto file = run_hertz("hertz_force", "1.0e6");
@@ -133,7 +136,7 @@ TEST(Hertz, StifferPenaltyComesCloser)
 }
 
 // eps = 1e4 (kappa = 0.98): the penalty layer is as compliant as the cylinder
-// over the contact width; the half-space model of physics.md §2.3 predicts at
+// over the contact width; the half-space model of docs/theory.md "Effect of a finite penalty" predicts at
 // kappa = 1 a peak of 0.80 p0 (-20 %) and a half-width of 1.39 a (+39 %). The run
 // must converge and show that softening (measured -20.2 % and +42.7 %).
 TEST(Hertz, SoftPenaltyShowsExpectedSoftening)

@@ -68,7 +68,7 @@ TEST(Reactions, DisplacedTopBalancesTheContactForceEveryIncrement)
 
 TEST(Reactions, ForceDrivenHertzContactBalancesTheLoad)
 {
-    // Force control: the floor takes the applied half load F/2 = 5 (physics.md §1).
+    // Force control: the floor takes the applied half load F/2 = 5 (docs/theory.md "The Hertz benchmark").
     const auto dir = scratch_dir("reactions_force");
     const auto out = dir / "hertz.h5";
     const auto outcome = run_deck(source_path("inputs/hertz.yaml"), {}, out);

@@ -2,7 +2,7 @@
 // Helpers for the whole-solver tests: run a deck in-process (io::read_deck with
 // --set overrides, then analysis::run) into a scratch folder of the build tree,
 // and read the results file back through the documented layout only
-// (shared/spec/results.md), never through solver internals.
+// (docs/results.md), never through solver internals.
 //
 // Scratch folders: ${IGA_BINARY_DIR}/test_scratch/analysis/<name>, emptied on
 // creation; each test uses its own name, so ctest -j cannot make tests collide.

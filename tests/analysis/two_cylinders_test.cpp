@@ -1,6 +1,6 @@
 // Two identical deformable cylinders in two-half-pass contact
 // (inputs/hertz_two_cylinders_2d.yaml): the core "no master, no slave" checks of
-// physics.md §6.2.
+// docs/theory.md "Verification problems".
 //
 // The deck: two quarter discs of radius 1 meeting at the origin, the lower one
 // the exact mirror image of the upper one about y = 0 (same knots in u, mirrored
@@ -13,7 +13,7 @@
 //  (c) Listing the bodies and the pair's surfaces in the other order changes
 //      nothing but round-off.
 //  (d) Newton converges quadratically: here the gap depends nonlinearly on u
-//      (projection onto a moving curved surface), the b-terms of physics.md §3.3 matter.
+//      (projection onto a moving curved surface), the b-terms of docs/theory.md "GPTS tangent in tensor form" matter.
 
 #include "run_support.hpp"
 #include "support/tolerance.hpp"
@@ -174,8 +174,8 @@ TEST(TwoCylinders, ForceDrivenMatchesTwoCylinderHertzOnBothSides)
     constexpr double force_tolerance = 1e-6;
     EXPECT_TRUE(near_rel(results.number(pair_group + upper_side, "normal_force"), applied_force, force_tolerance));
     // The lower body's half pass is balanced by its support, not by the load: the
-    // two-half-pass forces are equal and opposite only approximately (physics.md
-    // §3.4), up to the quadrature of each side: both passes integrate over the current
+    // two-half-pass forces are equal and opposite only approximately (docs/theory.md
+    // "Contact formulation"), up to the quadrature of each side: both passes integrate over the current
     // surface (docs/theory.md "Two-half-pass balance"); measured +0.003 % (it was
     // -0.35 % with reference lengths). 0.2 % bounds this; a lost pass or point set is O(1).
     constexpr double momentum_balance_tolerance = 0.002;
@@ -317,7 +317,7 @@ TEST(TwoCylinders, NewtonConvergesQuadratically)
     const double e_k = e[e.size() - 2], e_next = e.back();
     // Relative residuals: C ~ ||K^-1|| ||d2r/du2|| / force scale (measured 25). A tangent
     // with a relative error delta converges linearly at a rate ~delta (the b-terms of
-    // physics.md §3.3 dropped: 13 %, rate ~0.1), so C ~ delta / e_k: 100 at e_k = 1.6e-6
+    // docs/theory.md "GPTS tangent" dropped: 13 %, rate ~0.1), so C ~ delta / e_k: 100 at e_k = 1.6e-6
     // admits no tangent error above ~2e-4.
     constexpr double quadratic_constant_bound = 100.0;
     EXPECT_TRUE(at_least(e_k, 1e-7)) << "the last step starts well above the tolerance";

@@ -1,5 +1,5 @@
 // Tests of the Hertz solutions (lib/analytic/hertz.hpp): the plane-strain line
-// contact against the tables of shared/physics.md §1 and §2.1 and the identity
+// contact against the tables of docs/theory.md ("The Hertz benchmark", "Hertz formulas") and the identity
 // int p dx = P; the point contact against hand values, int p dA = F and the
 // sphere-on-plane limit of two spheres.
 #include "analytic/hertz.hpp"
@@ -17,14 +17,14 @@ namespace {
 using test::near;
 using test::near_rel;
 
-// The physics.md tables print 5 significant digits: half a unit in the last place.
+// Those tables print 5 significant digits: half a unit in the last place.
 constexpr double table_digits = 5e-6;
 // Closed-form combinations of a few doubles: a handful of roundings.
 constexpr double round_off = 1e-14;
 
 TEST(Hertz, DimensionlessTableOfPhysicsNotes)
 {
-    // Rows P/(E* R*) -> a/R*, p0/E* of physics.md §2.1 (E* = 1, R* = 1 through E = 1 - nu^2).
+    // Rows P/(E* R*) -> a/R*, p0/E* of docs/theory.md "Hertz formulas" (E* = 1, R* = 1 through E = 1 - nu^2).
     struct Row {
         double load, a, p0;
     };
@@ -41,8 +41,8 @@ TEST(Hertz, DimensionlessTableOfPhysicsNotes)
 
 TEST(Hertz, CanonicalBenchmark)
 {
-    // physics.md §1: E = 1000, nu = 0.3, R = 1, F = 10; E* = 1098.90, a = 0.10764.
-    // physics.md prints p0 = 59.146, which contradicts its own formula
+    // docs/theory.md "The Hertz benchmark": E = 1000, nu = 0.3, R = 1, F = 10; E* = 1098.90, a = 0.10764.
+    // A value of 59.146 has been quoted for this case; the formula gives
     // p0 = 2F/(pi a) = sqrt(F E*/(pi R)) = 59.1431 (also with a rounded to 0.10764:
     // 59.1434); we test the formula's value to the printed number of digits.
     const HertzLineContact h = hertz_cylinder_plane(1000.0, 0.3, 1.0, 10.0);
@@ -51,7 +51,7 @@ TEST(Hertz, CanonicalBenchmark)
     EXPECT_TRUE(near(h.force, 10.0, round_off));
     EXPECT_TRUE(near(h.a, 0.10764, 5e-6));  // printed to 5 decimals
     EXPECT_TRUE(near(h.p0, 59.143, 5e-4));  // printed to 3 decimals
-    // The two expressions of p0 in physics.md §2.1 agree.
+    // The two expressions of p0 in docs/theory.md "Hertz formulas" agree.
     EXPECT_TRUE(near_rel(h.p0, std::sqrt(h.force * h.E_star / (std::numbers::pi * h.R_star)), round_off));
 }
 
@@ -91,7 +91,7 @@ TEST(Hertz, TwoCylindersCombination)
     EXPECT_TRUE(near_rel(h.R_star, 1.2, round_off));
     EXPECT_TRUE(near_rel(h.a, std::sqrt(4.0 * 5.0 * 1.2 / (std::numbers::pi * 57.41352088416823)), round_off));
 
-    // Identical cylinders (physics.md §6.2): E* = E/(2(1-nu^2)), R* = R/2.
+    // Identical cylinders (docs/theory.md "Hertz formulas"): E* = E/(2(1-nu^2)), R* = R/2.
     const HertzLineContact twin = hertz_two_cylinders(1000.0, 0.3, 1.0, 1000.0, 0.3, 1.0, 10.0);
     EXPECT_TRUE(near_rel(twin.E_star, 1000.0 / (2.0 * (1.0 - 0.09)), round_off));
     EXPECT_TRUE(near_rel(twin.R_star, 0.5, round_off));

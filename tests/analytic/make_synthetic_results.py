@@ -1,9 +1,9 @@
 #!/usr/bin/python3
-"""Write a small synthetic igacontact results file (shared/spec/results.md) to try scripts/plot_pressure.py.
+"""Write a small synthetic igacontact results file (docs/results.md) to try scripts/plot_pressure.py.
 
 Usage:  make_synthetic_results.py OUT.h5 [--full] [--no-reference]
 
-The benchmark of shared/physics.md §1 (E = 1000, nu = 0.3, R = 1, F = 10, so
+The benchmark of docs/theory.md "The Hertz benchmark" (E = 1000, nu = 0.3, R = 1, F = 10, so
 a = 0.10764, p0 = 59.143), faked as a penalty solution: a Hertz curve 1 % wider
 and 0.5 % lower. Default: a quarter model (Gauss points on x >= 0 only);
 --full: both halves of the contact arc. --no-reference leaves out /reference.

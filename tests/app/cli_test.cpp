@@ -1,5 +1,5 @@
-// The command-line contract of `igacontact` (app/main.cpp, shared/spec/deck.md,
-// shared/spec/results.md), tested on the built executable:
+// The command-line contract of `igacontact` (app/main.cpp, docs/deck.md,
+// docs/results.md), tested on the built executable:
 //   exit codes 0 ok, 1 solve failed / files differ, 2 bad input or usage;
 //   deck errors as "file:line:col: error: path = value: reason", and a deck error
 //   never creates or touches a results file;

@@ -1,5 +1,5 @@
 // An interrupted run never leaves a corrupt or lost results file
-// (shared/spec/results.md, last paragraph), tested on the built executable:
+// (docs/results.md, last paragraph), tested on the built executable:
 //   SIGINT: the run stops cleanly (abandoning the increment in progress), exits 1 and leaves
 //     the final results file, readable, with status "failed", a message naming the
 //     interruption, and only complete increments 0001..k;

@@ -115,7 +115,7 @@ TEST(ContactPair, SinglePassTangentIsSymmetricDerivative)
 
 TEST(ContactPair, TwoHalfPassTangentIsNotSymmetric)
 {
-    // Not the Hessian of one potential (physics.md 3.4): a symmetric solver would be wrong.
+    // Not the Hessian of one potential (docs/theory.md "Contact formulation"): a symmetric solver would be wrong.
     const Scene s = make_scene();
     const ContactPair pair({.formulation = Formulation::two_half_pass, .penalty = 1e3}, s.disc, s.block);
     const auto [u1, u2] = overlap_state(pair, 1);

@@ -1,6 +1,6 @@
 #pragma once
 // Small geometries shared by the contact tests: exact circular arcs
-// (physics.md 5.2), a curved rational master, two curved deformable bodies that
+// (docs/theory.md "Exact circles"), a curved rational master, two curved deformable bodies that
 // overlap a little, and helpers to turn a pair evaluation into dense matrices.
 
 #include "contact/contact_pair.hpp"

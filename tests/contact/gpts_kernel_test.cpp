@@ -26,7 +26,7 @@ constexpr double symmetry_tolerance = 1e-10;
 // Closed-form identities (p = eps g, sums of a few O(p W) terms): round-off.
 constexpr double round_off = 1e-12;
 // Dropping the p-weighted geometric terms changes the tangent by percents here
-// (physics.md 3.3 reports 13 % for a similar set-up).
+// (docs/theory.md "Verification problems" reports 13 % for a similar set-up).
 constexpr double geometric_term_share = 1e-2;
 // Random state: control points moved by up to this, small against the 0.08 penetration.
 constexpr double noise = 2e-3;

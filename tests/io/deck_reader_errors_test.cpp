@@ -1,5 +1,5 @@
 // Tests of the located messages of io::read_deck / read_deck_text for every
-// class of bad input that shared/spec/deck.md names (file:line:col, key path in
+// class of bad input that docs/deck.md names (file:line:col, key path in
 // --set syntax, value as written, reason). Messages are compared as whole
 // strings: their text is part of the contract. Columns point at the value (or,
 // for an unknown key, at the key; for a missing key, at the enclosing map).

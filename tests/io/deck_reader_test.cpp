@@ -1,5 +1,5 @@
 // Tests of io::read_deck / read_deck_text and write_resolved_yaml against
-// shared/spec/deck.md: the values and defaults of valid decks, paths, and the
+// docs/deck.md: the values and defaults of valid decks, paths, and the
 // read -> write -> read round trip of the resolved deck.
 
 #include "deck_test_support.hpp"

@@ -1,4 +1,4 @@
-// Tests of --set PATH=VALUE (shared/spec/deck.md "General rules"): setting
+// Tests of --set PATH=VALUE (docs/deck.md "General rules"): setting
 // existing and new keys, addressing list items by name and by index, refusing
 // paths the format does not have, and locating bad values at <command line>.
 

@@ -1,4 +1,4 @@
-// Tests of io::ResultsWriter against shared/spec/results.md: every name, shape
+// Tests of io::ResultsWriter against docs/results.md: every name, shape
 // and attribute of the contract is read back with the HDF5 C API (through
 // io/h5_file.hpp), plus the crash-safety promises (temporary file, rename on
 // finish, untouched final path on abandon, flushed steps readable after a crash).

@@ -231,7 +231,7 @@ TEST(Patch, RejectsBadDerivativeOrderAndPointSize)
     EXPECT_THROW(rational_basis(patch, VecN::Constant(1, 0.5), 1), Error);
 }
 
-/// Circle arcs of physics.md 5.2 (R = 1.5, center (0.3, -0.2)): |x - c| = R everywhere.
+/// Circle arcs of docs/theory.md "Exact circles" (R = 1.5, center (0.3, -0.2)): |x - c| = R everywhere.
 void expect_on_circle(const KnotVector& knots, const std::vector<std::array<double, 2>>& unit_points,
                       const std::vector<double>& weights)
 {

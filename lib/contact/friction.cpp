@@ -1,0 +1,75 @@
+#include "contact/friction.hpp"
+
+#include "core/error.hpp"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+
+namespace iga::contact {
+
+TangentialResponse coulomb_response(const FrictionLaw& law, const FrictionHistory& committed, const VecN& y,
+                                    const VecN& normal, double pressure, const VecN& d_pressure,
+                                    double normal_radius)
+{
+    const Index d = y.size();
+    IGA_CHECK(committed.anchor.size() == d && normal.size() == d && d_pressure.size() == d,
+              "friction: anchor, normal and dp/dy need the point's dimension");
+    TangentialResponse out;
+    out.traction = VecN::Zero(d);
+    out.d_traction = Matrix::Zero(d, d);
+    out.next = committed;
+    if (!(pressure > 0.0) || !law.active()) {
+        out.next.anchor = y;  // open: it will stick where it touches
+        return out;
+    }
+    const Matrix P = Matrix::Identity(d, d) - normal * normal.transpose();
+    const VecN w = y - committed.anchor;
+    const VecN gt = P * w;
+    Matrix G = P;
+    if (std::isfinite(normal_radius))
+        G -= (normal.dot(w) * P + normal * gt.transpose()) / normal_radius;
+    const double eps = law.tangential_penalty;
+    const VecN s = -eps * gt;
+    const double s_norm = s.norm();
+    const double limit = law.coefficient * pressure;
+    if (s_norm <= limit) {
+        out.status = StickSlip::stick;
+        out.traction = s;
+        out.d_traction = -eps * G;
+        return out;
+    }
+    out.status = StickSlip::slip;
+    const VecN direction = s / s_norm;
+    out.traction = limit * direction;
+    out.d_traction = -(eps * limit / s_norm) * (Matrix::Identity(d, d) - direction * direction.transpose()) * G +
+                     law.coefficient * direction * d_pressure.transpose();
+    out.slip_increment = (s_norm - limit) / eps;
+    out.next.anchor = y + out.traction / eps;
+    out.next.slip = committed.slip + out.slip_increment;
+    return out;
+}
+
+Matrix tangent_basis(const VecN& normal, const VecN& along)
+{
+    const Index d = normal.size();
+    Matrix t(d, d - 1);
+    if (d == 2) {
+        t(0, 0) = -normal(1);
+        t(1, 0) = normal(0);
+        return t;
+    }
+    VecN t1 = along - normal.dot(along) * normal;
+    if (!(t1.norm() > 1e-12 * along.norm())) {  // along parallel to n: any tangent will do
+        const Index k = normal.cwiseAbs().minCoeff() == std::abs(normal(0)) ? 0 : 1;
+        VecN e = VecN::Zero(3);
+        e(k) = 1.0;
+        t1 = e - normal.dot(e) * normal;
+    }
+    t1.normalize();
+    t.col(0) = t1;
+    t.col(1) = Eigen::Vector3d(normal(0), normal(1), normal(2)).cross(Eigen::Vector3d(t1(0), t1(1), t1(2)));
+    return t;
+}
+
+}  // namespace iga::contact

@@ -1,0 +1,68 @@
+#pragma once
+// Regularized Coulomb friction at one contact Gauss point: a tangential penalty
+// (elastic stick) with a return map to the Coulomb cone |t_T| <= mu p
+// (docs/theory.md "Coulomb friction"; Wriggers, Computational Contact Mechanics, ch. 5).
+//
+// Slip is measured in space, in the frame of the master: y is the slave point in
+// that frame (for a rigid obstacle its position minus the obstacle's translation),
+// and `anchor` the point of that frame the slave sticks to. Nothing refers to a
+// patch's parameters, so a point that slides from one patch onto the next keeps
+// its history. With the current tangent projector P = I - n n:
+//
+//   trial traction    s = -eps_T P (y - anchor)
+//   stick  |s| <= mu p:  t_T = s
+//   slip   |s| >  mu p:  t_T = mu p s / |s|,   slip increment (|s| - mu p) / eps_T
+//
+// and the history of a converged state (FrictionHistory): open points re-anchor
+// where they are, slipping points where the traction is reproduced (anchor = y +
+// t_T / eps_T), sticking points keep their anchor. The force on the slave is
+// +W N_a t_T, so the slave residual gains r_a = -W N_a t_T.
+//
+// Linearization in y (the slave point): with w = y - anchor, rho the distance over
+// which the normal turns (dn/dy = P / rho; infinite for a plane),
+//   G = d(P w)/dy = P - ((n . w) P + n (P w)^T) / rho,
+//   stick: dt_T/dy = -eps_T G,
+//   slip:  dt_T/dy = -eps_T mu p / |s| (I - s^ s^T) G + mu s^ (dp/dy)^T.
+// The slip tangent is not symmetric: friction makes every tangent non-symmetric.
+
+#include "core/types.hpp"
+
+#include <limits>
+
+namespace iga::contact {
+
+struct FrictionLaw {
+    double coefficient = 0.0;         ///< mu >= 0; 0: frictionless
+    double tangential_penalty = 0.0;  ///< eps_T > 0 (used when mu > 0)
+    bool active() const { return coefficient > 0.0; }
+};
+
+enum class StickSlip : int { open = 0, stick = 1, slip = 2 };
+
+/// A Gauss point's friction history, committed once per converged increment.
+struct FrictionHistory {
+    VecN anchor;        ///< the master-frame point the slave sticks to, d
+    double slip = 0.0;  ///< accumulated slip length
+};
+
+/// The tangential response at one Gauss point.
+struct TangentialResponse {
+    StickSlip status = StickSlip::open;
+    VecN traction;               ///< t_T on the slave (tangential), d
+    Matrix d_traction;           ///< dt_T/dy, d x d
+    FrictionHistory next;        ///< the history if this state is committed
+    double slip_increment = 0.0; ///< slip length since the committed state
+};
+
+/// Coulomb's law at the slave point y (master frame) with outward normal n of
+/// the master, contact pressure p >= 0 and its derivative dp/dy (d).
+TangentialResponse coulomb_response(const FrictionLaw& law, const FrictionHistory& committed, const VecN& y,
+                                    const VecN& normal, double pressure, const VecN& d_pressure,
+                                    double normal_radius = std::numeric_limits<double>::infinity());
+
+/// An orthonormal tangent basis (d x (d - 1)) of the plane normal to n: in 2D
+/// t = e_z x n; in 3D the part of `along` (a tangent of the slave surface)
+/// normal to n, then n x t1 (a fixed choice when `along` is parallel to n).
+Matrix tangent_basis(const VecN& normal, const VecN& along);
+
+}  // namespace iga::contact

@@ -1,0 +1,175 @@
+// Coulomb friction against a rigid floor through the whole solver, read back from
+// the results file (docs/results.md): a block dragged over the floor slides with
+// a friction force of mu times the normal force; pushed by less than that it
+// sticks, held only by the tangential penalty; Newton converges quadratically
+// once the stick/slip set has settled.
+
+#include "run_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+
+namespace iga::test {
+namespace {
+
+// Newton stops at a relative residual of 1e-10: forces balance to ~1e-10 of the
+// load; 1e-8 leaves room for the conditioning of the penalty (eps h / E ~ 1e2).
+constexpr double force_tolerance = 1e-8;
+
+struct SideState {
+    Vector pressure, weight;
+    RowMatrix traction;            // n x d, in space
+    RowMatrix coordinates, reference;
+    std::vector<double> status;
+    std::vector<double> friction_force;
+    double normal_force = 0.0;
+};
+
+SideState side_state(const Results& results, const std::string& step, const std::string& side)
+{
+    const std::string group = "steps/" + step + "/contact/slide/" + side;
+    SideState s;
+    s.pressure = results.matrix(group + "/gauss_points/pressure").col(0);
+    s.weight = results.matrix(group + "/gauss_points/weight").col(0);
+    s.traction = results.matrix(group + "/gauss_points/tangential_traction_vector");
+    s.coordinates = results.matrix(group + "/gauss_points/coordinates");
+    s.reference = results.matrix(group + "/gauss_points/reference_coordinates");
+    s.status = results.reals(group + "/gauss_points/status");
+    s.normal_force = results.number(group, "normal_force");
+    const io::h5::Handle object = io::h5::open_object(results.id(), group);
+    s.friction_force = io::h5::read_attribute(object.id(), "friction_force").reals;
+    return s;
+}
+
+TEST(Friction, DraggedBlockSlidesWithMuTimesTheNormalForce2D)
+{
+    constexpr double mu = 0.3;
+    const auto dir = scratch_dir("friction_drag_2d");
+    const auto file = dir / "drag.h5";
+    const auto outcome = run_deck(source_path("tests/analysis/decks/block_friction_floor_2d.yaml"), {}, file);
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    const Results results(file);
+    const std::vector<std::string> steps = results.steps();
+    ASSERT_EQ(steps.size(), 4u);
+    for (const std::string& step : steps) {
+        const SideState s = side_state(results, step, "block.v0");
+        ASSERT_EQ(s.friction_force.size(), 2u);
+        int slipping = 0;
+        for (Index g = 0; g < s.pressure.size(); ++g) {
+            if (s.pressure(g) > 0.0) {
+                EXPECT_EQ(s.status[static_cast<std::size_t>(g)], 2.0) << step << ", Gauss point " << g;
+                ++slipping;
+            } else {
+                EXPECT_EQ(s.status[static_cast<std::size_t>(g)], 0.0);
+                EXPECT_EQ(s.traction.row(g).norm(), 0.0);
+            }
+        }
+        EXPECT_GT(slipping, 20);
+        // Sliding to the right: the floor pulls the block back with mu N.
+        EXPECT_NEAR(s.friction_force[0], -mu * s.normal_force, force_tolerance * s.normal_force) << step;
+        EXPECT_NEAR(s.friction_force[1], 0.0, force_tolerance * s.normal_force) << step;
+        // The drag's reaction balances it.
+        const RowMatrix reaction = results.matrix("steps/" + step + "/reactions/block.v1");
+        EXPECT_NEAR(reaction(0, 0), -s.friction_force[0], force_tolerance * s.normal_force) << step;
+    }
+    // The history has the friction force and the contact length per step.
+    const RowMatrix history = results.matrix("history/contact/slide/block.v0/friction_force");
+    EXPECT_EQ(history.rows(), 4);
+    EXPECT_EQ(history.cols(), 2);
+    EXPECT_NEAR(history(3, 0), -mu * 10.0, force_tolerance * 10.0);
+    EXPECT_GT(results.matrix("history/contact/slide/block.v0/contact_area")(3, 0), 0.5);
+}
+
+TEST(Friction, DraggedBoxSlidesOnTheCoulombConeAgainstTheDrag3D)
+{
+    constexpr double mu = 0.25, normal = 6.0;
+    const auto dir = scratch_dir("friction_drag_3d");
+    const auto file = dir / "drag.h5";
+    const auto outcome = run_deck(source_path("tests/analysis/decks/block_friction_floor_3d.yaml"), {}, file);
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    const Results results(file);
+    const SideState s = side_state(results, results.steps().back(), "box.w0");
+    double on_cone = 0.0, pressure_force = 0.0;
+    for (Index g = 0; g < s.pressure.size(); ++g) {
+        if (!(s.pressure(g) > 0.0))
+            continue;
+        EXPECT_EQ(s.status[static_cast<std::size_t>(g)], 2.0) << "Gauss point " << g;
+        // Every slipping point's traction is on the cone: |t| = mu p.
+        EXPECT_NEAR(s.traction.row(g).norm(), mu * s.pressure(g), 1e-10 * mu * s.pressure(g));
+        on_cone += s.weight(g) * s.traction.row(g).norm();
+        pressure_force += s.weight(g) * s.pressure(g);
+    }
+    EXPECT_NEAR(pressure_force, normal, force_tolerance * normal);
+    EXPECT_NEAR(on_cone, mu * normal, force_tolerance * normal);
+    // The slip directions differ by the box's shear only: the resultant points
+    // against the drag (0.04, 0.03) and is mu N to the cosine of that spread.
+    const Eigen::Vector3d f(s.friction_force[0], s.friction_force[1], s.friction_force[2]);
+    const Eigen::Vector3d drag = Eigen::Vector3d(0.04, 0.03, 0.0).normalized();
+    EXPECT_NEAR(f.norm(), mu * normal, 1e-3 * mu * normal);
+    EXPECT_GT(-f.dot(drag) / f.norm(), std::cos(1e-2));
+    EXPECT_NEAR(f(2), 0.0, force_tolerance * normal);
+    // Quadratic convergence at the end of every increment (3D: the slip direction is
+    // nonlinear): e_{k+1} <= C e_k^2 on the last step above the round-off floor.
+    for (int increment = 1; increment <= static_cast<int>(results.steps().size()); ++increment) {
+        const std::vector<double> e = newton_residuals(results, increment);
+        const std::size_t k = last_step_above(e, 1e-13);
+        ASSERT_LT(k + 1, e.size()) << "increment " << increment;
+        EXPECT_LE(e[k + 1], 1.0 * e[k] * e[k]) << "increment " << increment << ", step " << k;
+    }
+}
+
+TEST(Friction, BlockPushedBelowMuNSticksOnTheTangentialPenaltyAlone)
+{
+    constexpr double push = 0.3, normal = 10.0, penalty = 1.0e6, tangential_penalty = 4.0e5;
+    const auto dir = scratch_dir("friction_stick_2d");
+    const auto deck = dir / "stick.yaml";
+    std::ofstream(deck) << R"(format: 1
+analysis: {dimension: 2, plane: strain, kinematics: small}
+materials:
+  - {name: solid, model: linear_elastic, E: 1000.0, nu: 0.0}
+bodies:
+  - name: block
+    material: solid
+    shape: {type: rectangle, corner: [0.0, 0.0], size: [1.0, 0.25]}
+    refine: {elevate: [1, 1], spans: [8, 2]}
+  - name: floor
+    rigid: {plane: {point: [0.0, 0.0], normal: [0.0, 1.0]}}
+loads:
+  - {body: block, side: v1, force: [0.3, -10.0]}
+contact:
+  - name: slide
+    between: [block.v0, floor]
+    penalty: 1.0e6
+    friction: {coefficient: 0.3, tangential_penalty: 4.0e5}
+steps: {count: 2}
+)";
+    const auto file = dir / "stick.h5";
+    const auto outcome = run_deck(deck.string(), {}, file);
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    const Results results(file);
+    const SideState s = side_state(results, results.steps().back(), "block.v0");
+    // Nothing else holds the block sideways: the friction force balances the push.
+    EXPECT_NEAR(s.friction_force[0], -push, force_tolerance * normal);
+    EXPECT_NEAR(s.normal_force, normal, force_tolerance * normal);
+    // nu = 0: the press does not spread the base (with nu = 0.3 its Poisson expansion,
+    // ~2e-3 at the edges, would exceed mu p / eps_T and slip there).
+    // Every pressed point sticks, t = -eps_T u_x (anchored where it started), so
+    // the weighted mean slide of the contact is the penalty compliance push / eps_T.
+    double slide = 0.0;
+    for (Index g = 0; g < s.pressure.size(); ++g) {
+        if (!(s.pressure(g) > 0.0))
+            continue;
+        EXPECT_EQ(s.status[static_cast<std::size_t>(g)], 1.0) << "Gauss point " << g;
+        const double u_x = s.coordinates(g, 0) - s.reference(g, 0);
+        EXPECT_NEAR(s.traction(g, 0), -tangential_penalty * u_x, 1e-9 * push);
+        slide += s.weight(g) * u_x;
+    }
+    // sum W t = -push to the force tolerance, so the slide to the same relative accuracy.
+    EXPECT_NEAR(slide, push / tangential_penalty, force_tolerance * normal / tangential_penalty);
+    (void)penalty;
+}
+
+}  // namespace
+}  // namespace iga::test

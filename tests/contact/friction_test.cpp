@@ -1,0 +1,190 @@
+// Regularized Coulomb friction against rigid obstacles (contact/friction.hpp):
+// the return map's cases, and the consistent tangent of a slave Gauss point
+// (normal kernel plus tangential traction) against central finite differences
+// of its residual, in 2D and 3D, for a plane and a sphere, sticking and slipping.
+
+#include "contact/friction.hpp"
+#include "contact/gpts_kernel.hpp"
+#include "contact/rigid_obstacle.hpp"
+
+#include "support/finite_difference.hpp"
+
+#include <gtest/gtest.h>
+
+namespace iga::contact {
+namespace {
+
+// Central differences with h = 1e-7 on O(1e-2) offsets and eps ~ 1e3: truncation
+// O(h^2) and round-off ~1e-16 eps |x| / h ~ 1e-6 of the O(1e3) entries; a wrong
+// or missing term (the slip projector, dp/dy, the sphere's turning normal) is
+// O(1e-2) of the tangent or more.
+constexpr double fd_step = 1e-7;
+constexpr double fd_tolerance = 1e-6;
+
+constexpr double normal_penalty = 2.0e3;
+constexpr double tangential_penalty = 1.5e3;
+constexpr double coefficient = 0.4;
+
+struct Point {
+    Vector N;  ///< slave basis values at the Gauss point
+    double W = 0.7;
+    RowMatrix X;  ///< slave control points, n_s x d
+};
+
+/// Residual (and tangent) of the point against the obstacle with a committed anchor.
+KernelResult evaluate(const RigidObstacle& obstacle, const Point& point, const RowMatrix& X,
+                      const FrictionHistory& committed, bool need_tangent, TangentialResponse* response = nullptr)
+{
+    const Index d = X.cols();
+    VecN x = VecN::Zero(d);
+    for (Index a = 0; a < X.rows(); ++a)
+        x += point.N(a) * X.row(a).transpose();
+    const ObstacleFoot foot = obstacle.foot(x, 0.0);
+    const KernelSettings settings{.penalty = normal_penalty, .need_tangent = need_tangent};
+    KernelResult kr = gpts_rigid_kernel(point.N, point.W, foot.normal, foot.gap, settings, foot.radius);
+    const VecN dp = kr.pressure > 0.0 ? VecN(-normal_penalty * foot.normal) : VecN(VecN::Zero(d));
+    const TangentialResponse t = coulomb_response({coefficient, tangential_penalty}, committed, x, foot.normal,
+                                                  kr.pressure, dp, foot.radius);
+    add_tangential(kr, point.N, point.W, t);
+    if (response)
+        *response = t;
+    return kr;
+}
+
+/// The point's control points shifted so that x sits `depth` inside the obstacle's
+/// surface along -n and `slide` along a tangent from the anchor.
+void check_tangent(const RigidObstacle& obstacle, const Point& point, const FrictionHistory& committed,
+                   StickSlip expected)
+{
+    TangentialResponse response;
+    const KernelResult kr = evaluate(obstacle, point, point.X, committed, true, &response);
+    ASSERT_EQ(response.status, expected);
+    const Index n = point.X.size();
+    const Eigen::VectorXd x0 = Eigen::Map<const Eigen::VectorXd>(point.X.data(), n);
+    auto residual = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+        const RowMatrix X = Eigen::Map<const RowMatrix>(v.data(), point.X.rows(), point.X.cols());
+        return evaluate(obstacle, point, X, committed, false).residual;
+    };
+    const Eigen::MatrixXd fd = test::central_difference_jacobian(residual, x0, fd_step);
+    const double scale = kr.tangent.norm();
+    EXPECT_LE((kr.tangent - fd).norm(), fd_tolerance * scale) << "tangent\n" << kr.tangent << "\nfd\n" << fd;
+    if (expected == StickSlip::slip) {  // a slipping point's tangent is not symmetric
+        EXPECT_GT((kr.tangent - kr.tangent.transpose()).norm(), 1e-3 * scale);
+    }
+}
+
+Point point_2d()
+{
+    Point p;
+    p.N = Vector(3);
+    p.N << 0.2, 0.5, 0.3;
+    p.X = RowMatrix(3, 2);
+    p.X << -0.1, -0.004, 0.0, -0.005, 0.12, -0.006;  // x ~ (0.016, -0.0051): pressed into y <= 0
+    return p;
+}
+
+Point point_3d()
+{
+    Point p;
+    p.N = Vector(4);
+    p.N << 0.1, 0.4, 0.3, 0.2;
+    p.X = RowMatrix(4, 3);
+    p.X << -0.1, 0.02, -0.004, 0.05, -0.1, -0.005, 0.1, 0.05, -0.006, 0.0, 0.1, -0.003;
+    return p;
+}
+
+VecN x_of(const Point& p)
+{
+    VecN x = VecN::Zero(p.X.cols());
+    for (Index a = 0; a < p.X.rows(); ++a)
+        x += p.N(a) * p.X.row(a).transpose();
+    return x;
+}
+
+FrictionHistory anchored(const Point& p, const VecN& offset)
+{
+    return FrictionHistory{x_of(p) - offset, 0.0};
+}
+
+TEST(Friction, ReturnMapSticksInsideTheConeAndSlidesOnIt)
+{
+    const VecN n = (VecN(2) << 0.0, 1.0).finished();
+    const VecN y = (VecN(2) << 0.0, 0.0).finished();
+    const FrictionLaw law{0.5, 100.0};
+    const VecN dp = VecN::Zero(2);
+    // Anchor 1e-3 to the left: trial traction -0.1 along x, inside mu p = 0.5.
+    const TangentialResponse stick = coulomb_response(law, {(VecN(2) << -1e-3, 0.0).finished(), 0.0}, y, n, 1.0, dp);
+    EXPECT_EQ(stick.status, StickSlip::stick);
+    EXPECT_NEAR(stick.traction(0), -0.1, 1e-15);
+    EXPECT_EQ(stick.next.anchor, (VecN(2) << -1e-3, 0.0).finished());
+    // Anchor 0.02 to the left: trial -2 > 0.5, slides with |t| = mu p, slip 0.02 - 0.5/100.
+    const TangentialResponse slip = coulomb_response(law, {(VecN(2) << -0.02, 0.0).finished(), 0.1}, y, n, 1.0, dp);
+    EXPECT_EQ(slip.status, StickSlip::slip);
+    EXPECT_NEAR(slip.traction(0), -0.5, 1e-15);
+    EXPECT_NEAR(slip.slip_increment, 0.015, 1e-15);
+    EXPECT_NEAR(slip.next.slip, 0.115, 1e-15);
+    // The committed anchor reproduces the traction on the cone: the next trial starts there.
+    const TangentialResponse again = coulomb_response(law, slip.next, y, n, 1.0, dp);
+    EXPECT_NEAR(again.traction(0), -0.5, 1e-14);
+    EXPECT_NEAR(again.slip_increment, 0.0, 1e-14);
+    // The normal part of the offset carries no traction; an open point re-anchors where it is.
+    const TangentialResponse normal_only =
+        coulomb_response(law, {(VecN(2) << 0.0, -0.3).finished(), 0.0}, y, n, 1.0, dp);
+    EXPECT_NEAR(normal_only.traction.norm(), 0.0, 1e-15);
+    const TangentialResponse open = coulomb_response(law, {(VecN(2) << -0.02, 0.0).finished(), 0.0}, y, n, 0.0, dp);
+    EXPECT_EQ(open.status, StickSlip::open);
+    EXPECT_EQ(open.next.anchor, y);
+}
+
+TEST(Friction, TangentEqualsFiniteDifferences2DPlane)
+{
+    const RigidObstacle plane(RigidPlane::make((VecN(2) << 0.0, 0.0).finished(), (VecN(2) << 0.0, 1.0).finished()));
+    const Point p = point_2d();
+    // mu p ~ 0.4 * 2e3 * 5e-3 = 4; eps_T 1.5e3: stick below an offset of ~2.7e-3.
+    check_tangent(plane, p, anchored(p, (VecN(2) << 1e-3, 0.0).finished()), StickSlip::stick);
+    check_tangent(plane, p, anchored(p, (VecN(2) << 2e-2, 0.0).finished()), StickSlip::slip);
+}
+
+TEST(Friction, TangentEqualsFiniteDifferences2DCircle)
+{
+    // The disc of radius 1 below the point: the normal turns with x.
+    const RigidObstacle disc(RigidSphere::make((VecN(2) << 0.05, -0.99).finished(), 1.0));
+    const Point p = point_2d();
+    check_tangent(disc, p, anchored(p, (VecN(2) << 1e-3, 4e-4).finished()), StickSlip::stick);
+    check_tangent(disc, p, anchored(p, (VecN(2) << -2e-2, 5e-3).finished()), StickSlip::slip);
+}
+
+TEST(Friction, TangentEqualsFiniteDifferences3DPlane)
+{
+    const RigidObstacle plane(
+        RigidPlane::make((VecN(3) << 0.0, 0.0, 0.0).finished(), (VecN(3) << 0.0, 0.0, 1.0).finished()));
+    const Point p = point_3d();
+    check_tangent(plane, p, anchored(p, (VecN(3) << 1e-3, -5e-4, 0.0).finished()), StickSlip::stick);
+    check_tangent(plane, p, anchored(p, (VecN(3) << 2e-2, -1e-2, 0.0).finished()), StickSlip::slip);
+}
+
+TEST(Friction, TangentEqualsFiniteDifferences3DSphere)
+{
+    const RigidObstacle ball(RigidSphere::make((VecN(3) << 0.05, 0.0, -0.99).finished(), 1.0));
+    const Point p = point_3d();
+    check_tangent(ball, p, anchored(p, (VecN(3) << 1e-3, 5e-4, 2e-4).finished()), StickSlip::stick);
+    check_tangent(ball, p, anchored(p, (VecN(3) << -2e-2, 1e-2, 3e-3).finished()), StickSlip::slip);
+}
+
+TEST(Friction, TangentBasisIsOrthonormalAndNormalToN)
+{
+    const VecN n2 = (VecN(2) << 0.6, 0.8).finished();
+    const Matrix t2 = tangent_basis(n2, VecN::Zero(2));
+    EXPECT_NEAR(t2.col(0).dot(n2), 0.0, 1e-15);
+    EXPECT_NEAR(t2.col(0).norm(), 1.0, 1e-15);
+    const VecN n3 = (VecN(3) << 0.0, 0.6, 0.8).finished();
+    for (const VecN& along : {VecN((VecN(3) << 1.0, 0.2, 0.0).finished()), VecN(n3)}) {
+        const Matrix t = tangent_basis(n3, along);
+        const Matrix frame = (Matrix(3, 3) << t.col(0), t.col(1), n3).finished();
+        EXPECT_NEAR((frame.transpose() * frame - Matrix::Identity(3, 3)).norm(), 0.0, 1e-14);
+        EXPECT_NEAR(frame.determinant(), 1.0, 1e-14);  // right-handed: t1 x t2 = n
+    }
+}
+
+}  // namespace
+}  // namespace iga::contact
