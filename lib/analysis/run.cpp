@@ -338,8 +338,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     if (driven_mode)
         result.message = *driven_mode;  // not completed, no increment
     else
-        result = solver::run_load_steps(nonlinear, u, stepping_settings(deck.steps, scene.path), newton_settings(deck.newton),
-                                        *linear, callbacks, &context);
+        result = solver::run_load_steps(nonlinear, u, stepping_settings(deck.steps, scene.path),
+                                        newton_settings(deck.newton), *linear, callbacks, &context);
 
     const solver::LinearStatistics linear_statistics = linear->statistics();
     context.add_count("symbolic_factorizations", linear_statistics.symbolic);
