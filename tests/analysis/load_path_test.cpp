@@ -10,7 +10,9 @@
 //  - the stored step times land on every kink of the amplitudes;
 //  - a cutback in the middle of a path (finite strain) reaches the same states as
 //    the closed form, which a run without cutbacks reaches too;
-//  - a follower pressure (finite strain) released along its path returns to zero.
+//  - a follower pressure (finite strain) released along its path returns to zero;
+//  - press, then shear on a floor with friction: the press is held while the
+//    friction takes the shear (inputs/press_then_shear_friction_2d.yaml).
 
 #include "block_closed_form.hpp"
 #include "core/amplitude.hpp"
@@ -281,6 +283,32 @@ TEST(LoadPath, ACutbackInTheMiddleOfAPathReachesTheSameStates)
         } else {
             EXPECT_EQ(outcome.cutbacks, 0) << "the reference run takes small increments without cutbacks";
         }
+    }
+}
+
+TEST(LoadPath, PressThenShearOnARoughFloorHoldsThePressWhileFrictionTakesTheShear)
+{
+    // inputs/press_then_shear_friction_2d.yaml: no constraint, only the floor and its
+    // friction hold the block, so by equilibrium the floor's normal force is the
+    // press and its friction force the shear, at every converged step.
+    const auto file = scratch_dir("load_path_press_then_shear_friction") / "run.h5";
+    const analysis::RunOutcome outcome =
+        run_deck(source_path("inputs/press_then_shear_friction_2d.yaml"), {}, file);
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    const Results results(file);
+    const std::vector<double> t = results.reals("history/load_factor");
+    const std::vector<double> normal = results.reals("history/contact/block_floor/block.v0/normal_force");
+    const RowMatrix friction = results.matrix("history/contact/block_floor/block.v0/friction_force");
+    ASSERT_EQ(t.size(), 20u);
+    EXPECT_EQ(t[9], 1.0);
+    const Amplitude press({{0.0, 0.0}, {1.0, 1.0}, {2.0, 1.0}});
+    const Amplitude shear({{0.0, 0.0}, {1.0, 0.0}, {2.0, 1.0}});
+    constexpr double press_force = 5.0, shear_force = 1.0;
+    for (std::size_t k = 0; k < t.size(); ++k) {
+        EXPECT_TRUE(near(normal[k], press(t[k]) * press_force, contact_tolerance * press_force)) << "t = " << t[k];
+        EXPECT_TRUE(near(friction(static_cast<Index>(k), 0), -shear(t[k]) * shear_force,
+                         contact_tolerance * press_force))
+            << "t = " << t[k];
     }
 }
 
