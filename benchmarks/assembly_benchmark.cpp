@@ -54,7 +54,7 @@ struct Grid {
         std::vector<PrescribedDof> c;
         for (int j = 0; j < n_spans + 2; ++j)
             for (int comp = 0; comp < 2; ++comp)
-                c.push_back({2 * j * (n_spans + 2) + comp, 0.0});
+                c.push_back({2 * j * (n_spans + 2) + comp, 0.0, Amplitude()});
         return c;
     }
 

@@ -91,14 +91,28 @@ DirichletData dirichlet_data(const io::Deck& deck, const std::vector<BodyModel>&
                     group_dofs.push_back(dof);
                 const auto [it, fresh] = owner.try_emplace(dof, Owner{k, value});
                 if (fresh) {  // the first item to prescribe a dof owns it (items/<k>, total/<body>)
-                    out.prescribed.push_back({dof, value});
+                    out.prescribed.push_back({dof, value, c.amplitude.value_or(Amplitude())});
                     items[k].dofs.push_back(dof);
                     total->dofs.push_back(dof);
                     continue;
                 }
-                if (it->second.value == value)
-                    continue;
                 const io::Constraint& first = deck.constraints[it->second.item];
+                // A zero value is zero under any amplitude.
+                const bool same_path = value == 0.0 || first.amplitude.value_or(Amplitude()) ==
+                                                           c.amplitude.value_or(Amplitude());
+                if (it->second.value == value && same_path)
+                    continue;
+                if (it->second.value == value)
+                    throw DeckError(io::located_issue(
+                        deck.source_file, fmt::format("constraints.{}", k), "",
+                        fmt::format("conflicts with {}: both prescribe the {}-displacement of the control point at "
+                                    "{} of body '{}' (the same value {:.6g}) but with different amplitudes; the "
+                                    "sides {}.{} and {}.{} meet there. Give both the same amplitude, or leave "
+                                    "that component free in one of them (~ in 'displacement')",
+                                    item_label(first, it->second.item), component_names[i],
+                                    point_text(body.node_points, p), c.body, value, first.body,
+                                    io::side_text(first.patch, first.side, first.surface), c.body,
+                                    io::side_text(c.patch, c.side, c.surface))));
                 throw DeckError(io::located_issue(
                     deck.source_file, fmt::format("constraints.{}", k), "",
                     fmt::format("conflicts with {}: both prescribe the {}-displacement of the control point at {} "

@@ -3,10 +3,11 @@
 // dofs, and the groups of dofs whose reactions are reported per side.
 //
 // Every control point of a constrained side gets the item's prescribed
-// components (fixed at zero, or given a value at load factor 1). Items may
-// overlap (two sides share a corner, `fix` and `displacement` on one side):
-// a component prescribed twice with the same value is fine; with different
-// values it is a located DeckError naming both items, the side and the point.
+// components (fixed at zero, or given a full value that the item's amplitude
+// scales). Items may overlap (two sides share a corner, `fix` and `displacement`
+// on one side): a component prescribed twice with the same value (and the same
+// amplitude, unless the value is 0) is fine; otherwise it is a located DeckError
+// naming both items, the side and the point.
 //
 // Reaction groups, three views of the same constrained dofs (results.md):
 //  - `body.side`: one per side that carries a constraint, in deck order of first

@@ -301,15 +301,16 @@ std::string free_mode_text(const FreeModeGroup& group)
     return out;
 }
 
-Vector reference_loads(const Scene& scene)
+Vector reference_loads(const Scene& scene, double t)
 {
-    Vector f = scene.f_ext;
+    Vector f = scene.f_ext(t);
     const int d = scene.dim;
     for (const FollowerPressure& follower : scene.followers)
         for (std::size_t e = 0; e < follower.side.elements.size(); ++e) {
             const auto& element = follower.side.elements[e];
             const mechanics::LocalForceTangent local = mechanics::follower_pressure(
-                element, d, follower.pressure, scene.kinematics, Matrix::Zero(element.n_local(), d));
+                element, d, follower.amplitude(t) * follower.pressure, scene.kinematics,
+                Matrix::Zero(element.n_local(), d));
             const auto& dofs = follower.element_dofs[e];
             for (std::size_t k = 0; k < dofs.size(); ++k)
                 f(dofs[k]) += local.f_ext(static_cast<Index>(k));

@@ -81,9 +81,11 @@ std::vector<FreeModeGroup> find_free_modes(const Scene& scene);
 /// "body drum can translate freely in x", one line per group.
 std::string free_mode_text(const FreeModeGroup& group);
 
-/// The loads at load factor 1 (dead loads, and follower pressures in the reference
-/// configuration), n_full: what may drive a free mode.
-Vector reference_loads(const Scene& scene);
+/// The loads at pseudo-time t (dead loads, and follower pressures in the reference
+/// configuration), n_full: what may drive a free mode. The loads are linear in t
+/// between the path's breakpoints, so checking t = 0 and every breakpoint checks
+/// the whole path.
+Vector reference_loads(const Scene& scene, double t);
 
 /// "loads drive a free mode: body block can translate freely in x and the loads
 /// have a resultant 0.1 in x", or nothing when no load drives a free mode.

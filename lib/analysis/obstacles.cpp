@@ -17,12 +17,13 @@ constexpr double touching_tolerance = 1e-9;
 contact::RigidObstacle rigid_obstacle(const io::Body& body)
 {
     const VecN motion = body.motion.empty() ? VecN() : to_vec(body.motion);
+    const Amplitude amplitude = body.amplitude.value_or(Amplitude());
     if (body.sphere)
         return contact::RigidObstacle(contact::RigidSphere::make(to_vec(body.sphere->center), body.sphere->radius),
-                                      motion);
+                                      motion, amplitude);
     IGA_CHECK(body.plane.has_value(), "the deck reader let a rigid body without a shape through");
     return contact::RigidObstacle(contact::RigidPlane::make(to_vec(body.plane->point), to_vec(body.plane->normal)),
-                                  motion);
+                                  motion, amplitude);
 }
 
 void check_obstacle_side(const io::Deck& deck, const Scene& scene, const io::ContactPair& pair,

@@ -62,9 +62,10 @@ io::HistoryRow history_row(const io::StepData& step)
     return row;
 }
 
-solver::SteppingSettings stepping_settings(const io::Steps& steps)
+solver::SteppingSettings stepping_settings(const io::Steps& steps, const LoadPath& path)
 {
     solver::SteppingSettings s;
+    s.path = path;
     s.count = steps.count;
     s.adaptive = steps.adaptive;
     s.max_cutbacks = steps.max_cutbacks;
@@ -214,7 +215,7 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     warn(duplicate_pair_warnings(scene));
     // An initial overlap is pushed out by the first increment; should that need a
     // cutback, the overlap is released gradually over the first planned increment.
-    warn(release_initial_overclosure(scene, system, 1.0 / std::max(deck.steps.count, 1)));
+    warn(release_initial_overclosure(scene, system, scene.path.end / std::max(deck.steps.count, 1)));
 
     // Free rigid-body modes (analysis/free_modes.hpp): named in a warning; loads
     // along one stop the run before any increment, else weak springs hold them.
@@ -223,7 +224,10 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         warn({fmt::format("{}: no constraint or contact holds it; weak springs (stiffness {:.3g} per node, "
                           "{:g} of E L^(d-2) in all) fix its rigid position",
                           free_mode_text(group), group.spring_stiffness, weak_spring_factor)});
-    std::optional<std::string> driven_mode = driven_free_mode(scene, free_modes, reference_loads(scene));
+    // Loads are linear in t between breakpoints: checking t = 0 and each breakpoint covers the path.
+    std::optional<std::string> driven_mode = driven_free_mode(scene, free_modes, reference_loads(scene, 0.0));
+    for (std::size_t k = 0; k < scene.path.breakpoints.size() && !driven_mode; ++k)
+        driven_mode = driven_free_mode(scene, free_modes, reference_loads(scene, scene.path.breakpoints[k]));
     if (driven_mode) {
         for (const FreeModeGroup& group : free_modes)
             if (driven_mode->find(group.label + " can") != std::string::npos) {
@@ -334,8 +338,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     if (driven_mode)
         result.message = *driven_mode;  // not completed, no increment
     else
-        result = solver::run_load_steps(nonlinear, u, stepping_settings(deck.steps), newton_settings(deck.newton),
-                                        *linear, callbacks, &context);
+        result = solver::run_load_steps(nonlinear, u, stepping_settings(deck.steps, scene.path),
+                                        newton_settings(deck.newton), *linear, callbacks, &context);
 
     const solver::LinearStatistics linear_statistics = linear->statistics();
     context.add_count("symbolic_factorizations", linear_statistics.symbolic);

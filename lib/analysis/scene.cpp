@@ -139,6 +139,29 @@ void release_element_geometry(Scene& scene, const std::function<bool(int block)>
                 std::vector<mechanics::QuadraturePoint>().swap(body.elements[e].points);
 }
 
+Vector Scene::f_ext(double t) const
+{
+    Vector f = Vector::Zero(dofs->n_full());
+    for (const DeadLoad& load : dead_loads)
+        f += load.amplitude(t) * load.f;
+    return f;
+}
+
+LoadPath deck_load_path(const io::Deck& deck)
+{
+    // The items with something to scale, each with its amplitude (the ramp when none is given).
+    std::vector<Amplitude> amplitudes;
+    for (const io::Load& load : deck.loads)
+        amplitudes.push_back(load.amplitude.value_or(Amplitude()));
+    for (const io::Constraint& c : deck.constraints)
+        if (c.amplitude || std::any_of(c.value.begin(), c.value.end(), [](double v) { return v != 0.0; }))
+            amplitudes.push_back(c.amplitude.value_or(Amplitude()));
+    for (const io::Body& b : deck.bodies)
+        if (b.rigid && !b.motion.empty())
+            amplitudes.push_back(b.amplitude.value_or(Amplitude()));
+    return load_path(amplitudes);
+}
+
 Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& stop, const Communicator& comm)
 {
     check_size(deck);  // refuse an absurd model before allocating any of it
@@ -241,15 +264,21 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
         scene.partition.last_element = static_cast<int>(last);
     }
 
-    // Loads: dead ones summed into f_ext at load factor 1.
-    scene.f_ext = Vector::Zero(dofs.n_full());
+    // Loads: dead ones summed at full value, one vector per amplitude.
+    Vector* f_ext = nullptr;  // the vector of the load being built
     auto scatter = [&](int body, const std::vector<int>& indices, const Vector& f) {
         const std::vector<int> full = dofs_of(dofs, body, indices);
         for (std::size_t k = 0; k < full.size(); ++k)
-            scene.f_ext(full[k]) += f(static_cast<Index>(k));
+            (*f_ext)(full[k]) += f(static_cast<Index>(k));
     };
     for (std::size_t load_index = 0; load_index < deck.loads.size(); ++load_index) {
         const io::Load& load = deck.loads[load_index];
+        const Amplitude amplitude = load.amplitude.value_or(Amplitude());
+        auto group = std::find_if(scene.dead_loads.begin(), scene.dead_loads.end(),
+                                  [&](const DeadLoad& g) { return g.amplitude == amplitude; });
+        if (group == scene.dead_loads.end())
+            group = scene.dead_loads.insert(scene.dead_loads.end(), DeadLoad{amplitude, Vector::Zero(dofs.n_full())});
+        f_ext = &group->f;
         const int b = body_index(load.body);
         IGA_CHECK(b >= 0, "the deck reader let a load on a rigid or unknown body through");
         const BodyModel& body = scene.bodies[b];
@@ -293,7 +322,7 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
                 scatter(b, f.indices, f.f_ext);
             }
         } else {
-            FollowerPressure follower{b, load.pressure, std::move(side), {}, static_cast<int>(blocks.size())};
+            FollowerPressure follower{b, load.pressure, amplitude, std::move(side), {}, static_cast<int>(blocks.size())};
             for (const auto& element : follower.side.elements) {
                 follower.element_dofs.push_back(dofs_of(dofs, b, element.indices));
                 blocks.push_back(follower.element_dofs.back());
@@ -436,6 +465,7 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
     scene.pattern = std::make_unique<assembly::SparsePattern>(dofs, std::move(blocks), searched);
     if (comm.parallel())  // another rank evaluates those elements
         release_element_geometry(scene, [&](int block) { return scene.partition.owns(block); });
+    scene.path = deck_load_path(deck);
     return scene;
 }
 

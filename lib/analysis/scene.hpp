@@ -1,8 +1,14 @@
 #pragma once
 // Scene: the runtime model built from a deck — the refined patches with their
 // precomputed element geometry, the dof map with the Dirichlet data, the dead
-// external force at load factor 1, follower pressures, and the contact pairs —
-// plus the sparsity pattern shared by every evaluation.
+// external forces at full value (one vector per amplitude), follower pressures,
+// the contact pairs and the load path — plus the sparsity pattern shared by
+// every evaluation.
+//
+// Load path (core/amplitude.hpp): every load, prescribed displacement and
+// obstacle motion carries an amplitude (the default ramp when the deck gives
+// none); at pseudo-time t it acts at a(t) times its full value. The path ends at
+// the last end time of those amplitudes.
 //
 // Block order in the pattern: every element of every body (body order, element
 // order of Patch::elements()), then one block per side element carrying a
@@ -73,10 +79,17 @@ struct BodyModel {
 /// A follower pressure in finite kinematics (recomputed each evaluation).
 struct FollowerPressure {
     int body = 0;
-    double pressure = 0.0;
+    double pressure = 0.0;  ///< full value, scaled by the amplitude
+    Amplitude amplitude;
     mechanics::SideQuadrature side;
     std::vector<std::vector<int>> element_dofs;  ///< full dofs of each side element
     int first_block = 0;
+};
+
+/// Dead loads that share one amplitude, summed at full value (full dofs).
+struct DeadLoad {
+    Amplitude amplitude;
+    Vector f;
 };
 
 /// A group of constrained dofs whose residual entries sum to one reported reaction:
@@ -135,7 +148,9 @@ struct Scene {
     std::vector<BodyModel> bodies;
     std::vector<int> body_of_deck;  ///< deck body index -> deformable body index (-1 for rigid)
     std::unique_ptr<assembly::DofMap> dofs;
-    Vector f_ext;  ///< full, at load factor 1: dead tractions, forces, gravity, small-kinematics pressures
+    /// Dead tractions, forces, gravity and small-kinematics pressures, one entry per
+    /// distinct amplitude (a deck without amplitudes: one, or none without loads).
+    std::vector<DeadLoad> dead_loads;
     std::vector<FollowerPressure> followers;
     std::vector<PairModel> pairs;
     std::vector<ReactionGroup> reactions;  ///< sides, then body totals, then constraint items
@@ -143,8 +158,11 @@ struct Scene {
     int n_element_blocks = 0;
     Partition partition;  ///< this rank's blocks; the pattern holds only those (and the diagonal)
     double model_size = 1.0;  ///< bounding-box diagonal of all deformable bodies
+    LoadPath path;            ///< [0, T] and the breakpoints of the amplitudes
 
     bool has_contact() const { return !pairs.empty(); }
+    /// The dead external force at pseudo-time t (full dofs): sum of a_k(t) f_k.
+    Vector f_ext(double t) const;
 };
 
 /// Frees the quadrature data (shape functions and gradients at the Gauss points) of
@@ -161,6 +179,10 @@ std::vector<BodySide> sides_of(const io::Deck& deck, const Scene& scene, const s
 
 /// Full dofs of a coupling of pair p, in contact::LocalBlock::dofs order.
 std::vector<int> coupling_full_dofs(const PairModel& pair, const contact::Coupling& coupling);
+
+/// The load path of a deck: its loads, prescribed displacements (items with a
+/// non-zero value or an amplitude) and obstacle motions, each with its amplitude.
+LoadPath deck_load_path(const io::Deck& deck);
 
 /// Builds the scene. Geometry problems (a refinement that cannot be applied, a
 /// non-positive Jacobian) are reported as DeckError naming the body.

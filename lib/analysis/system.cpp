@@ -327,7 +327,7 @@ Vector SceneSystem::full_residual(const Vector& u_free, double load_factor,
     return r_full;
 }
 
-void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out,
+void SceneSystem::evaluate_into(const Vector& u_free, double t, bool need_tangent, solver::Evaluation& out,
                                 RunContext* context, Vector* r_full_out,
                                 std::vector<contact::PairEvaluation>* contact_out)
 {
@@ -336,7 +336,7 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
     const Partition& partition = scene_.partition;
     const bool root = comm_.root();  // adds the terms that are not split over the ranks
     const int d = scene_.dim;
-    const Vector u_full = dofs.expand(u_free, load_factor);
+    const Vector u_full = dofs.expand(u_free, t);
     // One rank alone must not leave on a stop request (see the header): polled in the sum.
     const StopRequest local_stop = context && !comm_.parallel() ? context->stop() : StopRequest{};
 
@@ -351,7 +351,7 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
             local_stop.check();
             contact.push_back(scene_.pairs[p].pair.evaluate(side_displacement(u_full, static_cast<int>(p), 0),
                                                             side_displacement(u_full, static_cast<int>(p), 1),
-                                                            need_tangent, context, load_factor));
+                                                            need_tangent, context, t));
         }
         if (need_tangent)
             register_couplings(contact, context);
@@ -398,13 +398,20 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
             }
     }
 
-    // External loads: dead ones scale with lambda; follower pressures depend on u.
+    // External loads, each scaled by its amplitude at t: dead ones fixed, follower pressures depending on u.
+    double follower_norm = 0.0;  // ||external forces||, summed over the ranks below
     if (root) {
-        r_full -= load_factor * scene_.f_ext;
-        magnitude += load_factor * scene_.f_ext.cwiseAbs();
+        Vector f_dead = Vector::Zero(dofs.n_full());
+        for (const DeadLoad& load : scene_.dead_loads) {
+            const double a = load.amplitude(t);
+            f_dead += a * load.f;
+            magnitude += std::abs(a) * load.f.cwiseAbs();
+        }
+        r_full -= f_dead;
+        follower_norm = f_dead.norm();
     }
-    double follower_norm = root ? load_factor * scene_.f_ext.norm() : 0.0;  // summed over the ranks below
     for (const FollowerPressure& follower : scene_.followers) {
+        const double a = follower.amplitude(t);
         for (std::size_t e = 0; e < follower.side.elements.size(); ++e) {
             const int block = follower.first_block + static_cast<int>(e);
             if (!partition.owns(block))
@@ -414,12 +421,12 @@ void SceneSystem::evaluate_into(const Vector& u_free, double load_factor, bool n
             const mechanics::LocalForceTangent f = mechanics::follower_pressure(
                 follower.side.elements[e], d, follower.pressure, scene_.kinematics, u_local);
             for (std::size_t k = 0; k < element_dofs.size(); ++k) {
-                r_full(element_dofs[k]) -= load_factor * f.f_ext(static_cast<Index>(k));
-                magnitude(element_dofs[k]) += load_factor * std::abs(f.f_ext(static_cast<Index>(k)));
+                r_full(element_dofs[k]) -= a * f.f_ext(static_cast<Index>(k));
+                magnitude(element_dofs[k]) += std::abs(a) * std::abs(f.f_ext(static_cast<Index>(k)));
             }
-            follower_norm += load_factor * f.f_ext.norm();
+            follower_norm += std::abs(a) * f.f_ext.norm();
             if (need_tangent && f.df_ext_du.size() > 0)
-                pattern.add(block, Matrix(-load_factor * f.df_ext_du), out.tangent);
+                pattern.add(block, Matrix(-a * f.df_ext_du), out.tangent);
         }
     }
 

@@ -1,9 +1,13 @@
 #pragma once
-// The residual and tangent of a scene, as the sum of its terms:
-//   r(u) = f_int(u) - lambda f_ext - lambda f_follower(u) + sum_pairs r_c(u),
+// The residual and tangent of a scene at pseudo-time t, as the sum of its terms:
+//   r(u) = f_int(u) - sum_k a_k(t) f_k - sum_j a_j(t) f_follower,j(u) + sum_pairs r_c(u),
 //   K = dr/du,
-// on the free dofs (solver/newton.hpp's NonlinearSystem). Finite kinematics:
-// elements are evaluated on n_threads() threads (colored blocks; the count from
+// on the free dofs (solver/newton.hpp's NonlinearSystem, whose load factor is t),
+// each load scaled by its amplitude (Scene::dead_loads, FollowerPressure); the
+// prescribed displacements and obstacle motions enter through u_full and r_c at t.
+// Without amplitudes every a(t) = t = lambda, the classic load factor.
+//
+// Finite kinematics: elements are evaluated on n_threads() threads (colored blocks; the count from
 // assembly/threads.hpp: requested, or automatic from the element work); contact
 // pairs serially, first: their tangent blocks (one per slave element x master
 // element coupling) go into the pattern blocks of those couplings, and a coupling
@@ -11,7 +15,7 @@
 // Small kinematics: the element stiffness is constant, assembled once and
 // reused (f_int = K u): no geometric terms are ever computed.
 //
-// force_scale (the scale of the relative residual) = max(||lambda f_ext||,
+// force_scale (the scale of the relative residual) = max(||external forces||,
 // ||reactions||, ||contact forces||, ||f_int||): the forces in play, so that
 // displacement-driven scenes converge relative to their reactions.
 //
@@ -22,7 +26,7 @@
 // residual_floor (the round-off of ||r||, solver/newton.hpp) = eps_mach times the
 // norm over the free dofs of the sum of the absolute values of every term summed
 // into r (|K0| |u| for small kinematics, where a rigid motion cancels K0 u but not
-// its round-off; |f_e| per element for finite kinematics; |lambda f_ext|; |r_c|),
+// its round-off; |f_e| per element for finite kinematics; |a_k(t)| |f_k|; |r_c|),
 // plus the round-off of the contact pressures from their gaps (eps_mach eps |x| W
 // per active Gauss point: a gap is a difference of coordinates). docs/theory.md,
 // "When Newton has converged".
@@ -73,8 +77,8 @@ public:
     void evaluate(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out);
 
     /// The residual on ALL dofs (n_full) at a state, without tangent, timers or
-    /// counters. At equilibrium f_int = lambda f_ext - r_c + R on every dof, so the
-    /// constrained entries of r = f_int - lambda f_ext + r_c are the reactions R (the
+    /// counters. At equilibrium f_int = f_ext(t) - r_c + R on every dof, so the
+    /// constrained entries of r = f_int - f_ext(t) + r_c are the reactions R (the
     /// force each constraint exerts on the body).
     /// `contact_out`, when given, receives the pairs' evaluations at that state (for output).
     Vector full_residual(const Vector& u_free, double load_factor,

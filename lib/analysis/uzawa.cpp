@@ -23,6 +23,19 @@ void UzawaLoop::begin_attempt()
     std::fill(last_penetration_.begin(), last_penetration_.end(), -1.0);
 }
 
+double held_open_fraction(const contact::PairEvaluation& state, double tolerance)
+{
+    double held = 0.0, total = 0.0;
+    for (const contact::CarrierResult& carrier : state.carriers)
+        for (Index g = 0; g < carrier.pressure.size() && g < carrier.gap.size(); ++g) {
+            const double force = carrier.weight(g) * carrier.pressure(g);
+            total += force;
+            if (-carrier.gap(g) > tolerance)
+                held += force;
+        }
+    return total > 0.0 ? held / total : 0.0;
+}
+
 bool stalls(double rate, double penetration, double tolerance, int updates_left)
 {
     // At rate rho the penetration after the updates left is penetration rho^updates_left.
@@ -57,10 +70,15 @@ solver::OuterDecision UzawaLoop::after_solve(const Vector& u_free, double load_f
             model.gap_tolerance > 0.0 ? model.gap_tolerance
                                       : auto_gap_tolerance(model.rule.element_size, model.rule.modulus, max_pressure);
         model.gap_tolerance_used = tolerance;
-        if (penetration > tolerance) {
+        const double held = held_open_fraction(states[p], tolerance);
+        if (penetration > tolerance || held > held_open_tolerance) {
             if (over.empty())
-                over = fmt::format("contact pair '{}': max penetration {:.3g} above gap_tolerance {:.3g}",
-                                   model.name, penetration, tolerance);
+                over = penetration > tolerance
+                           ? fmt::format("contact pair '{}': max penetration {:.3g} above gap_tolerance {:.3g}",
+                                         model.name, penetration, tolerance)
+                           : fmt::format("contact pair '{}': {:.3g} of its force acts across gaps open wider "
+                                         "than gap_tolerance {:.3g} (multipliers of a contact that is opening)",
+                                         model.name, held, tolerance);
             max_updates = std::max(max_updates, model.max_updates);
         }
     }

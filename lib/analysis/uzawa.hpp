@@ -4,8 +4,12 @@
 // stepper after every converged Newton solve (solver::SteppingCallbacks::outer).
 //
 // At the converged state of a solve it measures each augmented pair's largest
-// penetration g_max (over its Gauss points, both half passes):
-//  - every pair has g_max <= gap_tolerance: accept the increment;
+// penetration g_max (over its Gauss points, both half passes), and the share of its
+// force that acts across gaps open wider than gap_tolerance, which only multipliers
+// can carry there (p = <lambda + eps g_N> > 0 at g_N < 0: multipliers left from a
+// larger load, a contact being released; docs/deck.md "Load paths"):
+//  - every pair has g_max <= gap_tolerance and that share <= held_open_tolerance:
+//    accept the increment;
 //  - else, if max_updates updates were already made in this attempt: reject it (the
 //    load stepper cuts the increment back; multipliers are rolled back with it);
 //  - else update the multipliers of every augmented pair, lambda <- <lambda + eps g_N>
@@ -35,6 +39,14 @@ namespace iga::analysis {
 /// Uzawa stalls when the penetration, falling by `rate` per update (k/(k + eps) for
 /// a contact stiffness k), would still exceed `tolerance` after `updates_left` more.
 bool stalls(double rate, double penetration, double tolerance, int updates_left);
+/// The share of a pair's normal force (sum of W p over its Gauss points) carried by
+/// points whose gap is open wider than `tolerance`; 0 when the pair carries none.
+double held_open_fraction(const contact::PairEvaluation& state, double tolerance);
+/// Largest accepted share, 1 %: below the discretization error of the contact
+/// pressure (~1 % of p0 on the Hertz decks), above what multipliers leave at the
+/// open edge of a contact zone under a growing load (0.5 % on the two-cylinder deck
+/// refined once), far below a released contact, whose multipliers carry all its force.
+constexpr double held_open_tolerance = 1e-2;
 /// Factor of one penalty raise.
 constexpr double uzawa_raise_factor = 10.0;
 /// Bound on the total raise of a pair's penalty over its initial value.

@@ -24,8 +24,9 @@ double body_size(const BodyModel& body)
     return (p.colwise().maxCoeff() - p.colwise().minCoeff()).norm();
 }
 
-/// The largest imposed travel at load factor 1: prescribed displacements and obstacle motions.
-double imposed_travel(const io::Deck& deck)
+/// The largest imposed travel at pseudo-time t: prescribed displacements and
+/// obstacle motions, each scaled by its amplitude.
+double imposed_travel(const io::Deck& deck, double t)
 {
     double travel = 0.0;
     auto norm = [](const std::vector<double>& v) {
@@ -34,10 +35,11 @@ double imposed_travel(const io::Deck& deck)
             s += x * x;
         return std::sqrt(s);
     };
+    auto at = [t](const std::optional<Amplitude>& a) { return std::abs(a.value_or(Amplitude())(t)); };
     for (const io::Constraint& c : deck.constraints)
-        travel = std::max(travel, norm(c.value));
+        travel = std::max(travel, at(c.amplitude) * norm(c.value));
     for (const io::Body& b : deck.bodies)
-        travel = std::max(travel, norm(b.motion));
+        travel = std::max(travel, at(b.amplitude) * norm(b.motion));
     return travel;
 }
 
@@ -140,7 +142,7 @@ std::vector<std::string> release_initial_overclosure(Scene& scene, SceneSystem& 
 std::vector<std::string> contact_warnings(const io::Deck& deck, const Scene& scene, const io::StepData& step)
 {
     std::vector<std::string> out;
-    const double travel = imposed_travel(deck) * step.load_factor;
+    const double travel = imposed_travel(deck, step.load_factor);
     const int d = scene.dim;
     for (std::size_t p = 0; p < step.contact.size() && p < scene.pairs.size(); ++p) {
         const io::ContactPairResult& pair = step.contact[p];

@@ -1,6 +1,7 @@
 #pragma once
 // Rigid obstacles: a plane (a line in 2D) or a sphere (a circle in 2D), each
-// possibly moving by a rigid translation that scales with the load factor.
+// possibly moving by a rigid translation a(t) * motion, scaled by its amplitude
+// at the pseudo-time t (core/amplitude.hpp; the default ramp: the load factor).
 //
 //  - plane: the points y with (y - point) . normal <= 0 are inside the obstacle;
 //    `normal` is the unit normal pointing OUT of it;
@@ -15,6 +16,7 @@
 // Everything is dimension-free (d = 2 or 3).
 
 #include "contact/gap.hpp"
+#include "core/amplitude.hpp"
 #include "core/error.hpp"
 #include "core/types.hpp"
 
@@ -68,11 +70,18 @@ struct ObstacleFoot {
 
 struct RigidObstacle {
     std::variant<RigidPlane, RigidSphere> shape;
-    VecN motion;  ///< translation at load factor 1, d; empty or zero for a fixed obstacle
+    VecN motion;  ///< full translation, d; empty or zero for a fixed obstacle
+    Amplitude amplitude;  ///< of the motion
 
     // Implicit on purpose: a plane or a sphere is a (fixed) obstacle wherever a surface is expected.
-    RigidObstacle(RigidPlane plane, VecN motion_ = {}) : shape(std::move(plane)), motion(std::move(motion_)) {}
-    RigidObstacle(RigidSphere sphere, VecN motion_ = {}) : shape(std::move(sphere)), motion(std::move(motion_)) {}
+    RigidObstacle(RigidPlane plane, VecN motion_ = {}, Amplitude amplitude_ = {})
+        : shape(std::move(plane)), motion(std::move(motion_)), amplitude(std::move(amplitude_))
+    {
+    }
+    RigidObstacle(RigidSphere sphere, VecN motion_ = {}, Amplitude amplitude_ = {})
+        : shape(std::move(sphere)), motion(std::move(motion_)), amplitude(std::move(amplitude_))
+    {
+    }
 
     int dim() const
     {
@@ -80,15 +89,15 @@ struct RigidObstacle {
                                                                          : std::get<RigidSphere>(shape).center.size());
     }
 
-    /// The obstacle's translation at load_factor: load_factor * motion.
-    VecN shift(double load_factor) const
+    /// The obstacle's translation at pseudo-time t: a(t) * motion.
+    VecN shift(double t) const
     {
-        return motion.size() == dim() ? VecN(load_factor * motion) : VecN(VecN::Zero(dim()));
+        return motion.size() == dim() ? VecN(amplitude(t) * motion) : VecN(VecN::Zero(dim()));
     }
-    /// The foot point data of x with the obstacle translated by load_factor * motion.
-    ObstacleFoot foot(const VecN& x, double load_factor) const
+    /// The foot point data of x with the obstacle translated by a(t) * motion.
+    ObstacleFoot foot(const VecN& x, double t) const
     {
-        const VecN shift = this->shift(load_factor);
+        const VecN shift = this->shift(t);
         ObstacleFoot out;
         if (const auto* plane = std::get_if<RigidPlane>(&shape)) {
             out.normal = plane->normal;

@@ -1,5 +1,6 @@
 #include "io/body_reader.hpp"
 
+#include "io/amplitude_reader.hpp"
 #include "io/gismo_xml.hpp"
 #include "io/knot_checks.hpp"
 #include "io/transform_reader.hpp"
@@ -436,12 +437,13 @@ std::optional<RigidSphere> read_sphere(const Cursor& sphere, int dim)
     return r;
 }
 
-/// `rigid:` of an obstacle: one of plane / circle (2D) / sphere (3D), and an optional motion.
+/// `rigid:` of an obstacle: one of plane / circle (2D) / sphere (3D), and an optional motion
+/// with an optional amplitude.
 void read_rigid(const Cursor& c, int dim, Body& b)
 {
     const char* round = dim == 3 ? "sphere" : "circle";
     const char* other_round = dim == 3 ? "circle" : "sphere";
-    if (!c.allow_only({"plane", round, other_round, "motion"}))
+    if (!c.allow_only({"plane", round, other_round, "motion", "amplitude"}))
         return;
     if (c.has(other_round)) {
         c.child(other_round).fail_here(fmt::format("a {}D analysis takes '{}', not '{}'", dim, round, other_round));
@@ -459,6 +461,13 @@ void read_rigid(const Cursor& c, int dim, Body& b)
         b.sphere = read_sphere(c.child(round), dim);
     if (c.has("motion"))
         b.motion = c.child("motion").to_numbers(dim).value_or(std::vector<double>{});
+    if (c.has("amplitude")) {
+        if (c.has("motion"))
+            b.amplitude = read_amplitude(c.child("amplitude"));
+        else
+            c.child("amplitude").fail_here("scales the obstacle's 'motion'; this obstacle has none (it is fixed), "
+                                           "so there is nothing to scale");
+    }
 }
 
 /// `patches:` of a multi-patch body: a list of {name, nurbs, refine}.

@@ -9,6 +9,7 @@
 // by the reader: a Deck that exists is well-formed (cross-references resolve,
 // knot vectors are open, weights positive, ...).
 
+#include "core/amplitude.hpp"
 #include "core/error.hpp"
 #include "core/side.hpp"
 
@@ -229,7 +230,8 @@ struct Body {
     // Rigid obstacle: exactly one of plane / sphere, and its motion.
     std::optional<RigidPlane> plane;
     std::optional<RigidSphere> sphere;   ///< `circle` in 2D, `sphere` in 3D
-    std::vector<double> motion;          ///< rigid translation at load factor 1; empty: fixed
+    std::vector<double> motion;          ///< rigid translation at full value; empty: fixed
+    std::optional<Amplitude> amplitude;  ///< `rigid.amplitude` of the motion; unset: the default ramp
 
     /// True when the body is given as a list of patches (inline or from a file).
     bool multi_patch() const { return !patches.empty(); }
@@ -253,7 +255,8 @@ struct Constraint {
     std::string body;
     Side side = Side::u0;
     std::vector<bool> fixed;    ///< d entries: which components are prescribed
-    std::vector<double> value;  ///< d entries: prescribed values at load factor 1 (0 for `fix` and free ones)
+    std::vector<double> value;  ///< d entries: prescribed values at full value (0 for `fix` and free ones)
+    std::optional<Amplitude> amplitude;  ///< of the values (only with `displacement`); unset: the default ramp
     std::string patch;          ///< multi-patch body: the patch of `side` (`patch.side`)
     std::string surface;        ///< a named surface of the body instead of patch/side
 
@@ -269,6 +272,7 @@ struct Load {
     double density = 0.0;         ///< gravity: mass per unit reference volume (area in 2D)
     std::string patch;            ///< multi-patch body: the patch of `side`
     std::string surface;          ///< a named surface of the body instead of patch/side
+    std::optional<Amplitude> amplitude;  ///< unset: the default ramp
 
     bool operator==(const Load&) const = default;
 };

@@ -1,5 +1,6 @@
 #include "io/deck_reader.hpp"
 
+#include "io/amplitude_reader.hpp"
 #include "io/body_reader.hpp"
 #include "io/deck_writer.hpp"
 #include "io/overrides.hpp"
@@ -149,7 +150,7 @@ std::vector<Constraint> read_constraints(const Cursor& root, const KnownNames& k
     const std::vector<std::string> components = dim == 2 ? std::vector<std::string>{"x", "y"}
                                                           : std::vector<std::string>{"x", "y", "z"};
     for (const Cursor& c : list.items()) {
-        if (!c.allow_only({"body", "side", "fix", "displacement"}))
+        if (!c.allow_only({"body", "side", "fix", "displacement", "amplitude"}))
             continue;
         Constraint k;
         k.body = deformable_body(c, known, "constraints").value_or("");
@@ -205,6 +206,13 @@ std::vector<Constraint> read_constraints(const Cursor& root, const KnownNames& k
                     v.fail("prescribes no component (every entry is ~)");
             }
         }
+        if (c.has("amplitude")) {
+            if (displacement)
+                k.amplitude = read_amplitude(c.child("amplitude"));
+            else
+                c.child("amplitude").fail_here("scales a 'displacement'; this constraint has only 'fix' (held at "
+                                               "zero), so there is nothing to scale");
+        }
         out.push_back(k);
     }
     return out;
@@ -222,7 +230,7 @@ std::vector<Load> read_loads(const Cursor& root, const KnownNames& known)
                                                                {"pressure", LoadKind::pressure},
                                                                {"gravity", LoadKind::gravity}};
     for (const Cursor& c : list.items()) {
-        if (!c.allow_only({"body", "side", "traction", "force", "pressure", "gravity", "density"}))
+        if (!c.allow_only({"body", "side", "traction", "force", "pressure", "gravity", "density", "amplitude"}))
             continue;
         Load l;
         l.body = deformable_body(c, known, "loads").value_or("");
@@ -263,6 +271,8 @@ std::vector<Load> read_loads(const Cursor& root, const KnownNames& known)
             l.pressure = value.to_number().value_or(0.0);
         else
             l.vector = value.to_numbers(dim).value_or(std::vector<double>{});
+        if (c.has("amplitude"))
+            l.amplitude = read_amplitude(c.child("amplitude"));
         out.push_back(l);
     }
     return out;

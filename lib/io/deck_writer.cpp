@@ -52,6 +52,17 @@ void integers(YAML::Emitter& out, const std::vector<int>& values)
     out << YAML::EndSeq;
 }
 
+/// `amplitude: [[t0, a0], [t1, a1], ...]` when the item has one (none: the default ramp, left out).
+void write_amplitude(YAML::Emitter& out, const std::optional<Amplitude>& amplitude)
+{
+    if (!amplitude)
+        return;
+    out << YAML::Key << "amplitude" << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (const AmplitudePoint& p : amplitude->points())
+        numbers(out, {p.time, p.value});
+    out << YAML::EndSeq;
+}
+
 std::string surface(const ContactSurface& s)
 {
     return s.deformable() ? s.body + "." + side_text(s.patch, s.side.value_or(Side::u0), s.surface) : s.body;
@@ -154,6 +165,7 @@ void write_body(YAML::Emitter& out, const Body& b)
         if (!b.motion.empty()) {
             out << YAML::Key << "motion" << YAML::Value;
             numbers(out, b.motion);
+            write_amplitude(out, b.amplitude);
         }
         out << YAML::EndMap << YAML::EndMap;
         return;
@@ -227,12 +239,15 @@ void write_constraint(YAML::Emitter& out, const Constraint& k, int dim)
     out << YAML::Key << "side" << YAML::Value << side_text(k.patch, k.side, k.surface);
     // Zero values are written as `fix`, the others as `displacement` with ~ for
     // the components it leaves to `fix` or free: reads back to the same constraint.
+    // With an amplitude every prescribed component goes to `displacement` (zeros
+    // as 0.0): an amplitude needs a `displacement` to scale.
     constexpr const char* components[] = {"x", "y", "z"};
     const int n = std::min(dim, static_cast<int>(k.fixed.size()));
+    const bool scaled = k.amplitude.has_value();
     bool any_fixed = false, any_value = false;
     for (int i = 0; i < n; ++i) {
-        any_fixed = any_fixed || (k.fixed[i] && k.value[i] == 0.0);
-        any_value = any_value || (k.fixed[i] && k.value[i] != 0.0);
+        any_fixed = any_fixed || (k.fixed[i] && k.value[i] == 0.0 && !scaled);
+        any_value = any_value || (k.fixed[i] && (k.value[i] != 0.0 || scaled));
     }
     if (any_fixed || !any_value) {
         out << YAML::Key << "fix" << YAML::Value << YAML::Flow << YAML::BeginSeq;
@@ -244,13 +259,14 @@ void write_constraint(YAML::Emitter& out, const Constraint& k, int dim)
     if (any_value) {
         out << YAML::Key << "displacement" << YAML::Value << YAML::Flow << YAML::BeginSeq;
         for (int i = 0; i < n; ++i) {
-            if (k.fixed[i] && k.value[i] != 0.0)
+            if (k.fixed[i] && (k.value[i] != 0.0 || scaled))
                 out << format_number(k.value[i]);
             else
                 out << YAML::Null;
         }
         out << YAML::EndSeq;
     }
+    write_amplitude(out, k.amplitude);
     out << YAML::EndMap;
 }
 
@@ -270,6 +286,7 @@ void write_load(YAML::Emitter& out, const Load& l)
         numbers(out, l.vector);
     if (l.kind == LoadKind::gravity)
         out << YAML::Key << "density" << YAML::Value << format_number(l.density);
+    write_amplitude(out, l.amplitude);
     out << YAML::EndMap;
 }
 

@@ -11,8 +11,8 @@ namespace iga::solver {
 
 namespace {
 
-// An increment ending this close to lambda = 1 is stretched to end at 1: the
-// sum of count increments 1/count misses 1 by a few ulps.
+// An increment ending this close (relative to T) to a breakpoint is stretched to
+// end on it: the sum of count increments T/count misses T by a few ulps.
 constexpr double end_snap = 1e-12;
 
 std::string format_g(double value, int digits = 3)
@@ -40,8 +40,12 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
                   stepping.max_shrink <= 1.0,
               "run_load_steps: target_iterations >= 1, max_growth >= 1 and max_shrink in (0, 1] are required");
 
+    const LoadPath& path = stepping.path;
+    IGA_CHECK(path.end > 0.0 && !path.breakpoints.empty() && path.breakpoints.back() == path.end,
+              "run_load_steps: the path must end at its last breakpoint T > 0");
+
     SteppingResult result;
-    const double initial_increment = 1.0 / stepping.count;
+    const double initial_increment = path.end / stepping.count;
     // The smallest increment: what max_cutbacks halvings of the initial one give.
     // Without it, an adaptive run toward a limit load would creep forever
     // (every increment converging after a few cutbacks, at geometrically shrinking size).
@@ -52,8 +56,21 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
     // The converged state before the last one, for the extrapolating predictor.
     Vector u_previous;
     double lambda_previous = 0.0;
+    std::size_t next_stop = 0;  // the breakpoint the increments are heading for
 
-    while (lambda < 1.0) {
+    // The forces in play over the path so far (see the header): Newton and the
+    // predictor measure residuals against at least the largest force scale of the
+    // converged increments, so that a path back to zero load (a release) converges.
+    double reference_force = 0.0;
+    double last_force_scale = 0.0;  // of the latest evaluation, as the system gave it
+    NonlinearSystem referenced = system;
+    referenced.evaluate = [&](const Vector& v, double t, bool need_tangent, Evaluation& out) {
+        system.evaluate(v, t, need_tangent, out);
+        last_force_scale = out.force_scale;
+        out.force_scale = std::max(out.force_scale, reference_force);
+    };
+
+    while (next_stop < path.breakpoints.size()) {
         const int index = static_cast<int>(result.increments.size()) + 1;
         // Worded for the user who pressed Ctrl-C: the app's stop request is SIGINT/SIGTERM.
         auto stopped = [&](const std::string& during) {
@@ -75,7 +92,9 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
         int first_solve_iterations = 0;  // of the converged attempt's first solve: sizes the next increment
         int outer_updates = 0;
         while (true) {
-            target = lambda + increment > 1.0 - end_snap ? 1.0 : lambda + increment;
+            // Never past a breakpoint: the amplitudes are linear within an increment.
+            const double stop = path.breakpoints[next_stop];
+            target = lambda + increment > stop - end_snap * path.end ? stop : lambda + increment;
             if (!(target > lambda)) {
                 result.message = increment_text(index, lambda, target) +
                                  ": the increment fell below the round-off of the load factor";
@@ -84,7 +103,7 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
             OuterDecision decision;
             try {
                 PredictionReport prediction;
-                u = predict(system, stepping.predictor, u_converged, lambda, target,
+                u = predict(referenced, stepping.predictor, u_converged, lambda, target,
                             {u_previous.size() > 0 ? &u_previous : nullptr, lambda_previous}, solver, context,
                             prediction);
                 if (!prediction.note.empty()) {
@@ -93,7 +112,7 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
                         context->log(Verbosity::verbose, increment_text(index, lambda, target) + ": predictor: " +
                                                              prediction.note);
                 }
-                report = solve_newton(system, target, u, newton, solver, context);
+                report = solve_newton(referenced, target, u, newton, solver, context);
                 result.total_iterations += report.iterations;
                 first_solve_iterations = report.iterations;
                 outer_updates = 0;
@@ -103,7 +122,7 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
                     if (decision.action != OuterDecision::Action::resolve)
                         break;
                     ++outer_updates;
-                    NewtonReport again = solve_newton(system, target, u, newton, solver, context);
+                    NewtonReport again = solve_newton(referenced, target, u, newton, solver, context);
                     result.total_iterations += again.iterations;
                     again.iterations += report.iterations;
                     again.residual_history.insert(again.residual_history.begin(), report.residual_history.begin(),
@@ -143,15 +162,17 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
                                  std::to_string(cutbacks) + " cutbacks" + why;
                 return result;
             }
-            if (increment * 0.5 < min_increment) {
+            // Halve the increment tried (shorter than `increment` when it ended on a breakpoint).
+            const double halved = 0.5 * std::min(increment, target - lambda);
+            if (halved < min_increment) {
                 result.message = increment_text(index, lambda, target) + ": " + what +
                                  " and the increment cannot be cut below " + format_g(min_increment, 6) +
-                                 " (1/count / 2^max_cutbacks)" + why;
+                                 " (T/count / 2^max_cutbacks, T the end of the load path)" + why;
                 return result;
             }
             ++cutbacks;
             ++result.total_cutbacks;
-            increment *= 0.5;
+            increment = halved;
             if (context)
                 context->log(Verbosity::verbose, increment_text(index, lambda, target) + ": " +
                                                      (rejected ? decision.message : status_name(report.status)) +
@@ -160,6 +181,9 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
 
         u_previous = std::move(u_converged);
         lambda_previous = lambda;
+        if (target == path.breakpoints[next_stop])
+            ++next_stop;
+        reference_force = std::max(reference_force, last_force_scale);  // Newton's last evaluation: the converged state
         lambda = target;
         u_converged = u;
         if (callbacks.commit)

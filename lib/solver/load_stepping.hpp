@@ -1,23 +1,39 @@
 #pragma once
-// Load stepping: drives the load factor lambda from 0 to 1 in increments, each
-// solved by Newton (solver/newton.hpp), with adaptive cutbacks (docs/solver.md "Load stepping and cutbacks").
+// Load stepping: drives the pseudo-time t of the load path (core/amplitude.hpp)
+// from 0 to its end T in increments, each solved by Newton (solver/newton.hpp),
+// with adaptive cutbacks (docs/solver.md "Load stepping and cutbacks"; load paths:
+// docs/theory.md "Load paths"). The system sees t as its "load factor": every item
+// scales by its amplitude at t. Without amplitudes T = 1 and t is the classic load
+// factor lambda (the names below keep lambda).
 //
-// Rules: the initial increment is 1/count, which is also the largest: the
-// user's count is an upper bound on the step size, never exceeded. A failed
-// increment restores u to the last converged state, calls rollback, halves the
-// increment (adaptive only) and retries, at most max_cutbacks times per
+// Rules: the initial increment is T/count, which is also the largest: the
+// user's count is an upper bound on the step size, never exceeded. An increment
+// never steps past a breakpoint of the path: one that would is shortened to end
+// on it, so each increment sees every amplitude linear (no kink inside), and the
+// planned increment is taken up again after it. A failed increment restores u
+// to the last converged state, calls rollback, halves the increment tried
+// (adaptive only) and retries from the same t, at most max_cutbacks times per
 // increment; then the run ends with completed = false and a message naming the
 // increment, its load factors and the reason. The increment never falls below
-// 1/count / 2^max_cutbacks either: a cutback that would go below it also ends
+// T/count / 2^max_cutbacks either: a cutback that would go below it also ends
 // the run (else an adaptive run toward a limit load creeps on forever with
 // geometrically shrinking increments).
 //
 // Step control by iteration count (adaptive only): after an increment that
-// converged in n Newton iterations, the next increment is the last one times
-// target_iterations / n, the factor bounded to [max_shrink, max_growth]
-// (n = 0: max_growth), and the result bounded to [1/count / 2^max_cutbacks,
-// 1/count]. An increment that needs more iterations than the target shrinks the
+// converged in n Newton iterations, the next increment is the last planned one
+// times target_iterations / n, the factor bounded to [max_shrink, max_growth]
+// (n = 0: max_growth), and the result bounded to [T/count / 2^max_cutbacks,
+// T/count]. An increment that needs more iterations than the target shrinks the
 // next one before it fails; an easy one lets it grow back quickly after cutbacks.
+//
+// Reference force: Newton's relative residual is ||r|| / force_scale, force_scale
+// the forces in play at the state (Evaluation). Along a path that returns to zero
+// load (a release) those forces vanish with the load, and so would any residual
+// the solve can reach: every force is round-off and the ratio stays O(1). So the
+// stepper raises each evaluation's force_scale to at least the largest one of the
+// converged increments so far, as Abaqus measures residuals against the
+// time-averaged force of the step. Under a load that only grows the current
+// forces are the largest, and nothing changes.
 //
 // Predictor (systems with prescribed_motion, solver/predictor.hpp): each attempt
 // starts Newton from the predicted state instead of the last converged one.
@@ -32,10 +48,11 @@
 // solves of the converged attempt are summed in its report (residual histories
 // appended in order); the next increment is sized by the first solve's iterations.
 //
-// A final increment that would fall within 1e-12 of lambda = 1 is merged into
-// the previous one, so the run ends at exactly 1. Linear systems never cut back
-// (a smaller increment cannot cure a failed linear solve). Non-adaptive stepping
-// takes exactly `count` increments. Load factors are monotone:
+// An increment that would end within 1e-12 T of a breakpoint ends on it, so the
+// run ends at exactly T and lands exactly on every kink. Linear systems never
+// cut back (a smaller increment cannot cure a failed linear solve). Non-adaptive
+// stepping takes exactly `count` increments, plus one for each breakpoint that
+// falls inside one of them. Load factors are monotone:
 // lambda_k = lambda_{k-1} + (increment k).
 //
 // Stopping (SIGINT/SIGTERM): callbacks.stop_requested and context->stop() are
@@ -43,6 +60,7 @@
 // by an evaluation, core/stop.hpp) abandons it: u is restored to the last converged
 // state, rollback is called, and the run ends with a message naming both.
 
+#include "core/amplitude.hpp"
 #include "core/run_context.hpp"
 #include "core/types.hpp"
 #include "solver/linear.hpp"
@@ -56,7 +74,8 @@
 namespace iga::solver {
 
 struct SteppingSettings {
-    int count = 1;          ///< initial number of increments: increment 1/count, also the largest
+    LoadPath path;          ///< [0, T] and the breakpoints to land on; default [0, 1]
+    int count = 1;          ///< initial number of increments: increment T/count, also the largest
     bool adaptive = true;   ///< halve a failed increment and retry; size the next one by the iterations
     int max_cutbacks = 8;   ///< per increment
     /// Newton iterations an increment should take; 6: a finite-strain or contact
@@ -99,7 +118,7 @@ struct SteppingCallbacks {
 };
 
 struct SteppingResult {
-    bool completed = false;  ///< lambda = 1 reached
+    bool completed = false;  ///< the end T of the path reached
     bool stopped = false;    ///< a stop request (SIGINT/SIGTERM) ended the run: no failure to diagnose
     /// Empty when completed; else why, e.g. "increment 7 (load factor 0.44 -> 0.47):
     /// Newton did not converge after 8 cutbacks; last relative residual 3.1e-04
@@ -113,7 +132,7 @@ struct SteppingResult {
     std::vector<IncrementRecord> increments;
 };
 
-/// Runs the increments from u (the state at lambda = 0). On return u holds the
+/// Runs the increments from u (the state at t = 0). On return u holds the
 /// last converged state (lambda = increments.back().load_factor, or the input u
 /// if none converged). Logs one line per converged increment at Verbosity::normal.
 SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const SteppingSettings& stepping,

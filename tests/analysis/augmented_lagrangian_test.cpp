@@ -169,6 +169,20 @@ TEST(AugmentedLagrangian, StallsOnlyWhenTheRateCannotReachTheTolerance)
     EXPECT_TRUE(stalls(std::nan(""), 2.5e-3, 1e-5, 100)) << "NaN is a stall";
 }
 
+TEST(AugmentedLagrangian, HeldOpenFractionIsTheForceAcrossGapsOpenBeyondTheTolerance)
+{
+    // Three Gauss points: penetrating, open within the tolerance, open beyond it.
+    contact::CarrierResult carrier;
+    carrier.gap = (Vector(3) << 1e-3, -1e-6, -1e-2).finished();
+    carrier.pressure = (Vector(3) << 2.0, 1.0, 1.0).finished();
+    carrier.weight = (Vector(3) << 1.0, 1.0, 2.0).finished();
+    contact::PairEvaluation state;
+    state.carriers.push_back(carrier);
+    // W p: 2 + 1 + 2 = 5, of which the third point's 2 across a gap wider than 1e-4.
+    EXPECT_EQ(analysis::held_open_fraction(state, 1e-4), 0.4);
+    EXPECT_EQ(analysis::held_open_fraction(contact::PairEvaluation{}, 1e-4), 0.0) << "no force, none held";
+}
+
 // Too few updates allowed: the attempt is rejected and cut back, and the multipliers
 // return to the committed ones (zero) each time. With g_n(L) = k Delta L rho^n/(k + eps)
 // at load factor L and one update, g_1 = 4e-4 L is within 5.05e-5 first at L = 1/8

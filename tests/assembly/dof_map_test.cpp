@@ -70,12 +70,26 @@ TEST(DofMap, ConflictingPrescriptionsAreAnError)
     EXPECT_THROW(DofMap(2, {2}, {{0, std::numeric_limits<double>::quiet_NaN()}}), iga::Error);
 }
 
+TEST(DofMap, EachPrescribedDofFollowsItsAmplitude)
+{
+    const Amplitude press_release({{0.0, 0.0}, {1.0, 1.0}, {2.0, 0.0}});
+    const DofMap dofs(2, {2}, {{0, 0.5}, {1, -2.0, press_release}, {3, 0.0, press_release}, {3, 0.0}});
+    // Exact: each value is scaled by its amplitude at t, which is exact at 0.5 and 1.5.
+    EXPECT_EQ(dofs.expand(Vector::Zero(1), 0.5), (Vector(4) << 0.25, -1.0, 0.0, 0.0).finished());
+    EXPECT_EQ(dofs.expand(Vector::Zero(1), 1.5), (Vector(4) << 0.5, -1.0, 0.0, 0.0).finished());
+    EXPECT_EQ(dofs.expand(Vector::Zero(1), 2.0), (Vector(4) << 0.5, -0.0, 0.0, 0.0).finished());
+    // One value under two amplitudes cannot be held.
+    EXPECT_THROW(DofMap(2, {2}, {{1, 1.0}, {1, 1.0, press_release}}), iga::Error);
+}
+
 TEST(DofMap, FullyConstrainedAndEmptyBodies)
 {
     const DofMap dofs(3, {1, 0}, {{0, 1.0}, {1, 2.0}, {2, 3.0}});
     EXPECT_EQ(dofs.n_free(), 0);
-    const Vector full = dofs.expand(Vector(0), 2.0);
-    EXPECT_EQ(full, Vector::LinSpaced(3, 2.0, 6.0));
+    const Vector full = dofs.expand(Vector(0), 0.5);
+    EXPECT_EQ(full, Vector::LinSpaced(3, 0.5, 1.5));
+    // The default ramp holds the full value after t = 1.
+    EXPECT_EQ(dofs.expand(Vector(0), 2.0), Vector::LinSpaced(3, 1.0, 3.0));
     EXPECT_EQ(dofs.restrict(full).size(), 0);
 }
 

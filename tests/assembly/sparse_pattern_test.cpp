@@ -34,7 +34,7 @@ struct Scene {
         std::vector<PrescribedDof> c;
         for (int j = 0; j < ny + 2; ++j)
             for (int comp = 0; comp < 2; ++comp)
-                c.push_back({2 * (j * (nx + 2)) + comp, 0.01 * j});
+                c.push_back({2 * (j * (nx + 2)) + comp, 0.01 * j, Amplitude()});
         return c;
     }
 

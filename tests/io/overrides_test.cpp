@@ -164,15 +164,23 @@ TEST(Overrides, EveryKeyOfTheResolvedDeckCanBeSet)
 {
     // Setting each key to the value it already has must be accepted and change
     // nothing: this ties the --set schema to the keys the reader and writer know.
-    const Deck d = read(minimal_deck + "output: {reference: {pair: block_floor, type: hertz_cylinder_plane, radius: "
-                                       "1, force: 2}}\n");
-    std::vector<std::string> sets;
-    collect_leaves(YAML::Load(d.resolved_yaml), "", sets);
-    EXPECT_GT(sets.size(), 30u);
-    for (const std::string& set : sets) {
-        Deck e;
-        ASSERT_NO_THROW(e = read(d.resolved_yaml, {set})) << set;
-        EXPECT_TRUE(e == read(d.resolved_yaml)) << set;
+    // The second deck adds the keys only some items have (amplitudes, a motion).
+    const std::string with_paths =
+        replaced(replaced(replaced(minimal_deck, "{body: block, side: u0, fix: [x]}",
+                                   "{body: block, side: u0, displacement: [0.1, ~], amplitude: [[0, 0], [1, 1], [2, 0]]}"),
+                          "traction: [0, -1]}", "traction: [0, -1], amplitude: [[0, 0], [2, 1]]}"),
+                 "normal: [0, 1]}}", "normal: [0, 1]}, motion: [0, 0.1], amplitude: [[0, 0], [1, 1]]}");
+    for (const std::string& deck : {minimal_deck, with_paths}) {
+        const Deck d = read(deck + "output: {reference: {pair: block_floor, type: hertz_cylinder_plane, radius: "
+                                   "1, force: 2}}\n");
+        std::vector<std::string> sets;
+        collect_leaves(YAML::Load(d.resolved_yaml), "", sets);
+        EXPECT_GT(sets.size(), 30u);
+        for (const std::string& set : sets) {
+            Deck e;
+            ASSERT_NO_THROW(e = read(d.resolved_yaml, {set})) << set;
+            EXPECT_TRUE(e == read(d.resolved_yaml)) << set;
+        }
     }
 }
 
