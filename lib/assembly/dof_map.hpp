@@ -22,7 +22,7 @@ namespace iga::assembly {
 struct PrescribedDof {
     int dof = 0;
     double value = 0;
-    Amplitude amplitude;
+    Amplitude amplitude{};
 };
 
 class DofMap {

@@ -231,7 +231,7 @@ struct Body {
     std::optional<RigidPlane> plane;
     std::optional<RigidSphere> sphere;   ///< `circle` in 2D, `sphere` in 3D
     std::vector<double> motion;          ///< rigid translation at full value; empty: fixed
-    std::optional<Amplitude> amplitude;  ///< `rigid.amplitude` of the motion; unset: the default ramp
+    std::optional<Amplitude> amplitude{};  ///< `rigid.amplitude` of the motion; unset: the default ramp
 
     /// True when the body is given as a list of patches (inline or from a file).
     bool multi_patch() const { return !patches.empty(); }
@@ -256,9 +256,9 @@ struct Constraint {
     Side side = Side::u0;
     std::vector<bool> fixed;    ///< d entries: which components are prescribed
     std::vector<double> value;  ///< d entries: prescribed values at full value (0 for `fix` and free ones)
-    std::optional<Amplitude> amplitude;  ///< of the values (only with `displacement`); unset: the default ramp
-    std::string patch;          ///< multi-patch body: the patch of `side` (`patch.side`)
-    std::string surface;        ///< a named surface of the body instead of patch/side
+    std::optional<Amplitude> amplitude{};  ///< of the values (only with `displacement`); unset: the default ramp
+    std::string patch{};          ///< multi-patch body: the patch of `side` (`patch.side`)
+    std::string surface{};        ///< a named surface of the body instead of patch/side
 
     bool operator==(const Constraint&) const = default;
 };
@@ -270,9 +270,9 @@ struct Load {
     std::vector<double> vector;   ///< traction, force, gravity: d components
     double pressure = 0.0;        ///< pressure: follower, along the inward normal
     double density = 0.0;         ///< gravity: mass per unit reference volume (area in 2D)
-    std::string patch;            ///< multi-patch body: the patch of `side`
-    std::string surface;          ///< a named surface of the body instead of patch/side
-    std::optional<Amplitude> amplitude;  ///< unset: the default ramp
+    std::string patch{};            ///< multi-patch body: the patch of `side`
+    std::string surface{};          ///< a named surface of the body instead of patch/side
+    std::optional<Amplitude> amplitude{};  ///< unset: the default ramp
 
     bool operator==(const Load&) const = default;
 };
@@ -282,8 +282,8 @@ struct Load {
 struct ContactSurface {
     std::string body;
     std::optional<Side> side;
-    std::string patch;    ///< multi-patch body: the patch of `side`
-    std::string surface;  ///< a named surface of the body (then side is unset)
+    std::string patch{};    ///< multi-patch body: the patch of `side`
+    std::string surface{};  ///< a named surface of the body (then side is unset)
 
     bool deformable() const { return side.has_value() || !surface.empty(); }
 

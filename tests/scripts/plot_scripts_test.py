@@ -71,9 +71,33 @@ class PlotHistory(unittest.TestCase):
         with h5py.File(path, "r") as h5:
             x, label, _ = plot_history.history_series(h5)
         np.testing.assert_array_equal(x, load_factor)
-        self.assertEqual(label, "load factor")
+        self.assertIn("load factor", label)
         self.assertEqual(plot_history.main([str(path)]), 0)
         self.assertTrue(is_png(WORK / "load_history.png"))
+
+
+class PlotHistoryLoadPath(unittest.TestCase):
+    def test_amplitude_scales_the_abscissa_and_friction_is_drawn(self):
+        path = WORK / "path.h5"
+        deck = ("format: 1\nconstraints:\n  - {body: block, side: v1, displacement: [~, -0.01]}\n"
+                "  - {body: block, side: v1, displacement: [0.2, ~], amplitude: [[0, 0], [1, 0], [2, 1]]}\n")
+        t = np.array([0.5, 1.0, 1.5, 2.0])
+        with h5py.File(path, "w") as h5:
+            h5["deck"] = deck
+            h5["history/load_factor"] = t
+            h5["history/contact/touch/block.v0/normal_force"] = np.full(4, 5.0)
+            h5["history/contact/touch/block.v0/friction_force"] = np.column_stack([-np.array([0, 0, 1, 1.5]),
+                                                                                   np.zeros(4)])
+        with h5py.File(path, "r") as h5:
+            x, label, curves = plot_history.history_series(h5, 1)
+        # the slide's amplitude: 0 until t = 1, then linear to 1 at t = 2
+        np.testing.assert_allclose(x, [0.0, 0.0, 0.1, 0.2], rtol=0, atol=EXACT)
+        self.assertIn("u_x", label)
+        names = [name for name, _ in curves]
+        self.assertEqual(names, ["contact touch block.v0: normal force", "contact touch block.v0: friction force (x)"])
+        with h5py.File(path, "r") as h5:
+            x, _, _ = plot_history.history_series(h5)  # the first constraint: the default ramp, held after t = 1
+        np.testing.assert_allclose(x, [-0.005, -0.01, -0.01, -0.01], rtol=0, atol=EXACT)
 
 
 def write_side(group, coordinates, pressure):
