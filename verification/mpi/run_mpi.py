@@ -9,7 +9,7 @@ For every case of CASES below, the deck is run
     direct or iterative as the case says),
 and every number users read is compared with the serial run: the displacements of
 every body, the contact results (Gauss-point gaps, pressures and multipliers,
-post-processed pressures), reactions and obstacle forces, of every stored step.
+tangential tractions and slips, post-processed pressures), reactions and obstacle forces, of every stored step.
 A quantity q passes when max|q_par - q_ser| <= RTOL * max|q_ser| (a norm-wise
 relative difference: entries that are round-off around zero need not agree
 relatively). Forces (reactions, normal and obstacle forces) are measured against
@@ -66,6 +66,8 @@ CASES = [
     # A penalty stiff against its elements (eps h / E ~ 2e3): BoomerAMG instead of GAMG.
     ("sphere_octant_3d_stiff_iterative", os.path.join(HERE, "sphere_octant.yaml"),
      ["contact.0.penalty=1e8"], "iterative"),
+    # Coulomb friction against a rigid floor, two pairs: the friction state is per rank's pairs.
+    ("friction_2d", os.path.join(HERE, "friction_two_blocks.yaml"), [], "direct"),
 ]
 COMPARED = ("displacement", "contact", "reactions")
 
