@@ -108,6 +108,19 @@ const Schema& deck_schema()
     return schema;
 }
 
+void collect_paths(const Schema& schema, const std::string& prefix, std::vector<std::string>& out)
+{
+    if (schema.kind == Schema::Kind::list) {
+        collect_paths(schema.children.front(), prefix + ".*", out);
+        return;
+    }
+    for (std::size_t k = 0; k < schema.keys.size(); ++k) {
+        const std::string path = prefix.empty() ? schema.keys[k] : prefix + "." + schema.keys[k];
+        out.push_back(path);
+        collect_paths(schema.children[k], path, out);
+    }
+}
+
 std::string trim(std::string_view s)
 {
     const auto first = s.find_first_not_of(" \t");
@@ -284,6 +297,13 @@ void apply_overrides(YAML::Node& root, const std::vector<std::string>& set_overr
         if (const auto refused = set_path(root, split_path(path), value, source))
             issues.add(DeckIssue{command_line, path, text, *refused});
     }
+}
+
+std::vector<std::string> deck_key_paths()
+{
+    std::vector<std::string> out;
+    collect_paths(deck_schema(), "", out);
+    return out;
 }
 
 }  // namespace iga::io

@@ -27,4 +27,9 @@ namespace iga::io {
 void apply_overrides(YAML::Node& root, const std::vector<std::string>& set_overrides, DeckSource& source,
                      IssueList& issues);
 
+/// Every key path the deck format knows, as `--set` spells it with list items
+/// written `*` ("bodies.*.refine.spans"), in schema order: what a test compares
+/// with the user's documentation (docs/deck.md) and the reader.
+std::vector<std::string> deck_key_paths();
+
 }  // namespace iga::io
