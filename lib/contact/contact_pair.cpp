@@ -327,14 +327,16 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
     committed_xi_ = trial_xi_;
     committed_multiplier_ = multiplier_;
     initial_overlap_ = multiplier_;  // zeros: no overclosure until set_initial_overlap()
-    // Friction: every point anchored where it starts (a rigid obstacle at its
-    // load-factor-0 place, no translation).
+    // Friction: every point anchored where it starts, in the frame of an obstacle
+    // placed where it is at t = 0 (an amplitude may start away from zero).
     committed_friction_.resize(carriers_.size());
     converged_friction_.resize(carriers_.size());
     for (std::size_t c = 0; c < carriers_.size(); ++c) {
         const Index n_g = static_cast<Index>(carriers_[c].points.size());
+        const auto* obstacle = std::get_if<RigidObstacle>(&surfaces_[static_cast<std::size_t>(carriers_[c].master)]);
+        const VecN start = obstacle ? obstacle->shift(0.0) : VecN(VecN::Zero(dim_));
         for (const GaussPoint& gp : carriers_[c].points)
-            committed_friction_[c].push_back(FrictionHistory{gp.reference, 0.0});
+            committed_friction_[c].push_back(FrictionHistory{gp.reference - start, 0.0});
         FrictionState& state = converged_friction_[c];
         state.status.assign(static_cast<std::size_t>(n_g), StickSlip::open);
         state.traction = RowMatrix::Zero(n_g, dim_);
