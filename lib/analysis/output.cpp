@@ -315,6 +315,7 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
             r.attributes["n_active"] = active;
             r.attributes["max_penetration"] = penetration;
             r.attributes["contact_measure"] = contact_measure;  // length (area in 3D) in contact, measured as the weights
+            r.attributes["contact_area"] = contact_measure;     // the same, by the name /history and friction use
             if (model.pair.settings().friction.active())
                 add_friction(r, model, static_cast<int>(c), carrier, *side,
                              system.side_displacement(u_full, static_cast<int>(p), carrier.surface), load_factor,

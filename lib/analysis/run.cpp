@@ -51,7 +51,7 @@ io::HistoryRow history_row(const io::StepData& step)
     for (const io::ContactPairResult& pair : step.contact)
         for (const io::ContactSideResult& side : pair.sides) {
             const auto penetration = side.attributes.find("max_penetration");
-            const auto area = side.attributes.find("contact_measure");
+            const auto area = side.attributes.find("contact_area");
             const int d = side.gauss_points.coordinates.cols();
             row.contact.push_back({pair.name, side.side_name, side.normal_force,
                                    penetration == side.attributes.end() ? 0.0 : penetration->second,
