@@ -245,6 +245,11 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     for (const PairModel& p : scene.pairs)
         if (p.penalty_auto)
             context.log(Verbosity::normal, "contact pair '" + p.name + "': penalty auto = " + describe(p.rule));
+    for (const PairModel& p : scene.pairs)
+        if (const contact::FrictionLaw& law = p.pair.settings().friction; law.active())
+            context.log(Verbosity::verbose, fmt::format("  contact pair '{}': Coulomb friction, mu = {:g}, tangential "
+                                                        "penalty {:g}",
+                                                        p.name, law.coefficient, law.tangential_penalty));
 
     std::optional<io::StepData> last_step;
     std::vector<std::array<double, 4>> convergence;
