@@ -102,27 +102,24 @@ DirichletData dirichlet_data(const io::Deck& deck, const std::vector<BodyModel>&
                                                            c.amplitude.value_or(Amplitude());
                 if (it->second.value == value && same_path)
                     continue;
-                if (it->second.value == value)
-                    throw DeckError(io::located_issue(
-                        deck.source_file, fmt::format("constraints.{}", k), "",
-                        fmt::format("conflicts with {}: both prescribe the {}-displacement of the control point at "
-                                    "{} of body '{}' (the same value {:.6g}) but with different amplitudes; the "
-                                    "sides {}.{} and {}.{} meet there. Give both the same amplitude, or leave "
-                                    "that component free in one of them (~ in 'displacement')",
-                                    item_label(first, it->second.item), component_names[i],
-                                    point_text(body.node_points, p), c.body, value, first.body,
-                                    io::side_text(first.patch, first.side, first.surface), c.body,
-                                    io::side_text(c.patch, c.side, c.surface))));
+                // The same value under another amplitude, or another value.
+                const bool same_value = it->second.value == value;
+                const std::string values =
+                    same_value ? fmt::format("(the same value {:.6g}) but with different amplitudes", value)
+                               : fmt::format("({} = {:.6g} here, {:.6g} there)", component_names[i], value,
+                                             it->second.value);
+                const std::string advice = same_value ? "Give both the same amplitude, or leave that component "
+                                                        "free in one of them (~ in 'displacement')"
+                                                      : "Leave that component free in one of them (~ in "
+                                                        "'displacement', or drop it from 'fix')";
                 throw DeckError(io::located_issue(
                     deck.source_file, fmt::format("constraints.{}", k), "",
                     fmt::format("conflicts with {}: both prescribe the {}-displacement of the control point at {} "
-                                "of body '{}' ({} = {:.6g} here, {:.6g} there); the sides {}.{} and {}.{} meet "
-                                "there. Leave that component free in one of them (~ in 'displacement', or drop "
-                                "it from 'fix')",
+                                "of body '{}' {}; the sides {}.{} and {}.{} meet there. {}",
                                 item_label(first, it->second.item), component_names[i],
-                                point_text(body.node_points, p), c.body, component_names[i], value,
-                                it->second.value, first.body, io::side_text(first.patch, first.side, first.surface),
-                                c.body, io::side_text(c.patch, c.side, c.surface))));
+                                point_text(body.node_points, p), c.body, values, first.body,
+                                io::side_text(first.patch, first.side, first.surface), c.body,
+                                io::side_text(c.patch, c.side, c.surface), advice)));
             }
     }
     out.reactions.insert(out.reactions.end(), totals.begin(), totals.end());

@@ -315,6 +315,26 @@ std::optional<ContactSurface> read_surface(const Cursor& c, const KnownNames& kn
 }
 
 /// contact.<pair>.penalty: a number > 0, or `auto`.
+/// A value that is a number > 0 or the word `auto`: {true, nullopt} for auto, {false,
+/// value} for a valid number, {false, nullopt} after recording the issue. `auto_note`
+/// says what auto means (" (the pair's normal penalty)"), or nothing.
+std::pair<bool, std::optional<double>> positive_or_auto(const Cursor& value, const std::string& auto_note = "")
+{
+    // A scalar that is not a number: `auto`, or a word we reject here with the choices.
+    if (!value.is_list() && !value.is_map() && !parse_number(value.value_text())) {
+        if (value.value_text() == "auto")
+            return {true, std::nullopt};
+        value.fail("expected a number > 0 or auto" + auto_note);
+        return {false, std::nullopt};
+    }
+    if (const auto number = value.to<double>()) {  // (to<> rejects NaN and infinities)
+        if (*number > 0)
+            return {false, number};
+        value.fail("must be > 0" + (auto_note.empty() ? std::string() : ", or auto" + auto_note));
+    }
+    return {false, std::nullopt};
+}
+
 void read_penalty(const Cursor& c, ContactPair& p)
 {
     const Cursor penalty = c.child("penalty");
@@ -322,20 +342,10 @@ void read_penalty(const Cursor& c, ContactPair& p)
         c.fail_missing("penalty");
         return;
     }
-    // A scalar that is not a number: `auto`, or a word we reject here with the choices.
-    if (!penalty.is_list() && !penalty.is_map() && !parse_number(penalty.value_text())) {
-        if (penalty.value_text() == "auto")
-            p.penalty_auto = true;
-        else
-            penalty.fail("expected a number > 0 or auto");
-        return;
-    }
-    if (const auto value = penalty.to<double>()) {
-        if (*value > 0)
-            p.penalty = *value;
-        else
-            penalty.fail("must be > 0");
-    }
+    const auto [is_auto, value] = positive_or_auto(penalty);
+    p.penalty_auto = is_auto;
+    if (value)
+        p.penalty = *value;
 }
 
 /// contact.<pair>.augmented_lagrangian: {gap_tolerance, max_updates}, with enforcement
@@ -374,18 +384,11 @@ void read_friction(const Cursor& c, ContactPair& p)
         else
             mu.fail("must be a finite number >= 0 (0: frictionless)");
     }
-    const Cursor eps = f.child("tangential_penalty");
-    const bool scalar = eps.exists() && !eps.is_list() && !eps.is_map();
-    if (scalar && !parse_number(eps.value_text()) && eps.value_text() != "auto") {
-        eps.fail("expected a number > 0 or auto (the pair's normal penalty)");
-    } else if (eps.exists() && !(scalar && eps.value_text() == "auto")) {
-        p.friction.tangential_penalty_auto = false;
-        if (const auto value = eps.to<double>()) {
-            if (std::isfinite(*value) && *value > 0.0)
-                p.friction.tangential_penalty = *value;
-            else
-                eps.fail("must be > 0, or auto (the pair's normal penalty)");
-        }
+    if (const Cursor eps = f.child("tangential_penalty"); eps.exists()) {
+        const auto [is_auto, value] = positive_or_auto(eps, " (the pair's normal penalty)");
+        p.friction.tangential_penalty_auto = is_auto;
+        if (value)
+            p.friction.tangential_penalty = *value;
     }
     if (p.friction.coefficient > 0.0 && p.first.deformable() && p.second.deformable())
         f.fail_here("friction is available against rigid obstacles only in this version (both surfaces of "
