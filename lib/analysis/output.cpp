@@ -6,6 +6,7 @@
 
 #include "analytic/hertz.hpp"
 #include "analytic/pressure_errors.hpp"
+#include "boundary/patch_side.hpp"
 #include "contact/pressure_recovery.hpp"
 #include "nurbs/shapes.hpp"
 #include "nurbs/side_patch.hpp"
@@ -153,34 +154,56 @@ std::vector<io::Reaction> reactions(const Scene& scene, const Vector& r_full)
 
 namespace {
 
+/// The outward unit normal of the MASTER at a point of a deformable carrying side:
+/// minus the side's own current outward normal there (at contact the two agree up
+/// to the penalty's discretization error; the slave's is defined everywhere).
+VecN master_normal_at(const contact::DeformableSide& side, const RowMatrix& side_displacement, int piece,
+                      const VecN& xi)
+{
+    const contact::SidePiece& p = side.pieces[static_cast<std::size_t>(piece)];
+    RowMatrix points = p.side.patch.control_points();
+    for (std::size_t a = 0; a < p.surface_index.size(); ++a)
+        points.row(static_cast<Index>(a)) += side_displacement.row(p.surface_index[a]);
+    const nurbs::BasisValues basis = nurbs::rational_basis(p.side.patch, xi, 1);
+    const nurbs::PointDerivatives x = nurbs::combine(basis, points);
+    return -static_cast<double>(p.outward_sign) * boundary::raw_normal(x.dx).normalized();
+}
+
 /// The friction part of a contact side's results: the converged increment's
 /// tangential state (ContactPair::converged_friction: the evaluation behind these
 /// results comes after the commit), in space and in the local tangent basis of the
-/// obstacle's normal (contact::tangent_basis along the x axis, or y where the
-/// normal is near x), recovered at the samples component by component as the
+/// master's normal (contact::tangent_basis along the x axis, or y where the
+/// normal is near x; the obstacle's normal, or minus the side's own against a
+/// deformable master), recovered at the samples component by component as the
 /// pressure is, and its resultant.
 void add_friction(io::ContactSideResult& r, const PairModel& model, int carrier_index,
                   const contact::CarrierResult& carrier, const contact::DeformableSide& side,
                   const RowMatrix& side_displacement, double load_factor, int samples_per_span)
 {
     const contact::FrictionState& state = model.pair.converged_friction(carrier_index);
-    const auto& obstacle = std::get<contact::RigidObstacle>(model.pair.surface(1 - carrier.surface));
+    const auto* obstacle = std::get_if<contact::RigidObstacle>(&model.pair.surface(1 - carrier.surface));
     const Index n_g = carrier.coordinates.rows();
     const Index d = carrier.coordinates.cols();
-    auto local = [&](const RowMatrix& points, const RowMatrix& traction) {
-        RowMatrix out(points.rows(), d - 1);
-        for (Index i = 0; i < points.rows(); ++i) {
-            const contact::ObstacleFoot foot = obstacle.foot(points.row(i).transpose(), load_factor);
+    // normal(i): the master's normal at row i of `points` (a Gauss point or a sample).
+    auto local = [&](const RowMatrix& traction, const auto& normal) {
+        RowMatrix out(traction.rows(), d - 1);
+        for (Index i = 0; i < traction.rows(); ++i) {
+            const VecN n = normal(i);
             VecN along = VecN::Zero(d);
-            along(std::abs(foot.normal(0)) > 0.9 ? 1 : 0) = 1.0;
-            out.row(i) = (contact::tangent_basis(foot.normal, along).transpose() * traction.row(i).transpose())
-                             .transpose();
+            along(std::abs(n(0)) > 0.9 ? 1 : 0) = 1.0;
+            out.row(i) = (contact::tangent_basis(n, along).transpose() * traction.row(i).transpose()).transpose();
         }
         return out;
     };
+    auto gauss_normal = [&](Index g) -> VecN {
+        if (obstacle)
+            return obstacle->foot(carrier.coordinates.row(g).transpose(), load_factor).normal;
+        return master_normal_at(side, side_displacement, carrier.piece[static_cast<std::size_t>(g)],
+                                carrier.parameter.row(g).transpose());
+    };
     io::GaussPointData& gp = r.gauss_points;
     gp.tangential_traction_vector = state.traction;
-    gp.tangential_traction = local(carrier.coordinates, state.traction);
+    gp.tangential_traction = local(state.traction, gauss_normal);
     gp.status.resize(static_cast<std::size_t>(n_g));
     for (Index g = 0; g < n_g; ++g)
         gp.status[static_cast<std::size_t>(g)] = static_cast<int>(state.status[static_cast<std::size_t>(g)]);
@@ -194,12 +217,27 @@ void add_friction(io::ContactSideResult& r, const PairModel& model, int carrier_
     contact::CarrierResult component = carrier;
     io::PostProcessedData& pp = r.postprocessed;
     pp.tangential_traction_vector.resize(pp.coordinates.rows(), d);
+    contact::RecoveredPressure recovered;
     for (Index i = 0; i < d; ++i) {
         component.pressure = state.traction.col(i);
-        pp.tangential_traction_vector.col(i) =
-            contact::recover_pressure(side, side_displacement, component, samples_per_span).pressure;
+        recovered = contact::recover_pressure(side, side_displacement, component, samples_per_span);
+        pp.tangential_traction_vector.col(i) = recovered.pressure;
     }
-    pp.tangential_traction = local(pp.coordinates, pp.tangential_traction_vector);
+    // The samples' pieces: one grid per piece, in piece order (a one-piece side: all piece 0).
+    std::vector<int> sample_piece(static_cast<std::size_t>(pp.coordinates.rows()), 0);
+    for (std::size_t k = 0, first = 0; k < recovered.grids.size(); ++k) {
+        const std::size_t n = static_cast<std::size_t>(recovered.grids[k][0] * recovered.grids[k][1]);
+        std::fill(sample_piece.begin() + static_cast<std::ptrdiff_t>(first),
+                  sample_piece.begin() + static_cast<std::ptrdiff_t>(first + n), static_cast<int>(k));
+        first += n;
+    }
+    auto sample_normal = [&](Index s) -> VecN {
+        if (obstacle)
+            return obstacle->foot(pp.coordinates.row(s).transpose(), load_factor).normal;
+        return master_normal_at(side, side_displacement, sample_piece[static_cast<std::size_t>(s)],
+                                recovered.parameter.row(s).transpose());
+    };
+    pp.tangential_traction = local(pp.tangential_traction_vector, sample_normal);
 }
 
 }  // namespace

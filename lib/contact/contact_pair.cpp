@@ -1,6 +1,7 @@
 #include "contact/contact_pair.hpp"
 
 #include "boundary/patch_side.hpp"
+#include "contact/gpts_friction.hpp"
 #include "contact/gpts_kernel.hpp"
 #include "contact/projection.hpp"
 #include "contact/search.hpp"
@@ -120,6 +121,15 @@ std::string describe_point(int surface, int g, const VecN& xi, const VecN& x)
     return os.str();
 }
 
+/// Writes Gauss point g's tangential response into a carrier's friction state.
+void record_friction(FrictionState& state, int g, const TangentialResponse& t)
+{
+    state.status[static_cast<std::size_t>(g)] = t.status;
+    state.traction.row(g) = t.traction.transpose();
+    state.slip_increment(g) = t.slip_increment;
+    state.slip(g) = t.next.slip;
+}
+
 }  // namespace
 
 namespace {
@@ -199,6 +209,13 @@ int DeformableSide::first_element(int k) const
     return n;
 }
 
+/// The evaluation's stopwatches and the candidate list reused over its Gauss points.
+struct ContactPair::Timing {
+    Stopwatch& search;
+    Stopwatch& projection;
+    std::vector<int>& candidates;
+};
+
 ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
     : settings_(settings), surfaces_{std::move(first), std::move(second)}
 {
@@ -218,9 +235,6 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
     IGA_CHECK(!settings_.friction.active() || (std::isfinite(settings_.friction.tangential_penalty) &&
                                                settings_.friction.tangential_penalty > 0.0),
               "contact: friction needs a tangential penalty > 0");
-    if (settings_.friction.active() && deformable[0] && deformable[1])
-        throw Error("contact: friction between two deformable surfaces is not available in this version "
-                    "(only against rigid obstacles)");
 
     if (deformable[0] && deformable[1]) {
         if (settings_.formulation == Formulation::two_half_pass)
@@ -244,6 +258,7 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
         if (!deformable[i])
             continue;
         const DeformableSide& surface = std::get<DeformableSide>(surfaces_[i]);
+        reference_points_[static_cast<std::size_t>(i)] = surface.control_points();
         for (const SidePiece& piece : surface.pieces) {
             const nurbs::Patch& patch = piece.side.patch;
             const std::vector<nurbs::Element> elements = patch.elements();
@@ -335,16 +350,45 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
         const Index n_g = static_cast<Index>(carriers_[c].points.size());
         const auto* obstacle = std::get_if<RigidObstacle>(&surfaces_[static_cast<std::size_t>(carriers_[c].master)]);
         const VecN start = obstacle ? obstacle->shift(0.0) : VecN(VecN::Zero(dim_));
+        // Against a deformable master the anchor is a material point of the master: none
+        // until the point first touches (gpts_friction.hpp).
         for (const GaussPoint& gp : carriers_[c].points)
-            committed_friction_[c].push_back(FrictionHistory{gp.reference - start, 0.0});
+            committed_friction_[c].push_back(FrictionHistory{gp.reference - start, 0.0, obstacle != nullptr});
         FrictionState& state = converged_friction_[c];
         state.status.assign(static_cast<std::size_t>(n_g), StickSlip::open);
         state.traction = RowMatrix::Zero(n_g, dim_);
         state.slip_increment = Vector::Zero(n_g);
         state.slip = Vector::Zero(n_g);
     }
+    if (settings_.friction.active())
+        anchor_on_reference_masters();
     trial_friction_ = committed_friction_;
     trial_friction_state_ = converged_friction_;
+}
+
+void ContactPair::anchor_on_reference_masters()
+{
+    // At rest a point sticks to the master material point under it: the foot of its
+    // reference position on the master's reference surface, where one exists.
+    PairEvaluation scratch;
+    Stopwatch search, projection;
+    std::vector<int> candidates;
+    Timing timing{search, projection, candidates};
+    for (std::size_t ci = 0; ci < carriers_.size(); ++ci) {
+        const Carrier& c = carriers_[ci];
+        const auto* master = std::get_if<DeformableSide>(&surfaces_[static_cast<std::size_t>(c.master)]);
+        if (!master)
+            continue;
+        const MasterView view = master_view(*master, reference_points_[static_cast<std::size_t>(c.master)],
+                                            search_distance_);
+        for (std::size_t g = 0; g < c.points.size(); ++g) {
+            bool failed = false;
+            const std::optional<Projection> foot =
+                project_on_master(c.master, view, c.points[g].reference, Foot{}, scratch, timing, failed);
+            if (!failed && foot && foot->status == Projection::Status::ok)
+                committed_friction_[ci][g] = FrictionHistory{foot->point, 0.0, true};
+        }
+    }
 }
 
 bool ContactPair::has_initial_overlap() const
@@ -439,13 +483,6 @@ std::vector<Coupling> ContactPair::candidate_couplings() const
     out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
 }
-
-/// The evaluation's stopwatches and the candidate list reused over its Gauss points.
-struct ContactPair::Timing {
-    Stopwatch& search;
-    Stopwatch& projection;
-    std::vector<int>& candidates;
-};
 
 PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatrix& disp_second, bool need_tangent,
                                      RunContext* ctx, double load_factor) const
@@ -601,10 +638,7 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
                                                                   kr.pressure, d_pressure, foot.radius);
                     add_tangential(kr, c.points[g].N, c.points[g].weight, t);
                     trial_friction_[ci][static_cast<std::size_t>(g)] = t.next;
-                    cr.friction.status[static_cast<std::size_t>(g)] = t.status;
-                    cr.friction.traction.row(g) = t.traction.transpose();
-                    cr.friction.slip_increment(g) = t.slip_increment;
-                    cr.friction.slip(g) = t.next.slip;
+                    record_friction(cr.friction, g, t);
                 }
                 if (kr.pressure > 0.0) {
                     ++ev.n_active;
@@ -625,13 +659,19 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
         for (const ElementSearch& search : view.searches)
             may_touch = may_touch || slave_box.overlaps(search.bounds());
         search_time.stop();
+        // Against a deformable master a point is unanchored until it finds a foot.
+        if (settings_.friction.active())
+            for (int g = 0; g < n_g; ++g)
+                trial_friction_[ci][g].anchored = false;
         if (!may_touch) {  // the slave side's hull misses every inflated master span box
+            trial_friction_state_[ci] = cr.friction;
             ev.carriers.push_back(std::move(cr));
             continue;
         }
         KernelSettings kernel_settings = kernel_base;
         kernel_settings.master_rows = c.master_rows;
         Timing timing{search_time, projection_time, candidates};
+        const bool friction = settings_.friction.active();
 
         for (int g = 0; g < n_g; ++g) {
             const GaussPoint& gp = c.points[g];
@@ -657,13 +697,18 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
             cr.state[g] = PointState::ok;
             // Active when <lambda + eps g_N> > 0: with a multiplier, also at a small open gap.
             kernel_settings.multiplier = shifted_multiplier(g);
-            if (!(kernel_settings.multiplier + kernel_settings.penalty * foot.gap > 0.0))
+            const MasterReference reference =
+                friction ? master_reference(c.master, proj.basis) : MasterReference{};
+            if (!(kernel_settings.multiplier + kernel_settings.penalty * foot.gap > 0.0)) {
+                if (friction)
+                    trial_friction_[ci][g] = open_history(committed_friction_[ci][g], reference);
                 continue;
+            }
             Vector dW;
             double W = gp.weight;
             if (c.current_measure)
                 std::tie(W, dW) = current_weight(gp.rule_weight, gp.dN, gp.indices, current[c.slave]);
-            const KernelResult kr = gpts_kernel(gp.N, W, foot, kernel_settings, need_tangent ? dW : Vector());
+            KernelResult kr = gpts_kernel(gp.N, W, foot, kernel_settings, need_tangent ? dW : Vector());
             if (!kr.ok) {
                 ev.ok = false;
                 ev.message = "contact: the penetration at " + describe_point(c.slave, g, gp.xi, x) +
@@ -673,16 +718,39 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
                 return ev;
             }
             cr.pressure(g) = kr.pressure;
+            if (friction) {
+                const TangentialResponse t = gpts_friction(kr, gp.N, W, foot, reference, settings_.friction,
+                                                           committed_friction_[ci][g], kernel_settings,
+                                                           need_tangent ? dW : Vector());
+                trial_friction_[ci][g] = t.next;
+                record_friction(cr.friction, g, t);
+            }
             ++ev.n_active;
             ev.max_penetration = std::max(ev.max_penetration, foot.gap);
             scatter(kr, gp, proj.basis.indices, proj.element);
         }
+        trial_friction_state_[ci] = cr.friction;
         ev.carriers.push_back(std::move(cr));
     }
     flush();
     std::sort(ev.tangent.begin(), ev.tangent.end(),
               [](const LocalBlock& a, const LocalBlock& b) { return a.element < b.element; });
     return ev;
+}
+
+MasterReference ContactPair::master_reference(int master_surface, const nurbs::BasisValues& basis) const
+{
+    const RowMatrix& X = reference_points_[static_cast<std::size_t>(master_surface)];
+    const Index d = X.cols();
+    MasterReference out{VecN::Zero(d), Matrix::Zero(d, basis.dR.cols()), Matrix::Zero(d, basis.d2R.cols())};
+    for (std::size_t b = 0; b < basis.indices.size(); ++b) {
+        const VecN Xb = X.row(basis.indices[b]).transpose();
+        const Index k = static_cast<Index>(b);
+        out.point += basis.R(k) * Xb;
+        out.tangents += Xb * basis.dR.row(k);
+        out.second += Xb * basis.d2R.row(k);
+    }
+    return out;
 }
 
 ContactPair::MasterView ContactPair::master_view(const DeformableSide& master, const RowMatrix& points,

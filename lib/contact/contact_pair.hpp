@@ -67,6 +67,7 @@
 // iga::Error.
 
 #include "contact/friction.hpp"
+#include "contact/gpts_friction.hpp"
 #include "contact/gpts_kernel.hpp"
 #include "contact/projection.hpp"
 #include "contact/rigid_obstacle.hpp"
@@ -96,7 +97,7 @@ struct PairSettings {
     double penalty = 0.0;         ///< eps_N > 0, pressure per unit penetration
     int quadrature = 0;           ///< Gauss points per knot span of a carrying side; 0 = degree + 2
     double search_distance = 0.0; ///< global search margin; 0 = auto (a tenth of the larger side's size)
-    FrictionLaw friction{};       ///< Coulomb friction (against a rigid obstacle); mu = 0: frictionless
+    FrictionLaw friction{};       ///< Coulomb friction; mu = 0: frictionless
 };
 
 /// One patch side of a deformable contact surface, in its REFERENCE configuration.
@@ -298,6 +299,7 @@ private:
     double search_distance_ = 0.0;
     std::vector<Carrier> carriers_;
     std::array<std::vector<std::vector<int>>, 2> element_points_;  ///< surface control points of each element
+    std::array<RowMatrix, 2> reference_points_;  ///< reference control points of a deformable surface
     /// Per surface and piece: per side direction k, whether its lower / upper edge
     /// is shared with another piece (an interface inside the surface).
     std::array<std::vector<std::array<std::array<bool, 2>, 2>>, 2> inner_edge_;
@@ -327,6 +329,11 @@ private:
         double size = 0.0;               ///< diagonal of the surface's control points
     };
     struct Timing;
+    /// Friction against a deformable master: anchors each Gauss point at the foot of
+    /// its reference position on the master's reference surface (constructor).
+    void anchor_on_reference_masters();
+    /// The reference geometry of a deformable master at a foot with basis `basis` (surface numbering).
+    MasterReference master_reference(int master_surface, const nurbs::BasisValues& basis) const;
     MasterView master_view(const DeformableSide& master, const RowMatrix& points, double distance) const;
     /// The nearest foot of x over the master's pieces (surface numbering); nullopt when
     /// no piece has a candidate element; `failed` when a projection failed.

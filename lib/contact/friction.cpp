@@ -30,23 +30,37 @@ TangentialResponse coulomb_response(const FrictionLaw& law, const FrictionHistor
     if (std::isfinite(normal_radius))
         G -= (normal.dot(w) * P + normal * gt.transpose()) / normal_radius;
     const double eps = law.tangential_penalty;
-    const VecN s = -eps * gt;
-    const double s_norm = s.norm();
+    out = coulomb_return_map(law, -eps * gt, -eps * G, pressure, d_pressure);
+    out.next = committed;
+    if (out.status == StickSlip::slip) {
+        out.next.anchor = y + out.traction / eps;  // where the traction is reproduced
+        out.next.slip = committed.slip + out.slip_increment;
+    }
+    return out;
+}
+
+TangentialResponse coulomb_return_map(const FrictionLaw& law, const VecN& trial, const Matrix& d_trial,
+                                      double pressure, const Vector& d_pressure)
+{
+    const Index d = trial.size();
+    const Index m = d_trial.cols();
+    IGA_CHECK(d_trial.rows() == d && d_pressure.size() == m, "friction: trial and pressure derivatives disagree");
+    TangentialResponse out;
+    const double s_norm = trial.norm();
     const double limit = law.coefficient * pressure;
     if (s_norm <= limit) {
         out.status = StickSlip::stick;
-        out.traction = s;
-        out.d_traction = -eps * G;
+        out.traction = trial;
+        out.d_traction = d_trial;
         return out;
     }
+    const double eps = law.tangential_penalty;
     out.status = StickSlip::slip;
-    const VecN direction = s / s_norm;
+    const VecN direction = trial / s_norm;
     out.traction = limit * direction;
-    out.d_traction = -(eps * limit / s_norm) * (Matrix::Identity(d, d) - direction * direction.transpose()) * G +
+    out.d_traction = (limit / s_norm) * (Matrix::Identity(d, d) - direction * direction.transpose()) * d_trial +
                      law.coefficient * direction * d_pressure.transpose();
     out.slip_increment = (s_norm - limit) / eps;
-    out.next.anchor = y + out.traction / eps;
-    out.next.slip = committed.slip + out.slip_increment;
     return out;
 }
 

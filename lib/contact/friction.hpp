@@ -41,18 +41,25 @@ enum class StickSlip : int { open = 0, stick = 1, slip = 2 };
 
 /// A Gauss point's friction history, committed once per converged increment.
 struct FrictionHistory {
-    VecN anchor;        ///< the master-frame point the slave sticks to, d
-    double slip = 0.0;  ///< accumulated slip length
+    VecN anchor;           ///< the master-frame point the slave sticks to, d
+    double slip = 0.0;     ///< accumulated slip length
+    bool anchored = true;  ///< false: no anchor yet (never touched a deformable master); it sticks where it touches
 };
 
 /// The tangential response at one Gauss point.
 struct TangentialResponse {
     StickSlip status = StickSlip::open;
     VecN traction;               ///< t_T on the slave (tangential), d
-    Matrix d_traction;           ///< dt_T/dy, d x d
+    Matrix d_traction;           ///< dt_T/dz, d x m: z = y (m = d) against a rigid obstacle, the kernel's dofs otherwise
     FrictionHistory next;        ///< the history if this state is committed
     double slip_increment = 0.0; ///< slip length since the committed state
 };
+
+/// The return map alone: the trial traction s (tangential, d) with ds/dz (d x m),
+/// the pressure p and dp/dz (m). Fills status, traction, d_traction and the slip
+/// increment; the history is the caller's (it knows the frame of the anchor).
+TangentialResponse coulomb_return_map(const FrictionLaw& law, const VecN& trial, const Matrix& d_trial,
+                                      double pressure, const Vector& d_pressure);
 
 /// Coulomb's law at the slave point y (master frame) with outward normal n of
 /// the master, contact pressure p >= 0 and its derivative dp/dy (d).

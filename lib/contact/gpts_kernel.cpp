@@ -47,39 +47,18 @@ KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, co
     if (heaviside(trial) == 0.0)
         return out;
 
-    // A = m + g_N b: the Hessian of the distance at the foot point; positive
-    // definite at a distance minimum (else the projection is not one).
-    const Matrix A = master.metric + g_N * master.curvature;
-    const Eigen::LLT<Matrix> A_llt(A);
-    const Eigen::LLT<Matrix> m_llt(master.metric);
-    if (A_llt.info() != Eigen::Success || m_llt.info() != Eigen::Success ||
-        !(A.determinant() > 0.0 && master.metric.determinant() > 0.0)) {
+    const FootVariation v = foot_variation(N, master);
+    if (!v.ok) {
         out.ok = false;
         return out;
     }
+    const Eigen::LLT<Matrix> m_llt(master.metric);
     const double p = out.pressure;
     const double eps = settings.penalty;
-    const VecN& n = master.normal;
-
-    // Vectors over the dofs [slave cps ; master cps] (a column each):
-    //   Nn:      N_a n ; -R_b n            (dg_N/du = -Nn)
-    //   T_al:    N_a a_al ; -R_b a_al      (T_al . du = (du_s - du_m) . a_al)
-    //   Nd_al:   0 ; R_b,al n              (Nd_al . du = n . du_m,al)
-    Vector Nn(n_dofs);
-    Matrix T = Matrix::Zero(n_dofs, q), Nd = Matrix::Zero(n_dofs, q);
-    for (Index a = 0; a < n_s; ++a) {
-        Nn.segment(a * d, d) = N(a) * n;
-        for (Index al = 0; al < q; ++al)
-            T.col(al).segment(a * d, d) = N(a) * master.tangents.col(al);
-    }
-    for (Index b = 0; b < n_m; ++b) {
-        const Index k = (n_s + b) * d;
-        Nn.segment(k, d) = -R(b) * n;
-        for (Index al = 0; al < q; ++al) {
-            T.col(al).segment(k, d) = -R(b) * master.tangents.col(al);
-            Nd.col(al).segment(k, d) = master.dR(b, al) * n;
-        }
-    }
+    const Vector& Nn = v.Nn;
+    const Matrix& T = v.T;
+    const Matrix& Nd = v.Nd;
+    const Matrix& D = v.D;
 
     const Index n_rows = settings.master_rows ? n_dofs : n_s * d;
     // r = p W dg_N/du: slave -p W N_a n, master +p W R_b n.
@@ -87,11 +66,9 @@ KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, co
     if (!settings.need_tangent)
         return out;
 
-    // Variation of the foot point: A dxi = T^T du - g_N Nd^T du, so dxi = D^T du with
-    // D = (T - g_N Nd) A^-1. Variation of the normal: dn = -a_be m^be,al (Nd_al + b_al,ga D_ga) . du.
+    // Variation of the normal: dn = -a_be m^be,al (Nd_al + b_al,ga D_ga) . du.
     // Second variation of g_N (docs/theory.md, "GPTS tangent"):
     //   D2g = Nd D^T + T m^-1 (Nd + D b)^T   (symmetric: equal to its transpose up to round-off)
-    const Matrix D = A_llt.solve((T - g_N * Nd).transpose()).transpose();          // n_dofs x q
     const Matrix T_m = m_llt.solve(T.transpose()).transpose();                      // T m^-1
     const Matrix turn = Nd + D * master.curvature;                                  // Nd + D b (b symmetric)
     out.tangent.topRows(n_rows) = eps * W * Nn.head(n_rows) * Nn.transpose();
@@ -100,6 +77,52 @@ KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, co
     if (dW.size() > 0)
         out.tangent.topLeftCorner(n_rows, n_s * d) -= p * Nn.head(n_rows) * dW.transpose();
     return out;
+}
+
+FootVariation foot_variation(const Vector& N, const MasterFoot& master)
+{
+    const Index d = master.normal.size();
+    const Index q = d - 1;
+    const Vector& R = master.R;
+    const Index n_s = N.size();
+    const Index n_m = R.size();
+    const Index n_dofs = (n_s + n_m) * d;
+    FootVariation v;
+    // A = m + g_N b: the Hessian of the distance at the foot point; positive
+    // definite at a distance minimum (else the projection is not one).
+    const Matrix A = master.metric + master.gap * master.curvature;
+    const Eigen::LLT<Matrix> A_llt(A);
+    const Eigen::LLT<Matrix> m_llt(master.metric);
+    if (A_llt.info() != Eigen::Success || m_llt.info() != Eigen::Success ||
+        !(A.determinant() > 0.0 && master.metric.determinant() > 0.0)) {
+        v.ok = false;
+        return v;
+    }
+    const VecN& n = master.normal;
+    // Vectors over the dofs [slave cps ; master cps] (a column each):
+    //   Nn:      N_a n ; -R_b n            (dg_N/du = -Nn)
+    //   T_al:    N_a a_al ; -R_b a_al      (T_al . du = (du_s - du_m) . a_al)
+    //   Nd_al:   0 ; R_b,al n              (Nd_al . du = n . du_m,al)
+    v.Nn.resize(n_dofs);
+    v.T = Matrix::Zero(n_dofs, q);
+    v.Nd = Matrix::Zero(n_dofs, q);
+    for (Index a = 0; a < n_s; ++a) {
+        v.Nn.segment(a * d, d) = N(a) * n;
+        for (Index al = 0; al < q; ++al)
+            v.T.col(al).segment(a * d, d) = N(a) * master.tangents.col(al);
+    }
+    for (Index b = 0; b < n_m; ++b) {
+        const Index k = (n_s + b) * d;
+        v.Nn.segment(k, d) = -R(b) * n;
+        for (Index al = 0; al < q; ++al) {
+            v.T.col(al).segment(k, d) = -R(b) * master.tangents.col(al);
+            v.Nd.col(al).segment(k, d) = master.dR(b, al) * n;
+        }
+    }
+    // Variation of the foot point: A dxi = T^T du - g_N Nd^T du, so dxi = D^T du with
+    // D = (T - g_N Nd) A^-1.
+    v.D = A_llt.solve((v.T - master.gap * v.Nd).transpose()).transpose();  // n_dofs x q
+    return v;
 }
 
 MasterFoot master_foot(const Projection& projection)
@@ -112,6 +135,7 @@ MasterFoot master_foot(const Projection& projection)
     foot.gap = projection.gap;
     foot.R = projection.basis.R;
     foot.dR = projection.basis.dR;
+    foot.second = projection.second;
     return foot;
 }
 
@@ -152,21 +176,6 @@ KernelResult gpts_rigid_kernel(const Vector& N, double W, const VecN& normal, do
                 out.tangent.block(a * d, b * d, d, d) -= N(a) * N(b) * turning;
     }
     return out;
-}
-
-void add_tangential(KernelResult& result, const Vector& N, double W, const TangentialResponse& friction)
-{
-    if (friction.status == StickSlip::open)
-        return;
-    const Index d = friction.traction.size();
-    IGA_CHECK(result.residual.size() == N.size() * d, "friction: the kernel result has another size");
-    for (Index a = 0; a < N.size(); ++a)
-        result.residual.segment(a * d, d) -= W * N(a) * friction.traction;
-    if (result.tangent.size() == 0)
-        return;
-    for (Index a = 0; a < N.size(); ++a)
-        for (Index b = 0; b < N.size(); ++b)
-            result.tangent.block(a * d, b * d, d, d) -= W * N(a) * N(b) * friction.d_traction;
 }
 
 }  // namespace iga::contact

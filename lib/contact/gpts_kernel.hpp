@@ -33,7 +33,6 @@
 // the master basis order). Residual has (n_s + n_m) d entries; the tangent is
 // (n_s + n_m) d square. Rows not assembled are zero.
 
-#include "contact/friction.hpp"
 #include "contact/projection.hpp"
 #include "core/types.hpp"
 
@@ -67,7 +66,20 @@ struct MasterFoot {
     double gap = 0.0;  ///< g_N, positive = penetration
     Vector R;          ///< n_m
     Matrix dR;         ///< n_m x q
+    Matrix second;     ///< d x q(q+1)/2: x_m,ab packed like BasisValues::d2R (friction only; may be empty)
 };
+
+/// The first variation of the foot point at a slave point with basis N, as
+/// columns over the dofs [slave cps ; master cps] (see the header paragraph):
+/// dg_N/du = -Nn, dxibar/du = D^T, and the pieces Nd, T of the linearization.
+struct FootVariation {
+    bool ok = true;  ///< false: A = m + g_N b is not positive definite (not a distance minimum)
+    Vector Nn;       ///< n_dofs
+    Matrix T;        ///< n_dofs x q
+    Matrix Nd;       ///< n_dofs x q
+    Matrix D;        ///< n_dofs x q
+};
+FootVariation foot_variation(const Vector& N, const MasterFoot& master);
 
 /// Slave Gauss point with basis values N (n_s) and weight W against the master
 /// foot point (a distance minimum: m + g_N b positive definite, else ok = false).
@@ -89,10 +101,5 @@ KernelResult gpts_kernel(const Vector& N, double W, const Projection& master, co
 KernelResult gpts_rigid_kernel(const Vector& N, double W, const VecN& normal, double gap,
                                const KernelSettings& settings,
                                double normal_radius = std::numeric_limits<double>::infinity());
-
-/// Adds a slave Gauss point's tangential traction (basis N, fixed weight W) to a
-/// rigid-obstacle kernel result: r_a -= W N_a t_T and K_ab -= W N_a N_b dt_T/dy
-/// (friction.hpp; y moves with the slave point, the obstacle's motion is no unknown).
-void add_tangential(KernelResult& result, const Vector& N, double W, const TangentialResponse& friction);
 
 }  // namespace iga::contact

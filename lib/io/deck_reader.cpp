@@ -390,9 +390,6 @@ void read_friction(const Cursor& c, ContactPair& p)
         if (value)
             p.friction.tangential_penalty = *value;
     }
-    if (p.friction.coefficient > 0.0 && p.first.deformable() && p.second.deformable())
-        f.fail_here("friction is available against rigid obstacles only in this version (both surfaces of "
-                    "this pair are deformable)");
 }
 
 std::vector<ContactPair> read_contact(const Cursor& root, KnownNames& known)

@@ -14,7 +14,9 @@
 // Convergence: the residual is small against the forces in play, or it is at its
 // own round-off floor and the displacement no longer moves:
 //   ||r|| <= tolerance * force_scale, or
-//   ||r|| <= round_off_margin * residual_floor and ||du||_inf <= 1e-9 ||u||_inf,
+//   ||r|| <= round_off_margin * residual_floor and ||du||_inf <= 1e-9 ||u||_inf, or
+//   that floor test in two iterations in a row and ||du||_inf <= 1e-7 ||u||_inf (a
+//   stall at the floor of an ill-conditioned tangent, whose corrections are noise),
 // force_scale and residual_floor from the system (Evaluation), du the last full
 // Newton correction. The second test (FEBio and Abaqus combine a force with a
 // displacement criterion the same way) ends a solve whose residual cannot reach

@@ -4,6 +4,7 @@
 // of its residual, in 2D and 3D, for a plane and a sphere, sticking and slipping.
 
 #include "contact/friction.hpp"
+#include "contact/gpts_friction.hpp"
 #include "contact/gpts_kernel.hpp"
 #include "contact/rigid_obstacle.hpp"
 

@@ -1,0 +1,134 @@
+#include "contact/gpts_friction.hpp"
+
+#include "core/error.hpp"
+
+#include <Eigen/Cholesky>
+
+namespace iga::contact {
+namespace {
+
+/// Column of x,ab in second derivatives packed like BasisValues::d2R (q = 1 or 2).
+Index packed(Index a, Index b, Index q)
+{
+    if (q == 1)
+        return 0;
+    return a == b ? (a == 0 ? 0 : 2) : 1;
+}
+
+}  // namespace
+
+FrictionHistory open_history(const FrictionHistory& committed, const MasterReference& reference)
+{
+    return FrictionHistory{reference.point, committed.slip, true};
+}
+
+TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W, const MasterFoot& master,
+                                 const MasterReference& reference, const FrictionLaw& law,
+                                 const FrictionHistory& committed, const KernelSettings& settings,
+                                 const Vector& dW)
+{
+    const Index d = master.normal.size();
+    const Index q = d - 1;
+    const Index n_s = N.size();
+    const Index n_m = master.R.size();
+    const Index n_dofs = (n_s + n_m) * d;
+    IGA_CHECK(result.residual.size() == n_dofs, "friction: the kernel result has another size");
+    IGA_CHECK(master.second.rows() == d && master.second.cols() == q * (q + 1) / 2 &&
+                  reference.tangents.rows() == d && reference.tangents.cols() == q &&
+                  reference.second.cols() == q * (q + 1) / 2,
+              "friction: a deformable master needs its current and reference derivatives at the foot");
+    TangentialResponse out;
+    out.traction = VecN::Zero(d);
+    out.d_traction = Matrix::Zero(d, n_dofs);
+    if (!(result.pressure > 0.0) || !law.active()) {
+        out.next = open_history(committed, reference);
+        return out;
+    }
+    if (!committed.anchored) {  // first touch: it sticks where it touches
+        out.status = StickSlip::stick;
+        out.next = open_history(committed, reference);
+        return out;
+    }
+    const FootVariation v = foot_variation(N, master);
+    IGA_CHECK(v.ok, "friction: the foot point is not a distance minimum (the normal kernel reports it first)");
+
+    // c = M^-1 G^T (A - Xbar): the anchor's offset in the foot's reference tangent frame.
+    const Matrix& G = reference.tangents;
+    const Matrix& a = master.tangents;
+    const Matrix M = G.transpose() * G;
+    const Eigen::LLT<Matrix> M_llt(M);
+    const VecN offset = committed.anchor - reference.point;
+    const Vector c = M_llt.solve(G.transpose() * offset);
+    // C = dc/dxibar, column ga: -e_ga + M^-1 (X,al ga . offset - dM/dxi^ga c).
+    Matrix C(q, q);
+    for (Index ga = 0; ga < q; ++ga) {
+        Vector y(q);
+        Matrix dM(q, q);
+        for (Index al = 0; al < q; ++al) {
+            y(al) = reference.second.col(packed(al, ga, q)).dot(offset);
+            for (Index be = 0; be < q; ++be)
+                dM(al, be) = reference.second.col(packed(al, ga, q)).dot(G.col(be)) +
+                             G.col(al).dot(reference.second.col(packed(be, ga, q)));
+        }
+        C.col(ga) = M_llt.solve(y - dM * c);
+        C(ga, ga) -= 1.0;
+    }
+    // ds/du: the current tangents a_al move with the master's control points and the foot.
+    Matrix Xc = Matrix::Zero(d, q);  // column ga: x_m,al ga c^al
+    for (Index ga = 0; ga < q; ++ga)
+        for (Index al = 0; al < q; ++al)
+            Xc.col(ga) += master.second.col(packed(al, ga, q)) * c(al);
+    const double eps_T = law.tangential_penalty;
+    Matrix d_trial = eps_T * (Xc + a * C) * v.D.transpose();
+    for (Index b = 0; b < n_m; ++b)
+        d_trial.block(0, (n_s + b) * d, d, d).diagonal().array() += eps_T * master.dR.row(b).dot(c);
+    const Vector d_pressure = -settings.penalty * v.Nn;
+
+    out = coulomb_return_map(law, eps_T * a * c, d_trial, result.pressure, d_pressure);
+    out.next = committed;
+    if (out.status == StickSlip::slip) {  // move the anchor to reproduce the traction
+        const Eigen::LLT<Matrix> m_llt(master.metric);
+        out.next.anchor = reference.point + G * m_llt.solve(a.transpose() * out.traction) / eps_T;
+        out.next.slip = committed.slip + out.slip_increment;
+    }
+
+    const VecN& t = out.traction;
+    for (Index k = 0; k < n_s; ++k)
+        result.residual.segment(k * d, d) -= W * N(k) * t;
+    if (settings.master_rows)
+        for (Index b = 0; b < n_m; ++b)
+            result.residual.segment((n_s + b) * d, d) += W * master.R(b) * t;
+    if (result.tangent.size() == 0)
+        return out;
+    for (Index k = 0; k < n_s; ++k) {
+        result.tangent.middleRows(k * d, d) -= W * N(k) * out.d_traction;
+        if (dW.size() > 0)
+            result.tangent.block(k * d, 0, d, n_s * d) -= N(k) * t * dW.transpose();
+    }
+    if (settings.master_rows)
+        for (Index b = 0; b < n_m; ++b) {
+            // r_b = W R_b(xibar) t_T: the foot point slides under the force.
+            const Vector dRb = v.D * master.dR.row(b).transpose();
+            result.tangent.middleRows((n_s + b) * d, d) += W * master.R(b) * out.d_traction + W * t * dRb.transpose();
+            if (dW.size() > 0)
+                result.tangent.block((n_s + b) * d, 0, d, n_s * d) += master.R(b) * t * dW.transpose();
+        }
+    return out;
+}
+
+void add_tangential(KernelResult& result, const Vector& N, double W, const TangentialResponse& friction)
+{
+    if (friction.status == StickSlip::open)
+        return;
+    const Index d = friction.traction.size();
+    IGA_CHECK(result.residual.size() == N.size() * d, "friction: the kernel result has another size");
+    for (Index a = 0; a < N.size(); ++a)
+        result.residual.segment(a * d, d) -= W * N(a) * friction.traction;
+    if (result.tangent.size() == 0)
+        return;
+    for (Index a = 0; a < N.size(); ++a)
+        for (Index b = 0; b < N.size(); ++b)
+            result.tangent.block(a * d, b * d, d, d) -= W * N(a) * N(b) * friction.d_traction;
+}
+
+}  // namespace iga::contact

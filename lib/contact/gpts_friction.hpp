@@ -1,0 +1,59 @@
+#pragma once
+// The tangential (Coulomb friction) part of the GPTS kernel at one slave Gauss
+// point: against a rigid obstacle (add_tangential) and against a deformable
+// master (gpts_friction); docs/theory.md "Coulomb friction".
+//
+// Against a deformable master the anchor is a MATERIAL point of the master,
+// stored in the master's reference configuration (A), so it belongs to no
+// patch's parameters and survives a slide onto the next patch. Near the foot
+// point xibar the master maps reference to current by its surface deformation
+// gradient F_s = a_al (x) G^al (G_al reference tangents, G^al = G_be M^be,al,
+// M = reference metric), so the slave point's tangential offset from the anchor
+// is -F_s (A - Xbar) = -a_al c^al with c = M^-1 G^T (A - Xbar), Xbar = X(xibar):
+//
+//   trial traction   s = eps_T a c          (a rigid rotation of the master turns it along)
+//
+// and the return map of friction.hpp. The slave rows gain r_a = -W N_a t_T, the
+// master rows (single pass) r_b = +W R_b(xibar) t_T. Linearization over the
+// kernel's dofs [slave ; master], with dxibar = D^T du (gpts_kernel.hpp):
+//   ds/du = eps_T [ (R_b,al c^al) I on master b ; 0 on slave ] + eps_T (x_m,al ga c^al + a_al C^al_ga) D_ga^T,
+//   C = dc/dxibar:  C_ga = -e_ga + M^-1 (X,al ga . (A - Xbar) - dM/dxi^ga c),
+// dp/du = -eps_N Nn (p > 0), and the master rows' foot moving: W t_T (R_b,al D_al)^T.
+// The anchor of a converged slip state is moved so that the traction is
+// reproduced: A = Xbar + G m^-1 a^T t_T / eps_T. A point that touches for the first
+// time (no anchor) sticks where it touches: no tangential traction in that increment.
+
+#include "contact/friction.hpp"
+#include "contact/gpts_kernel.hpp"
+#include "core/types.hpp"
+
+namespace iga::contact {
+
+/// The master's REFERENCE geometry at the foot point: Xbar, G_al and X,ab (packed
+/// like BasisValues::d2R), from the reference control points with the foot's basis.
+struct MasterReference {
+    VecN point;      ///< d
+    Matrix tangents; ///< d x q
+    Matrix second;   ///< d x q(q+1)/2
+};
+
+/// Adds the tangential traction of a slave Gauss point against a deformable
+/// master foot (gpts_kernel's `master`, with `second` filled) to `result`, the
+/// normal kernel's result at the same point (its pressure is used); rows as
+/// settings.master_rows, dW as in gpts_kernel. Returns the response (status,
+/// traction, slip increment, the history to commit).
+TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W, const MasterFoot& master,
+                                 const MasterReference& reference, const FrictionLaw& law,
+                                 const FrictionHistory& committed, const KernelSettings& settings,
+                                 const Vector& dW = Vector());
+
+/// The history of a point that does not press (open): it sticks where it touches
+/// next, the master material point under it now.
+FrictionHistory open_history(const FrictionHistory& committed, const MasterReference& reference);
+
+/// Adds a slave Gauss point's tangential traction (basis N, fixed weight W) to a
+/// rigid-obstacle kernel result: r_a -= W N_a t_T and K_ab -= W N_a N_b dt_T/dy
+/// (friction.hpp; y moves with the slave point, the obstacle's motion is no unknown).
+void add_tangential(KernelResult& result, const Vector& N, double W, const TangentialResponse& friction);
+
+}  // namespace iga::contact
