@@ -117,13 +117,14 @@ TEST(Cli, KeysListsTheDeckFormatAndGeneratesTheKeyTables)
     EXPECT_EQ(docs.out, read_text(deck_md)) << "docs/deck.md is out of date: run scripts/update_deck_tables.py";
     EXPECT_EQ(docs.err, "");
 
-    const CliResult missing = run_cli("keys --markdown no_such.md", dir);
+    const CliResult missing = run_cli("keys --markdown no_such_docs", dir);
     EXPECT_EQ(missing.exit_code, 2);
-    EXPECT_NE(missing.err.find("igacontact: error: cannot read no_such.md"), std::string::npos) << missing.err;
-    std::ofstream(dir / "bad.md") << "<!-- keys: contact.*.frction -->\n<!-- /keys -->\n";
-    const CliResult bad = run_cli("keys --markdown " + shell_quote((dir / "bad.md").string()), dir);
+    EXPECT_NE(missing.err.find("igacontact: error: cannot read no_such_docs"), std::string::npos) << missing.err;
+    std::ofstream(dir / "bad_markers.txt") << "<!-- keys: contact.*.frction -->\n<!-- /keys -->\n";
+    const CliResult bad = run_cli("keys --markdown " + shell_quote((dir / "bad_markers.txt").string()), dir);
     EXPECT_EQ(bad.exit_code, 2);
-    EXPECT_NE(bad.err.find("bad.md: line 1: 'contact.*.frction' names no map of the deck schema"), std::string::npos)
+    EXPECT_NE(bad.err.find("bad_markers.txt: line 1: 'contact.*.frction' names no map of the deck schema"),
+              std::string::npos)
         << bad.err;
 }
 
