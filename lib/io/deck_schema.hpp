@@ -1,7 +1,8 @@
 #pragma once
 // The deck schema: one table of every key of the deck format (docs/deck.md), each
-// with its kind, type, range, default and a one-line meaning. It is the only place
-// that lists the keys; everything else that knows them derives from it:
+// with its kind, type, range, default and a one-line meaning; the table itself is
+// lib/io/deck_schema.cpp. It is the only place that lists the keys; everything else
+// that knows them derives from it:
 //  - the reader accepts exactly the keys listed for each map, and reads the simple
 //    values with the type and range given here (Cursor::check_keys, Cursor::read);
 //  - `--set` walks these paths (io/overrides.hpp);
