@@ -1,5 +1,5 @@
 #pragma once
-// The three commands of the CLI. Each parses its own arguments (CLI11) and
+// The commands of the CLI. Each parses its own arguments (CLI11) and
 // returns the process exit code.
 
 #include "core/parallel.hpp"
@@ -31,6 +31,7 @@ std::string rank_prefix(const Communicator& comm);
 int check_command(int argc, char** argv);
 int compare_command(int argc, char** argv);
 int study_command(int argc, char** argv);  ///< app/study.cpp
+int keys_command(int argc, char** argv);   ///< app/keys.cpp (not in --help: a tool of the docs)
 
 /// Parses with CLI11; returns -1 when parsing succeeded, 0 after --help/--version
 /// (CLI11 printed them). A usage error throws UsageError.

@@ -8,6 +8,7 @@
 //   igacontact check DECK [--set PATH=VALUE]...
 //   igacontact compare REF.h5 NEW.h5 [--rtol R] [--atol A] [--only PATH]... [--all] [-v]
 //   igacontact study DECK [--levels N] [--jobs J] [--set PATH=VALUE]... [-q]
+//   igacontact keys [--markdown FILE]   (not in --help: the deck's keys, for docs/deck.md)
 //   mpirun -np N igacontact DECK ...   (the same run on N MPI ranks; rank 0 prints and writes)
 
 #include "commands.hpp"
@@ -29,7 +30,8 @@ int run_main(int argc, char** argv, const iga::Communicator& comm)
 {
     using namespace iga::app;
     const std::string first = argc > 1 ? argv[1] : "";
-    const bool json = first != "check" && first != "compare" && first != "study" && summary_json_requested(argc, argv);
+    const bool json = first != "check" && first != "compare" && first != "study" && first != "keys" &&
+                      summary_json_requested(argc, argv);
     // Under mpirun every rank meets the same deck and usage errors: rank 0 tells them.
     const bool speaks = comm.root();
     auto fail = [&](const std::string& status, const std::string& message, int code) {
@@ -44,6 +46,8 @@ int run_main(int argc, char** argv, const iga::Communicator& comm)
             return compare_command(argc - 1, argv + 1);
         if (first == "study")
             return study_command(argc - 1, argv + 1);
+        if (first == "keys")
+            return keys_command(argc - 1, argv + 1);
         return run_command(argc, argv, comm);
     } catch (const UsageError& e) {
         if (speaks)

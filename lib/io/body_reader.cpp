@@ -53,7 +53,7 @@ bool NameRegistry::add(const std::string& name, const Cursor& at)
 
 std::optional<std::string> read_name(const Cursor& item)
 {
-    const auto name = item.get<std::string>("name");
+    const auto name = item.read<std::string>("name");
     if (!name)
         return std::nullopt;
     if (name->empty() || name->find('.') != std::string::npos) {
@@ -160,21 +160,13 @@ bool check_knots(const Cursor& c, const std::vector<double>& u, int p)
 
 std::optional<NurbsData> read_nurbs(const Cursor& c, int dim, std::optional<Parametrization>& param)
 {
-    if (!c.allow_only({"degrees", "knots", "control_points", "transform"}))
+    if (!c.check_keys())
         return std::nullopt;
     NurbsData nurbs;
-    bool degrees_ok = false;
     bool knots_ok = false;
-    if (const auto d = required(c, "degrees"))
-        if (const auto degrees = d->to_integers(dim)) {
-            nurbs.degrees = *degrees;
-            degrees_ok = true;
-            for (int i = 0; i < dim; ++i)
-                if (nurbs.degrees[i] < 1) {
-                    d->item(i).fail("must be >= 1");
-                    degrees_ok = false;
-                }
-        }
+    const auto degrees = c.read<std::vector<int>>("degrees", dim);
+    const bool degrees_ok = degrees.has_value();
+    nurbs.degrees = degrees.value_or(std::vector<int>{});
     if (const auto k = required(c, "knots")) {
         if (!k->is_list() || k->size() != static_cast<std::size_t>(dim)) {
             k->fail(fmt::format("expected a list of {} knot vectors (one per parametric direction)", dim));
@@ -243,9 +235,9 @@ Parametrization shape_parametrization(const Shape& shape)
 
 std::optional<Shape> read_shape(const Cursor& c, int dim, std::optional<Parametrization>& param)
 {
-    if (!c.allow_only({"type", "center", "radius", "corner", "size", "extrude", "transform"}))
+    if (!c.check_keys())
         return std::nullopt;
-    const auto type = c.get<ShapeType>("type");
+    const auto type = c.read<ShapeType>("type");
     if (!type)
         return std::nullopt;
     Shape s;
@@ -267,7 +259,7 @@ std::optional<Shape> read_shape(const Cursor& c, int dim, std::optional<Parametr
             e.fail_here("applies to 3D decks only (it sweeps a 2D shape along z)");
             ok = false;
         } else {
-            s.extrude = c.positive("extrude");
+            s.extrude = c.read_required<double>("extrude");
             ok = s.extrude.has_value();
         }
     } else if (!solid && dim == 3) {
@@ -284,19 +276,11 @@ std::optional<Shape> read_shape(const Cursor& c, int dim, std::optional<Parametr
         if (c.has(key))
             c.child(key).fail_here("does not apply to a " + name + " (it takes " + takes + ")");
     if (round) {
-        if (const auto center = required(c, "center"))
-            s.center = center->to_numbers(n).value_or(std::vector<double>{});
-        s.radius = c.positive("radius").value_or(0.0);
+        s.center = c.read_required<std::vector<double>>("center", n).value_or(std::vector<double>{});
+        s.radius = c.read_required<double>("radius").value_or(0.0);
     } else {
-        if (const auto corner = required(c, "corner"))
-            s.corner = corner->to_numbers(n).value_or(std::vector<double>{});
-        if (const auto size = required(c, "size"))
-            if (const auto v = size->to_numbers(n)) {
-                s.size = *v;
-                for (std::size_t i = 0; i < n; ++i)
-                    if (!(s.size[i] > 0))
-                        size->item(i).fail("must be > 0");
-            }
+        s.corner = c.read_required<std::vector<double>>("corner", n).value_or(std::vector<double>{});
+        s.size = c.read_required<std::vector<double>>("size", n).value_or(std::vector<double>{});
     }
     if (c.has("transform"))  // acts on the 3D solid after an extrusion: d = dim numbers either way
         s.transform = read_transform(c.child("transform"), dim);
@@ -342,22 +326,10 @@ void check_insert(const Cursor& c, const std::vector<double>& values, const std:
 Refine read_refine(const Cursor& c, int dim, const std::optional<Parametrization>& param)
 {
     Refine r;
-    if (!c.allow_only({"elevate", "spans", "insert"}))
+    if (!c.check_keys())
         return r;
-    const auto read_counts = [&](const char* key, int min, std::vector<int>& out) {
-        const Cursor list = c.child(key);
-        if (!list.exists())
-            return;
-        const auto values = list.to_integers(dim);
-        if (!values)
-            return;
-        out = *values;
-        for (int i = 0; i < dim; ++i)
-            if (out[i] < min)
-                list.item(i).fail("must be >= " + std::to_string(min));
-    };
-    read_counts("elevate", 0, r.elevate);
-    read_counts("spans", 1, r.spans);
+    r.elevate = c.read<std::vector<int>>("elevate", dim).value_or(r.elevate);
+    r.spans = c.read<std::vector<int>>("spans", dim).value_or(r.spans);
     const Cursor insert = c.child("insert");
     if (!insert.exists())
         return r;
@@ -379,22 +351,19 @@ Refine read_refine(const Cursor& c, int dim, const std::optional<Parametrization
 
 std::optional<RigidPlane> read_plane(const Cursor& plane, int dim)
 {
-    if (!plane.allow_only({"point", "normal"}))
+    if (!plane.check_keys())
         return std::nullopt;
     RigidPlane r;
-    if (const auto point = required(plane, "point"))
-        r.point = point->to_numbers(dim).value_or(std::vector<double>{});
-    const auto normal = required(plane, "normal");
-    if (!normal)
-        return r;
-    const auto n = normal->to_numbers(dim);
+    r.point = plane.read<std::vector<double>>("point", dim).value_or(std::vector<double>{});
+    const auto n = plane.read<std::vector<double>>("normal", dim);
     if (!n)
         return r;
+    const Cursor normal = plane.child("normal");
     double largest = 0.0;
     for (double x : *n)
         largest = std::max(largest, std::abs(x));
     if (!(largest > 0)) {
-        normal->fail("must have non-zero length");
+        normal.fail("must have non-zero length");
         return r;
     }
     double norm2 = 0.0;
@@ -423,17 +392,11 @@ std::optional<RigidPlane> read_plane(const Cursor& plane, int dim)
 
 std::optional<RigidSphere> read_sphere(const Cursor& sphere, int dim)
 {
-    if (!sphere.allow_only({"center", "radius"}))
+    if (!sphere.check_keys())
         return std::nullopt;
     RigidSphere r;
-    if (const auto center = required(sphere, "center"))
-        r.center = center->to_numbers(dim).value_or(std::vector<double>{});
-    if (const auto radius = required(sphere, "radius")) {
-        const auto value = radius->to_number();
-        if (value && !(*value > 0))
-            radius->fail("must be > 0");
-        r.radius = value.value_or(0.0);
-    }
+    r.center = sphere.read<std::vector<double>>("center", dim).value_or(std::vector<double>{});
+    r.radius = sphere.read<double>("radius").value_or(0.0);
     return r;
 }
 
@@ -443,7 +406,7 @@ void read_rigid(const Cursor& c, int dim, Body& b)
 {
     const char* round = dim == 3 ? "sphere" : "circle";
     const char* other_round = dim == 3 ? "circle" : "sphere";
-    if (!c.allow_only({"plane", round, other_round, "motion", "amplitude"}))
+    if (!c.check_keys())
         return;
     if (c.has(other_round)) {
         c.child(other_round).fail_here(fmt::format("a {}D analysis takes '{}', not '{}'", dim, round, other_round));
@@ -460,7 +423,7 @@ void read_rigid(const Cursor& c, int dim, Body& b)
     else
         b.sphere = read_sphere(c.child(round), dim);
     if (c.has("motion"))
-        b.motion = c.child("motion").to_numbers(dim).value_or(std::vector<double>{});
+        b.motion = c.read<std::vector<double>>("motion", dim).value_or(std::vector<double>{});
     if (c.has("amplitude")) {
         if (c.has("motion"))
             b.amplitude = read_amplitude(c.child("amplitude"));
@@ -480,7 +443,7 @@ std::vector<PatchData> read_patches(const Cursor& list, int dim, const Refine& b
         list.fail_here("must list at least one patch");
     NameRegistry names("patch");
     for (const Cursor& c : list.items()) {
-        if (!c.allow_only({"name", "nurbs", "refine"}))
+        if (!c.check_keys())
             continue;
         PatchData patch;
         if (const auto name = read_name(c)) {
@@ -562,8 +525,7 @@ std::vector<NamedSurface> read_surfaces(const Cursor& map, const std::string& bo
 Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names)
 {
     Body b;
-    if (!c.allow_only(
-            {"name", "material", "nurbs", "shape", "patches", "geometry", "refine", "quadrature", "surfaces", "rigid"}))
+    if (!c.check_keys())
         return b;
     b.rigid = c.has("rigid");
     if (const auto name = read_name(c)) {
@@ -572,14 +534,14 @@ Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names)
             known.bodies.emplace_back(*name, b.rigid);
     }
     if (b.rigid) {
-        for (const char* key : {"material", "nurbs", "shape", "patches", "geometry", "refine", "quadrature", "surfaces"})
-            if (c.has(key))
-                c.child(key).fail_here("a rigid body takes no '" + std::string(key) + "'");
+        for (const std::string& key : map_keys(c.schema_path()))  // the keys of a deformable body
+            if (key != "name" && key != "rigid" && c.has(key))
+                c.child(key).fail_here("a rigid body takes no '" + key + "'");
         if (const Cursor rigid = c.child("rigid"); rigid.expect_map())
             read_rigid(rigid, known.dim, b);
         return b;
     }
-    if (const auto material = c.get<std::string>("material")) {
+    if (const auto material = c.read_required<std::string>("material")) {
         b.material = *material;
         if (std::find(known.materials.begin(), known.materials.end(), *material) == known.materials.end())
             c.child("material").fail("unknown material '" + *material + "'" +
@@ -602,16 +564,16 @@ Body read_body(const Cursor& c, KnownNames& known, NameRegistry& names)
         b.shape = read_shape(c.child("shape"), known.dim, param);
     if (c.has("refine"))
         b.refine = read_refine(c.child("refine"), known.dim, param);  // multi-patch: checked per patch at build
-    if (const Cursor q = c.child("quadrature"); q.exists() && q.expect_map() && q.allow_only({"element", "side"})) {
-        b.quadrature.element = q.integer_at_least("element", 0, 1);
-        b.quadrature.side = q.integer_at_least("side", 0, 1);
+    if (const Cursor q = c.child("quadrature"); q.exists() && q.check_keys()) {
+        b.quadrature.element = q.read_or("element", 0);
+        b.quadrature.side = q.read_or("side", 0);
     }
     if (has_patches && alone)
         b.patches = read_patches(c.child("patches"), known.dim, b.refine);
     if (has_file && alone) {
         const Cursor g = c.child("geometry");
-        if (g.allow_only({"file", "transform"}))
-            if (const auto file = g.get<std::string>("file")) {
+        if (g.check_keys())
+            if (const auto file = g.read<std::string>("file")) {
                 b.geometry_file = *file;
                 const std::filesystem::path p(*file);
                 const std::string path = p.is_absolute() || known.deck_dir.empty()

@@ -4,8 +4,9 @@
 // Nothing below io/ sees YAML or key strings; only io/, analysis/ and app/
 // include this header.
 //
-// Defaults live here, in the member initializers, and agree with the tables of
-// deck.md. Enumerator spellings equal the deck spellings. Values are validated
+// Defaults live here, in the member initializers, and agree with the deck schema
+// (io/deck_schema.hpp, whose defaults tests/io/deck_schema_test.cpp holds to these).
+// Enumerator spellings equal the deck spellings. Values are validated
 // by the reader: a Deck that exists is well-formed (cross-references resolve,
 // knot vectors are open, weights positive, ...).
 

@@ -84,6 +84,15 @@ struct DeckNames<ReferenceType> {
          {"hertz_two_spheres", ReferenceType::hertz_two_spheres}}};
 };
 
+/// A load's kind is the key that holds its value (`traction: [0, -1]`).
+template <>
+struct DeckNames<LoadKind> {
+    static constexpr std::array<EnumName<LoadKind>, 4> all{{{"traction", LoadKind::traction},
+                                                            {"force", LoadKind::force},
+                                                            {"pressure", LoadKind::pressure},
+                                                            {"gravity", LoadKind::gravity}}};
+};
+
 /// The keys of the steps of a `transform:` list, in the order of the
 /// alternatives of io::TransformStep (index() selects the key).
 inline constexpr std::array<std::string_view, 4> transform_step_keys{"translate", "rotate", "mirror", "scale"};

@@ -28,20 +28,20 @@ Analysis read_analysis(const Cursor& root, KnownNames& known)
         root.fail_missing("analysis");
         return a;
     }
-    if (!c.allow_only({"dimension", "plane", "kinematics"}))
+    if (!c.check_keys())
         return a;
-    if (const auto d = c.get<int>("dimension")) {
+    if (const auto d = c.read<int>("dimension")) {
         if (*d == 2 || *d == 3)
             a.dimension = known.dim = *d;
         else
             c.child("dimension").fail("must be 2 or 3");
     }
-    a.kinematics = c.get_or("kinematics", a.kinematics);
+    a.kinematics = c.read_or("kinematics", a.kinematics);
     if (c.has("plane")) {
         if (known.dim == 3)
             c.child("plane").fail("applies to 2D only (analysis.dimension is 3)");
         else
-            a.plane = c.get_or("plane", a.plane);
+            a.plane = c.read_or("plane", a.plane);
     }
     return a;
 }
@@ -60,7 +60,7 @@ std::vector<Material> read_materials(const Cursor& root, KnownNames& known)
         list.fail_here("must list at least one material");
     NameRegistry names("material");
     for (const Cursor& c : list.items()) {
-        if (!c.allow_only({"name", "model", "E", "nu"}))
+        if (!c.check_keys())
             continue;
         Material m;
         if (const auto name = read_name(c)) {
@@ -68,19 +68,9 @@ std::vector<Material> read_materials(const Cursor& root, KnownNames& known)
             if (names.add(*name, c.child("name")))
                 known.materials.push_back(*name);
         }
-        m.model = c.get_or("model", m.model);
-        if (const auto E = c.get<double>("E")) {
-            if (*E > 0)
-                m.E = *E;
-            else
-                c.child("E").fail("must be > 0");
-        }
-        if (const auto nu = c.get<double>("nu")) {
-            if (*nu > -1 && *nu < 0.5)
-                m.nu = *nu;
-            else
-                c.child("nu").fail("must lie in (-1, 0.5)");
-        }
+        m.model = c.read_or("model", m.model);
+        m.E = c.read<double>("E").value_or(m.E);
+        m.nu = c.read<double>("nu").value_or(m.nu);
         out.push_back(m);
     }
     return out;
@@ -107,7 +97,7 @@ std::vector<Body> read_bodies(const Cursor& root, KnownNames& known)
 /// The name under `key` of a body that may carry constraints or loads (a deformable one).
 std::optional<std::string> deformable_body(const Cursor& map, const KnownNames& known, const std::string& what)
 {
-    const auto name = map.get<std::string>("body");
+    const auto name = map.read<std::string>("body");
     if (!name)
         return std::nullopt;
     const Cursor c = map.child("body");
@@ -150,7 +140,7 @@ std::vector<Constraint> read_constraints(const Cursor& root, const KnownNames& k
     const std::vector<std::string> components = dim == 2 ? std::vector<std::string>{"x", "y"}
                                                           : std::vector<std::string>{"x", "y", "z"};
     for (const Cursor& c : list.items()) {
-        if (!c.allow_only({"body", "side", "fix", "displacement", "amplitude"}))
+        if (!c.check_keys())
             continue;
         Constraint k;
         k.body = deformable_body(c, known, "constraints").value_or("");
@@ -225,38 +215,32 @@ std::vector<Load> read_loads(const Cursor& root, const KnownNames& known)
     if (!list.exists() || !list.expect_list())
         return out;
     const int dim = known.dim;
-    constexpr std::pair<std::string_view, LoadKind> kinds[] = {{"traction", LoadKind::traction},
-                                                               {"force", LoadKind::force},
-                                                               {"pressure", LoadKind::pressure},
-                                                               {"gravity", LoadKind::gravity}};
+    std::vector<std::string> kinds;  // the load kinds are keys of a load: traction, force, ...
+    for (const auto& entry : DeckNames<LoadKind>::all)
+        kinds.emplace_back(entry.name);
     for (const Cursor& c : list.items()) {
-        if (!c.allow_only({"body", "side", "traction", "force", "pressure", "gravity", "density", "amplitude"}))
+        if (!c.check_keys())
             continue;
         Load l;
         l.body = deformable_body(c, known, "loads").value_or("");
         std::vector<std::string> given;
-        for (const auto& [key, kind] : kinds)
-            if (c.has(key)) {
-                given.emplace_back(key);
-                l.kind = kind;
+        for (const auto& entry : DeckNames<LoadKind>::all)
+            if (c.has(entry.name)) {
+                given.emplace_back(entry.name);
+                l.kind = entry.value;
             }
         if (given.size() != 1) {
-            c.fail_here(given.empty() ? "needs one of traction, force, pressure, gravity"
-                                      : "takes exactly one of traction, force, pressure, gravity (got " +
-                                            join_names(given) + ")");
+            c.fail_here(given.empty() ? "needs one of " + join_names(kinds)
+                                      : "takes exactly one of " + join_names(kinds) + " (got " + join_names(given) +
+                                            ")");
             out.push_back(l);
             continue;
         }
-        const Cursor value = c.child(given.front());
+        const std::string& key = given.front();
         if (l.kind == LoadKind::gravity) {
             if (c.has("side"))
                 c.child("side").fail("gravity acts on the whole body: no side");
-            if (const auto rho = c.get<double>("density")) {
-                if (*rho > 0)
-                    l.density = *rho;
-                else
-                    c.child("density").fail("must be > 0");
-            }
+            l.density = c.read_required<double>("density").value_or(l.density);
         } else {
             if (c.has("density"))
                 c.child("density").fail("applies to gravity loads only");
@@ -268,9 +252,9 @@ std::vector<Load> read_loads(const Cursor& root, const KnownNames& known)
             }
         }
         if (l.kind == LoadKind::pressure)
-            l.pressure = value.to_number().value_or(0.0);
+            l.pressure = c.read<double>(key).value_or(0.0);
         else
-            l.vector = value.to_numbers(dim).value_or(std::vector<double>{});
+            l.vector = c.read<std::vector<double>>(key, dim).value_or(std::vector<double>{});
         if (c.has("amplitude"))
             l.amplitude = read_amplitude(c.child("amplitude"));
         out.push_back(l);
@@ -314,35 +298,41 @@ std::optional<ContactSurface> read_surface(const Cursor& c, const KnownNames& kn
     return s;
 }
 
-/// contact.<pair>.penalty: a number > 0, or `auto`.
-/// A value that is a number > 0 or the word `auto`: {true, nullopt} for auto, {false,
-/// value} for a valid number, {false, nullopt} after recording the issue. `auto_note`
-/// says what auto means (" (the pair's normal penalty)"), or nothing.
-std::pair<bool, std::optional<double>> positive_or_auto(const Cursor& value, const std::string& auto_note = "")
+/// The value of `key`, a number in the schema's range or the word `auto`: {true, nullopt}
+/// for auto, {false, value} for a valid number, {false, nullopt} when absent or after
+/// recording the issue. `auto_note` says what auto means (" (the pair's normal
+/// penalty)"), or nothing.
+std::pair<bool, std::optional<double>> number_or_auto(const Cursor& map, std::string_view key,
+                                                      const std::string& auto_note = "")
 {
+    const Cursor value = map.child(key);
+    if (!value.exists())
+        return {false, std::nullopt};
+    const DeckKey* entry = find_deck_key(value.schema_path());
+    IGA_CHECK(entry && entry->type == ValueType::number_or_auto, "'" + value.schema_path() + "' is no number or auto");
+    const Range& range = entry->range;
     // A scalar that is not a number: `auto`, or a word we reject here with the choices.
     if (!value.is_list() && !value.is_map() && !parse_number(value.value_text())) {
         if (value.value_text() == "auto")
             return {true, std::nullopt};
-        value.fail("expected a number > 0 or auto" + auto_note);
+        value.fail("expected a number " + range.text() + " or auto" + auto_note);
         return {false, std::nullopt};
     }
     if (const auto number = value.to<double>()) {  // (to<> rejects NaN and infinities)
-        if (*number > 0)
+        if (range.admits(*number))
             return {false, number};
-        value.fail("must be > 0" + (auto_note.empty() ? std::string() : ", or auto" + auto_note));
+        value.fail(range.failure() + (auto_note.empty() ? std::string() : ", or auto" + auto_note));
     }
     return {false, std::nullopt};
 }
 
 void read_penalty(const Cursor& c, ContactPair& p)
 {
-    const Cursor penalty = c.child("penalty");
-    if (!penalty.exists()) {
+    if (!c.has("penalty")) {
         c.fail_missing("penalty");
         return;
     }
-    const auto [is_auto, value] = positive_or_auto(penalty);
+    const auto [is_auto, value] = number_or_auto(c, "penalty");
     p.penalty_auto = is_auto;
     if (value)
         p.penalty = *value;
@@ -360,32 +350,21 @@ void read_augmented_lagrangian(const Cursor& c, ContactPair& p)
                      std::string(deck_name(p.enforcement)) + ")");
         return;
     }
-    if (!al.expect_map() || !al.allow_only({"gap_tolerance", "max_updates"}))
+    if (!al.check_keys())
         return;
-    if (al.has("gap_tolerance"))
-        p.augmented_lagrangian.gap_tolerance = al.positive_or("gap_tolerance", p.augmented_lagrangian.gap_tolerance);
-    p.augmented_lagrangian.max_updates = al.integer_at_least("max_updates", p.augmented_lagrangian.max_updates, 1);
+    p.augmented_lagrangian.gap_tolerance = al.read_or("gap_tolerance", p.augmented_lagrangian.gap_tolerance);
+    p.augmented_lagrangian.max_updates = al.read_or("max_updates", p.augmented_lagrangian.max_updates);
 }
 
 /// contact.<pair>.friction: {coefficient, tangential_penalty: <value | auto>}.
 void read_friction(const Cursor& c, ContactPair& p)
 {
     const Cursor f = c.child("friction");
-    if (!f.exists() || !f.expect_map() || !f.allow_only({"coefficient", "tangential_penalty"}))
+    if (!f.exists() || !f.check_keys())
         return;
-    const Cursor mu = f.child("coefficient");
-    if (!mu.exists()) {
-        f.fail_missing("coefficient");
-        return;
-    }
-    if (const auto value = mu.to<double>()) {
-        if (std::isfinite(*value) && *value >= 0.0)
-            p.friction.coefficient = *value;
-        else
-            mu.fail("must be a finite number >= 0 (0: frictionless)");
-    }
-    if (const Cursor eps = f.child("tangential_penalty"); eps.exists()) {
-        const auto [is_auto, value] = positive_or_auto(eps, " (the pair's normal penalty)");
+    p.friction.coefficient = f.read<double>("coefficient").value_or(p.friction.coefficient);
+    if (f.has("tangential_penalty")) {
+        const auto [is_auto, value] = number_or_auto(f, "tangential_penalty", " (the pair's normal penalty)");
         p.friction.tangential_penalty_auto = is_auto;
         if (value)
             p.friction.tangential_penalty = *value;
@@ -400,8 +379,7 @@ std::vector<ContactPair> read_contact(const Cursor& root, KnownNames& known)
         return out;
     NameRegistry names("contact pair");
     for (const Cursor& c : list.items()) {
-        if (!c.allow_only({"name", "between", "formulation", "enforcement", "penalty", "augmented_lagrangian",
-                           "friction", "quadrature"}))
+        if (!c.check_keys())
             continue;
         ContactPair p;
         if (const auto name = read_name(c)) {
@@ -426,12 +404,12 @@ std::vector<ContactPair> read_contact(const Cursor& root, KnownNames& known)
                 p.second = *second;
             }
         }
-        p.formulation = c.get_or("formulation", p.formulation);
-        p.enforcement = c.get_or("enforcement", p.enforcement);
+        p.formulation = c.read_or("formulation", p.formulation);
+        p.enforcement = c.read_or("enforcement", p.enforcement);
         read_penalty(c, p);
         read_augmented_lagrangian(c, p);
         read_friction(c, p);
-        p.quadrature = c.integer_at_least("quadrature", p.quadrature, 1);
+        p.quadrature = c.read_or("quadrature", p.quadrature);
         out.push_back(p);
     }
     return out;
@@ -441,11 +419,11 @@ Steps read_steps(const Cursor& root)
 {
     Steps s;
     const Cursor c = root.child("steps");
-    if (!c.exists() || !c.allow_only({"count", "adaptive", "max_cutbacks"}))
+    if (!c.exists() || !c.check_keys())
         return s;
-    s.count = c.integer_at_least("count", s.count, 1);
-    s.adaptive = c.get_or("adaptive", s.adaptive);
-    s.max_cutbacks = c.integer_at_least("max_cutbacks", s.max_cutbacks, 0);
+    s.count = c.read_or("count", s.count);
+    s.adaptive = c.read_or("adaptive", s.adaptive);
+    s.max_cutbacks = c.read_or("max_cutbacks", s.max_cutbacks);
     return s;
 }
 
@@ -453,11 +431,11 @@ Newton read_newton(const Cursor& root)
 {
     Newton n;
     const Cursor c = root.child("newton");
-    if (!c.exists() || !c.allow_only({"tolerance", "max_iterations", "line_search"}))
+    if (!c.exists() || !c.check_keys())
         return n;
-    n.tolerance = c.positive_or("tolerance", n.tolerance);
-    n.max_iterations = c.integer_at_least("max_iterations", n.max_iterations, 1);
-    n.line_search = c.get_or("line_search", n.line_search);
+    n.tolerance = c.read_or("tolerance", n.tolerance);
+    n.max_iterations = c.read_or("max_iterations", n.max_iterations);
+    n.line_search = c.read_or("line_search", n.line_search);
     return n;
 }
 
@@ -465,11 +443,11 @@ Solver read_solver(const Cursor& root)
 {
     Solver s;
     const Cursor c = root.child("solver");
-    if (!c.exists() || !c.allow_only({"backend", "type", "options"}))
+    if (!c.exists() || !c.check_keys())
         return s;
-    s.backend = c.get_or("backend", s.backend);
-    s.type = c.get_or("type", s.type);
-    s.options = c.get_or<std::string>("options", s.options);
+    s.backend = c.read_or("backend", s.backend);
+    s.type = c.read_or("type", s.type);
+    s.options = c.read_or("options", s.options);
     if (s.type == SolverType::iterative && s.backend == SolverBackend::suitesparse)
         c.child("type").fail("type iterative needs backend petsc (the suitesparse backend is direct only)");
     if (!s.options.empty() && s.backend != SolverBackend::petsc)
@@ -479,15 +457,15 @@ Solver read_solver(const Cursor& root)
 
 std::optional<Reference> read_reference(const Cursor& c, const KnownNames& known)
 {
-    if (!c.allow_only({"pair", "type", "radius", "radii", "force"}))
+    if (!c.check_keys())
         return std::nullopt;
     Reference r;
-    if (const auto pair = c.get<std::string>("pair")) {
+    if (const auto pair = c.read<std::string>("pair")) {
         r.pair = *pair;
         if (std::find(known.pairs.begin(), known.pairs.end(), *pair) == known.pairs.end())
             c.child("pair").fail("unknown contact pair '" + *pair + "'" + hint_or_list(*pair, known.pairs, "pairs"));
     }
-    const auto type = c.get<ReferenceType>("type");
+    const auto type = c.read<ReferenceType>("type");
     if (!type)
         return r;
     r.type = *type;
@@ -504,17 +482,11 @@ std::optional<Reference> read_reference(const Cursor& c, const KnownNames& known
     if (c.has(other))
         c.child(other).fail_here("does not apply to " + std::string(deck_name(r.type)) + " (it takes '" + takes +
                                  "')");
-    if (plane) {
-        r.radius = c.positive("radius").value_or(0.0);
-    } else if (const auto radii = c.child("radii"); !radii.exists()) {
-        c.fail_missing("radii");
-    } else if (const auto v = radii.to_numbers(2)) {
-        r.radii = *v;
-        for (std::size_t i = 0; i < 2; ++i)
-            if (!(r.radii[i] > 0))
-                radii.item(i).fail("must be > 0");
-    }
-    r.force = c.positive("force").value_or(0.0);
+    if (plane)
+        r.radius = c.read_required<double>("radius").value_or(0.0);
+    else
+        r.radii = c.read_required<std::vector<double>>("radii", 2).value_or(std::vector<double>{});
+    r.force = c.read<double>("force").value_or(0.0);
     return r;
 }
 
@@ -533,7 +505,7 @@ Output read_output(const Cursor& root, const std::string& file_label, const std:
     Output o;
     o.file = resolve_path(deck_dir, fs::path(file_label).filename().replace_extension(".h5").string());
     const Cursor c = root.child("output");
-    if (!c.exists() || !c.allow_only({"file", "every_step", "samples_per_span", "reference", "paraview", "fields"}))
+    if (!c.exists() || !c.check_keys())
         return o;
     if (c.has("file")) {
         const auto file = c.child("file").to_string();
@@ -542,12 +514,12 @@ Output read_output(const Cursor& root, const std::string& file_label, const std:
         else if (file)
             o.file = resolve_path(deck_dir, *file);
     }
-    o.every_step = c.get_or("every_step", o.every_step);
-    o.samples_per_span = c.integer_at_least("samples_per_span", o.samples_per_span, 1);
+    o.every_step = c.read_or("every_step", o.every_step);
+    o.samples_per_span = c.read_or("samples_per_span", o.samples_per_span);
     if (c.has("reference"))
         o.reference = read_reference(c.child("reference"), known);
-    o.paraview = c.get_or("paraview", o.paraview);
-    o.fields = c.get_or("fields", o.paraview);  // on with paraview unless said otherwise
+    o.paraview = c.read_or("paraview", o.paraview);
+    o.fields = c.read_or("fields", o.paraview);  // on with paraview unless said otherwise
     return o;
 }
 
@@ -558,12 +530,11 @@ Deck read_tree(const Cursor& root, const std::string& file_label, const std::str
         root.fail_here("the deck is empty: it needs at least format, analysis, materials and bodies");
         return deck;
     }
-    if (!root.allow_only({"format", "title", "analysis", "materials", "bodies", "constraints", "loads", "contact",
-                          "steps", "newton", "solver", "output"}))
+    if (!root.check_keys())
         return deck;
-    if (const auto format = root.get<int>("format"); format && *format != 1)
+    if (const auto format = root.read<int>("format"); format && *format != 1)
         root.child("format").fail("unsupported deck format: this program reads format 1");
-    deck.title = root.get_or<std::string>("title", "");
+    deck.title = root.read_or<std::string>("title", "");
     KnownNames known;
     known.deck_dir = deck_dir;
     deck.analysis = read_analysis(root, known);

@@ -276,13 +276,10 @@ void write_load(YAML::Emitter& out, const Load& l)
     out << YAML::Key << "body" << YAML::Value << l.body;
     if (l.side || !l.surface.empty())
         out << YAML::Key << "side" << YAML::Value << side_text(l.patch, l.side.value_or(Side::u0), l.surface);
-    switch (l.kind) {
-    case LoadKind::traction: out << YAML::Key << "traction" << YAML::Value; break;
-    case LoadKind::force: out << YAML::Key << "force" << YAML::Value; break;
-    case LoadKind::gravity: out << YAML::Key << "gravity" << YAML::Value; break;
-    case LoadKind::pressure: out << YAML::Key << "pressure" << YAML::Value << format_number(l.pressure); break;
-    }
-    if (l.kind != LoadKind::pressure)
+    out << YAML::Key << word(l.kind) << YAML::Value;  // the kind is the key of the load's value
+    if (l.kind == LoadKind::pressure)
+        out << format_number(l.pressure);
+    else
         numbers(out, l.vector);
     if (l.kind == LoadKind::gravity)
         out << YAML::Key << "density" << YAML::Value << format_number(l.density);

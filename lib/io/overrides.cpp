@@ -1,125 +1,13 @@
 #include "io/overrides.hpp"
 
+#include "io/deck_schema.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <utility>
 
 namespace iga::io {
 namespace {
-
-/// The shape of a deck: which keys each map may hold and what lists contain.
-/// Mirrors the key lists of deck_reader.cpp (tests/io/overrides_test.cpp checks
-/// that every key the resolved-deck writer emits can be set).
-struct Schema {
-    enum class Kind { value, map, list };
-    Kind kind = Kind::value;
-    std::vector<std::string> keys;  ///< map: its keys
-    std::vector<Schema> children;   ///< map: one per key; list: the item schema
-};
-
-Schema value()
-{
-    return {};
-}
-
-Schema map(std::vector<std::pair<std::string, Schema>> entries)
-{
-    Schema s{Schema::Kind::map, {}, {}};
-    for (auto& [key, child] : entries) {
-        s.keys.push_back(key);
-        s.children.push_back(std::move(child));
-    }
-    return s;
-}
-
-Schema list(Schema item)
-{
-    return Schema{Schema::Kind::list, {}, {std::move(item)}};
-}
-
-Schema make_deck_schema()
-{
-    const auto v = value();
-    // `transform:` steps: each item is a map with one of these keys (io/transform_reader.hpp).
-    const Schema transform = list(map({{"translate", v},
-                                       {"rotate", map({{"axis", v}, {"angle_deg", v}, {"about", v}})},
-                                       {"mirror", map({{"normal", v}, {"point", v}})},
-                                       {"scale", v}}));
-    const Schema nurbs = map({{"degrees", v}, {"knots", v}, {"control_points", v}, {"transform", transform}});
-    return map({
-        {"format", v},
-        {"title", v},
-        {"analysis", map({{"dimension", v}, {"plane", v}, {"kinematics", v}})},
-        {"materials", list(map({{"name", v}, {"model", v}, {"E", v}, {"nu", v}}))},
-        {"bodies", list(map({{"name", v},
-                             {"material", v},
-                             {"nurbs", nurbs},
-                             {"shape", map({{"type", v},
-                                            {"center", v},
-                                            {"radius", v},
-                                            {"corner", v},
-                                            {"size", v},
-                                            {"extrude", v},
-                                            {"transform", transform}})},
-                             {"patches", list(map({{"name", v},
-                                                   {"nurbs", nurbs},
-                                                   {"refine", map({{"elevate", v}, {"spans", v}, {"insert", v}})}}))},
-                             {"geometry", map({{"file", v}, {"transform", transform}})},
-                             {"refine", map({{"elevate", v}, {"spans", v}, {"insert", v}})},
-                             {"quadrature", map({{"element", v}, {"side", v}})},
-                             {"surfaces", v},  // a map of user-chosen names: set as a whole
-                             {"rigid", map({{"plane", map({{"point", v}, {"normal", v}})},
-                                            {"circle", map({{"center", v}, {"radius", v}})},
-                                            {"sphere", map({{"center", v}, {"radius", v}})},
-                                            {"motion", v},
-                                            {"amplitude", v}})}}))},
-        {"constraints", list(map({{"body", v}, {"side", v}, {"fix", v}, {"displacement", v}, {"amplitude", v}}))},
-        {"loads", list(map({{"body", v},
-                            {"side", v},
-                            {"traction", v},
-                            {"force", v},
-                            {"pressure", v},
-                            {"gravity", v},
-                            {"density", v},
-                            {"amplitude", v}}))},
-        {"contact", list(map({{"name", v},
-                              {"between", v},
-                              {"formulation", v},
-                              {"enforcement", v},
-                              {"penalty", v},
-                              {"augmented_lagrangian", map({{"gap_tolerance", v}, {"max_updates", v}})},
-                              {"friction", map({{"coefficient", v}, {"tangential_penalty", v}})},
-                              {"quadrature", v}}))},
-        {"steps", map({{"count", v}, {"adaptive", v}, {"max_cutbacks", v}})},
-        {"newton", map({{"tolerance", v}, {"max_iterations", v}, {"line_search", v}})},
-        {"solver", map({{"backend", v}, {"type", v}, {"options", v}})},
-        {"output", map({{"file", v},
-                        {"every_step", v},
-                        {"samples_per_span", v},
-                        {"reference", map({{"pair", v}, {"type", v}, {"radius", v}, {"radii", v}, {"force", v}})},
-                        {"paraview", v},
-                        {"fields", v}})},
-    });
-}
-
-const Schema& deck_schema()
-{
-    static const Schema schema = make_deck_schema();  // immutable table, built once
-    return schema;
-}
-
-void collect_paths(const Schema& schema, const std::string& prefix, std::vector<std::string>& out)
-{
-    if (schema.kind == Schema::Kind::list) {
-        collect_paths(schema.children.front(), prefix + ".*", out);
-        return;
-    }
-    for (std::size_t k = 0; k < schema.keys.size(); ++k) {
-        const std::string path = prefix.empty() ? schema.keys[k] : prefix + "." + schema.keys[k];
-        out.push_back(path);
-        collect_paths(schema.children[k], path, out);
-    }
-}
 
 std::string trim(std::string_view s)
 {
@@ -178,14 +66,23 @@ std::vector<std::string> item_names(const YAML::Node& list)
     return names;
 }
 
-/// Walks `path` down the tree and the schema together and stores `value` at its end.
-/// Returns the reason for refusing, or nullopt on success.
+/// `key` below the schema path `path`.
+std::string below(const std::string& path, const std::string& key)
+{
+    return path.empty() ? key : path + "." + key;
+}
+
+/// Walks `path` down the tree and the deck schema (io/deck_schema.hpp) together and
+/// stores `value` at its end. Returns the reason for refusing, or nullopt on success.
 std::optional<std::string> set_path(YAML::Node& root, const std::vector<std::string>& segments, const YAML::Node& value,
                                     DeckSource& source)
 {
     YAML::Node node;
     node.reset(root);  // reset() rebinds; operator= would overwrite the tree
-    const Schema* schema = &deck_schema();
+    // Where the walk is in the schema: a map (the top level "", a map key or a list
+    // item "contact.*"), a list of items, or a value (a list value such as knots).
+    std::string schema_path;
+    KeyKind kind = KeyKind::map;
     std::string walked;
     for (std::size_t i = 0; i < segments.size(); ++i) {
         const std::string& segment = segments[i];
@@ -195,14 +92,14 @@ std::optional<std::string> set_path(YAML::Node& root, const std::vector<std::str
         const std::string here = walked.empty() ? segment : walked + "." + segment;
         YAML::Node next;
 
-        if (schema->kind == Schema::Kind::map) {
-            const auto key = std::find(schema->keys.begin(), schema->keys.end(), segment);
-            if (key == schema->keys.end()) {
-                const std::string hint = did_you_mean(segment, schema->keys);
+        if (kind == KeyKind::map) {
+            const std::vector<std::string>& keys = map_keys(schema_path);
+            if (std::find(keys.begin(), keys.end(), segment) == keys.end()) {
+                const std::string hint = did_you_mean(segment, keys);
                 return "'" + segment + "' is not a key of " + quoted(walked) +
-                       (hint.empty() ? " (keys: " + join_names(schema->keys) + ")" : hint);
+                       (hint.empty() ? " (keys: " + join_names(keys) + ")" : hint);
             }
-            const Schema* child_schema = &schema->children[static_cast<std::size_t>(key - schema->keys.begin())];
+            const DeckKey& key = *find_deck_key(below(schema_path, segment));
             if (last) {
                 node[segment] = value;
                 source.add_command_line_node(value);
@@ -211,30 +108,31 @@ std::optional<std::string> set_path(YAML::Node& root, const std::vector<std::str
             const YAML::Node& const_node = node;  // const lookup: does not insert the key
             const YAML::Node existing = const_node[segment];
             if (!existing.IsDefined() || existing.IsNull()) {
-                if (child_schema->kind != Schema::Kind::map)
+                if (key.kind != KeyKind::map)
                     return "the deck has no '" + here + "', so it has no '" + segments[i + 1] + "'";
                 const YAML::Node created(YAML::NodeType::Map);
                 node[segment] = created;
                 source.add_command_line_node(created);
             }
             next.reset(node[segment]);
-            if (child_schema->kind == Schema::Kind::map && !next.IsMap())
+            if (key.kind == KeyKind::map && !next.IsMap())
                 return "'" + here + "' is not a map in the deck";
-            if (child_schema->kind == Schema::Kind::list && !next.IsSequence())
+            if (key.kind == KeyKind::list && !next.IsSequence())
                 return "'" + here + "' is not a list in the deck";
-            schema = child_schema;
+            schema_path = key.path;
+            kind = key.kind;
         } else {
             // A list of items, or a list value such as knots or a force vector.
             if (!node.IsSequence())
                 return "'" + walked + "' is a single value: nothing can follow it";
-            const std::optional<std::size_t> index = schema->kind == Schema::Kind::list
-                                                         ? find_item(node, segment)
-                                                         : (is_index(segment) && std::stoul(segment) < node.size()
-                                                                ? std::optional(std::stoul(segment))
-                                                                : std::nullopt);
+            const bool items = kind == KeyKind::list;
+            const std::optional<std::size_t> index =
+                items ? find_item(node, segment)
+                      : (is_index(segment) && std::stoul(segment) < node.size() ? std::optional(std::stoul(segment))
+                                                                                : std::nullopt);
             if (!index) {
                 const std::vector<std::string> names = item_names(node);
-                if (schema->kind == Schema::Kind::list && !is_index(segment))
+                if (items && !is_index(segment))
                     return "no item named '" + segment + "' in '" + walked + "'" +
                            (names.empty() ? std::string(" (its items have no names: use an index)")
                                           : hint_or_list(segment, names, "items"));
@@ -247,8 +145,9 @@ std::optional<std::string> set_path(YAML::Node& root, const std::vector<std::str
                 return std::nullopt;
             }
             next.reset(node[*index]);
-            if (schema->kind == Schema::Kind::list) {
-                schema = &schema->children.front();
+            if (items) {
+                schema_path += ".*";
+                kind = KeyKind::map;
                 if (!next.IsMap())
                     return "'" + here + "' is not a map in the deck";
             }
@@ -297,13 +196,6 @@ void apply_overrides(YAML::Node& root, const std::vector<std::string>& set_overr
         if (const auto refused = set_path(root, split_path(path), value, source))
             issues.add(DeckIssue{command_line, path, text, *refused});
     }
-}
-
-std::vector<std::string> deck_key_paths()
-{
-    std::vector<std::string> out;
-    collect_paths(deck_schema(), "", out);
-    return out;
 }
 
 }  // namespace iga::io

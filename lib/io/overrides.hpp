@@ -8,8 +8,8 @@
 // may also pick an entry of a list value (`bodies.b.nurbs.knots.0`). VALUE is
 // parsed as YAML (a number, a word, a flow list or map; empty means null, which
 // the reader takes as "not given").
-// The path must exist in the deck format (a schema that mirrors deck.md): a key
-// the format knows may be set where the deck leaves it out, and maps missing on
+// The path must exist in the deck format (io/deck_schema.hpp): a key the format
+// knows may be set where the deck leaves it out, and maps missing on
 // the way are created (`bodies.b.refine.spans=[8,8]` creates `refine`); list
 // items are never created. Every node written is registered with the DeckSource,
 // so a bad value in it is reported at "<command line>".
@@ -26,10 +26,5 @@ namespace iga::io {
 /// empty map). Bad overrides are recorded in `issues` and leave the tree unchanged.
 void apply_overrides(YAML::Node& root, const std::vector<std::string>& set_overrides, DeckSource& source,
                      IssueList& issues);
-
-/// Every key path the deck format knows, as `--set` spells it with list items
-/// written `*` ("bodies.*.refine.spans"), in schema order: what a test compares
-/// with the user's documentation (docs/deck.md) and the reader.
-std::vector<std::string> deck_key_paths();
 
 }  // namespace iga::io

@@ -13,25 +13,19 @@ namespace {
 /// An optional point of the deck's dimension: the origin when `key` is absent.
 std::optional<std::vector<double>> point_or_origin(const Cursor& map, std::string_view key, int dim)
 {
-    const Cursor c = map.child(key);
-    if (!c.exists())
+    if (!map.has(key))
         return std::vector<double>(static_cast<std::size_t>(dim), 0.0);
-    return c.to_numbers(static_cast<std::size_t>(dim));
+    return map.read<std::vector<double>>(key, static_cast<std::size_t>(dim));
 }
 
 /// A required direction of `n` numbers that is not the zero vector.
 std::optional<std::vector<double>> direction(const Cursor& map, std::string_view key, std::size_t n)
 {
-    const Cursor c = map.child(key);
-    if (!c.exists()) {
-        map.fail_missing(key);
-        return std::nullopt;
-    }
-    const auto v = c.to_numbers(n);
+    const auto v = map.read_required<std::vector<double>>(key, n);
     if (!v)
         return std::nullopt;
     if (std::none_of(v->begin(), v->end(), [](double x) { return x != 0.0; })) {
-        c.fail("must have non-zero length");
+        map.child(key).fail("must have non-zero length");
         return std::nullopt;
     }
     return v;
@@ -39,7 +33,7 @@ std::optional<std::vector<double>> direction(const Cursor& map, std::string_view
 
 std::optional<Rotate> read_rotate(const Cursor& c, int dim)
 {
-    if (!c.allow_only({"axis", "angle_deg", "about"}))
+    if (!c.check_keys())
         return std::nullopt;
     Rotate r;
     bool ok = true;
@@ -47,18 +41,18 @@ std::optional<Rotate> read_rotate(const Cursor& c, int dim)
         const auto axis = direction(c, "axis", 3);
         ok = axis.has_value();
         r.axis = axis.value_or(std::vector<double>{});
-    } else if (const Cursor axis = c.child("axis"); axis.exists()) {
+    } else if (c.has("axis")) {
         // In the x-y plane the only axis is z; [0, 0, a > 0] is accepted as a
         // restatement of it, and dropped (the resolved deck writes no axis).
-        const auto v = axis.to_numbers(3);
+        const auto v = c.read<std::vector<double>>("axis", 3);
         if (v && !((*v)[0] == 0.0 && (*v)[1] == 0.0 && (*v)[2] > 0.0)) {
-            axis.fail("a 2D rotation turns about the z axis, counter-clockwise: leave 'axis' out or write [0, 0, 1] "
+            c.child("axis").fail("a 2D rotation turns about the z axis, counter-clockwise: leave 'axis' out or write [0, 0, 1] "
                       "(for a clockwise turn give a negative angle_deg)");
             ok = false;
         }
         ok = ok && v.has_value();
     }
-    const auto angle = c.get<double>("angle_deg");
+    const auto angle = c.read<double>("angle_deg");
     r.angle_deg = angle.value_or(0.0);
     const auto about = point_or_origin(c, "about", dim);
     r.about = about.value_or(std::vector<double>{});
@@ -67,7 +61,7 @@ std::optional<Rotate> read_rotate(const Cursor& c, int dim)
 
 std::optional<Mirror> read_mirror(const Cursor& c, int dim)
 {
-    if (!c.allow_only({"normal", "point"}))
+    if (!c.check_keys())
         return std::nullopt;
     const auto normal = direction(c, "normal", static_cast<std::size_t>(dim));
     const auto point = point_or_origin(c, "point", dim);
@@ -96,13 +90,13 @@ std::optional<TransformStep> read_step(const Cursor& item, int dim)
     const std::string& key = keys.front();
     const auto kind = std::find(kinds.begin(), kinds.end(), key);
     if (kind == kinds.end()) {
-        item.allow_only({"translate", "rotate", "mirror", "scale"});  // the key, with "did you mean"
+        item.check_keys();  // the key, with "did you mean"
         return std::nullopt;
     }
     const Cursor c = item.child(key);
     switch (kind - kinds.begin()) {
     case 0: {
-        const auto offset = c.to_numbers(static_cast<std::size_t>(dim));
+        const auto offset = item.read<std::vector<double>>(key, static_cast<std::size_t>(dim));
         return offset ? std::optional<TransformStep>(Translate{*offset}) : std::nullopt;
     }
     case 1: {
@@ -114,11 +108,7 @@ std::optional<TransformStep> read_step(const Cursor& item, int dim)
         return m ? std::optional<TransformStep>(*m) : std::nullopt;
     }
     default: {
-        const auto s = c.to_number();
-        if (s && !(*s > 0)) {
-            c.fail("must be > 0 (a uniform scale factor; use mirror to turn the patch over)");
-            return std::nullopt;
-        }
+        const auto s = item.read<double>(key);
         return s ? std::optional<TransformStep>(Scale{*s}) : std::nullopt;
     }
     }

@@ -118,20 +118,29 @@ std::optional<double> parse_number(std::string_view text)
 // ---------------------------------------------------------------------------
 
 Cursor::Cursor(const YAML::Node& root, const DeckSource& source, IssueList& issues)
-    : Cursor(root, true, std::string(), root.Mark(), source.is_command_line_node(root), source, issues)
+    : Cursor(root, true, std::string(), std::string(), root.Mark(), source.is_command_line_node(root), source, issues)
 {
 }
 
-Cursor::Cursor(const YAML::Node& node, bool present, std::string path, const YAML::Mark& mark, bool command_line,
-               const DeckSource& source, IssueList& issues)
-    : node_(node), present_(present), path_(std::move(path)), mark_(mark), command_line_(command_line),
-      source_(&source), issues_(&issues)
+Cursor::Cursor(const YAML::Node& node, bool present, std::string path, std::string schema_path,
+               const YAML::Mark& mark, bool command_line, const DeckSource& source, IssueList& issues)
+    : node_(node), present_(present), path_(std::move(path)), schema_path_(std::move(schema_path)), mark_(mark),
+      command_line_(command_line), source_(&source), issues_(&issues)
 {
 }
+
+namespace {
+/// `key` below `path`, dotted.
+std::string below(const std::string& path, std::string_view key)
+{
+    return path.empty() ? std::string(key) : path + "." + std::string(key);
+}
+}  // namespace
 
 Cursor Cursor::child(std::string_view key) const
 {
-    std::string path = path_.empty() ? std::string(key) : path_ + "." + std::string(key);
+    std::string path = below(path_, key);
+    std::string schema_path = below(schema_path_, key);
     if (is_map()) {
         for (auto it = node_.begin(); it != node_.end(); ++it) {
             if (!it->first.IsScalar() || it->first.Scalar() != key)
@@ -139,10 +148,12 @@ Cursor Cursor::child(std::string_view key) const
             // `key:` with no value has no useful mark of its own: point at the key.
             const YAML::Mark mark = it->second.IsNull() ? it->first.Mark() : it->second.Mark();
             const bool command_line = command_line_ || source_->is_command_line_node(it->second);
-            return Cursor(it->second, true, std::move(path), mark, command_line, *source_, *issues_);
+            return Cursor(it->second, true, std::move(path), std::move(schema_path), mark, command_line, *source_,
+                          *issues_);
         }
     }
-    return Cursor(YAML::Node(), false, std::move(path), mark_, command_line_, *source_, *issues_);
+    return Cursor(YAML::Node(), false, std::move(path), std::move(schema_path), mark_, command_line_, *source_,
+                  *issues_);
 }
 
 std::optional<std::string> Cursor::name_of_item() const
@@ -160,9 +171,8 @@ Cursor Cursor::item(std::size_t i) const
 {
     const YAML::Node node = node_[i];
     const bool command_line = command_line_ || source_->is_command_line_node(node);
-    Cursor c(node, true, std::string(), node.Mark(), command_line, *source_, *issues_);
-    const std::string segment = c.name_of_item().value_or(std::to_string(i));
-    c.path_ = path_.empty() ? segment : path_ + "." + segment;
+    Cursor c(node, true, std::string(), below(schema_path_, "*"), node.Mark(), command_line, *source_, *issues_);
+    c.path_ = below(path_, c.name_of_item().value_or(std::to_string(i)));
     return c;
 }
 
@@ -242,14 +252,16 @@ std::vector<std::string> Cursor::keys() const
     return out;
 }
 
-bool Cursor::allow_only(std::initializer_list<std::string_view> keys) const
+bool Cursor::check_keys() const
 {
+    const std::vector<std::string>& known = map_keys(schema_path_);
+    IGA_CHECK(!known.empty(), "the deck schema has no map '" + schema_path_ + "'");
     if (!expect_map())
         return false;
-    const std::vector<std::string> known(keys.begin(), keys.end());
     for (auto it = node_.begin(); it != node_.end(); ++it) {
         const bool command_line = command_line_ || source_->is_command_line_node(it->second);
-        const Cursor key_cursor(it->first, true, path_, it->first.Mark(), command_line, *source_, *issues_);
+        const Cursor key_cursor(it->first, true, path_, schema_path_, it->first.Mark(), command_line, *source_,
+                                *issues_);
         if (!it->first.IsScalar()) {
             key_cursor.fail_here("keys must be words");
             continue;
@@ -277,9 +289,10 @@ void Cursor::check_duplicate_keys() const
     for (auto it = node_.begin(); it != node_.end(); ++it) {
         const bool command_line = command_line_ || source_->is_command_line_node(it->second);
         if (!it->first.IsScalar())
-            continue;  // allow_only reports it where keys are checked
+            continue;  // check_keys reports it where keys are checked
         const std::string& key = it->first.Scalar();
-        const Cursor key_cursor(it->first, true, path_, it->first.Mark(), command_line, *source_, *issues_);
+        const Cursor key_cursor(it->first, true, path_, schema_path_, it->first.Mark(), command_line, *source_,
+                                *issues_);
         if (const auto first = seen.find(key); first != seen.end()) {
             key_cursor.fail_here("duplicate key '" + key + "'" +
                                  (first->second > 0 ? " (first given at line " + std::to_string(first->second) + ")"
@@ -288,7 +301,7 @@ void Cursor::check_duplicate_keys() const
         }
         seen.emplace(key, key_cursor.location().line);
         const YAML::Mark mark = it->second.IsNull() ? it->first.Mark() : it->second.Mark();
-        Cursor(it->second, true, path_.empty() ? key : path_ + "." + key, mark, command_line, *source_, *issues_)
+        Cursor(it->second, true, below(path_, key), below(schema_path_, key), mark, command_line, *source_, *issues_)
             .check_duplicate_keys();
     }
 }
@@ -396,36 +409,13 @@ std::optional<std::vector<int>> Cursor::to_integers(std::size_t n) const
     return ok ? std::optional(values) : std::nullopt;
 }
 
-std::optional<double> Cursor::positive(std::string_view key) const
+const DeckKey& Cursor::schema_key(std::string_view key, ValueType type) const
 {
-    const auto value = get<double>(key);
-    if (value && !(*value > 0)) {
-        child(key).fail("must be > 0");
-        return std::nullopt;
-    }
-    return value;
-}
-
-double Cursor::positive_or(std::string_view key, double fallback) const
-{
-    const Cursor c = child(key);
-    if (!c.exists())
-        return fallback;
-    const auto value = c.to_number();
-    if (value && !(*value > 0))
-        c.fail("must be > 0");
-    return value && *value > 0 ? *value : fallback;
-}
-
-int Cursor::integer_at_least(std::string_view key, int fallback, int min) const
-{
-    const Cursor c = child(key);
-    if (!c.exists())
-        return fallback;
-    const auto value = c.to_integer();
-    if (value && *value < min)
-        c.fail("must be >= " + std::to_string(min));
-    return value && *value >= min ? *value : fallback;
+    const std::string path = below(schema_path_, key);
+    const DeckKey* entry = find_deck_key(path);
+    IGA_CHECK(entry != nullptr, "the deck schema has no key '" + path + "'");
+    IGA_CHECK(entry->type == type, "the deck schema gives '" + path + "' another type than the reader reads");
+    return *entry;
 }
 
 }  // namespace iga::io

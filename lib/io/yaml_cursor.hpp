@@ -1,9 +1,11 @@
 #pragma once
 // Cursor: a YAML node together with its key path in the deck (--set syntax:
-// `materials.steel.nu`, `loads.0.force`) and its source (file:line:col, or
+// `materials.steel.nu`, `loads.0.force`), its path in the deck schema (list items
+// as `*`: `materials.*.nu`, io/deck_schema.hpp) and its source (file:line:col, or
 // "<command line>" for a node that --set put in). The deck reader reads every
 // value through a Cursor, so every problem it finds is located
-// (docs/deck.md "General rules").
+// (docs/deck.md "General rules"), and takes the keys each map allows, and the
+// type and range of the simple values, from the schema.
 //
 // Problems are recorded in an IssueList instead of thrown, so one pass reports
 // all independent issues; the reader throws a single DeckError at the end.
@@ -13,11 +15,11 @@
 
 #include "core/error.hpp"
 #include "io/deck_names.hpp"
+#include "io/deck_schema.hpp"
 
 #include <yaml-cpp/yaml.h>
 
 #include <cstddef>
-#include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -78,6 +80,8 @@ public:
     Cursor(const YAML::Node& root, const DeckSource& source, IssueList& issues);
 
     const std::string& path() const { return path_; }
+    /// The path in the deck schema: list items written `*` ("materials.*.nu").
+    const std::string& schema_path() const { return schema_path_; }
     /// The key is present and its value is not null (`key:` with nothing counts as absent).
     bool exists() const { return present_ && !node_.IsNull(); }
     bool is_map() const { return exists() && node_.IsMap(); }
@@ -108,9 +112,9 @@ public:
     bool expect_map() const;
     /// Checks that this is a list (records an issue if not).
     bool expect_list() const;
-    /// Checks that this is a map whose keys are all in `keys`: records an issue
-    /// for each unknown key (with "did you mean").
-    bool allow_only(std::initializer_list<std::string_view> keys) const;
+    /// Checks that this is a map whose keys are all keys of its map in the deck
+    /// schema: records an issue for each unknown key (with "did you mean").
+    bool check_keys() const;
     /// Records an issue at every key that repeats an earlier key of the same map, in
     /// this node and everything below it (YAML readers keep the first and drop the
     /// rest without a word; yaml-cpp keeps both, so they can be found here).
@@ -133,43 +137,41 @@ public:
     template <class T>
     std::optional<T> to() const;
 
-    /// Required key: records "missing required key" when absent.
+    /// The value of `key` read as the deck schema describes it: of its type (T must
+    /// be that type), within its range, and "missing required key" when it is absent
+    /// and the schema requires it. Lists of numbers: `count` > 0 demands that many.
     template <class T>
-    std::optional<T> get(std::string_view key) const
+    std::optional<T> read(std::string_view key, std::size_t count = 0) const
     {
-        const Cursor c = child(key);
-        if (!c.exists()) {
-            fail_missing(key);
-            return std::nullopt;
-        }
-        return c.to<T>();
+        return read_value<T>(key, count, false);
     }
-    /// Optional key: `fallback` when absent, and also when invalid (after recording the issue).
+    /// read(), or `fallback` when the key is absent or invalid (after recording the issue).
     template <class T>
-    T get_or(std::string_view key, T fallback) const
+    T read_or(std::string_view key, T fallback) const
     {
-        const Cursor c = child(key);
-        if (!c.exists())
-            return fallback;
-        return c.to<T>().value_or(std::move(fallback));
+        return read_value<T>(key, 0, false).value_or(std::move(fallback));
     }
-
-    /// Required key holding a number > 0 ("must be > 0" otherwise).
-    std::optional<double> positive(std::string_view key) const;
-    /// Optional key holding a number > 0: `fallback` when absent or invalid.
-    double positive_or(std::string_view key, double fallback) const;
-    /// Optional key holding an integer >= `min`: `fallback` when absent or invalid.
-    int integer_at_least(std::string_view key, int fallback, int min) const;
+    /// read() of a key that the schema requires only in some cases, one of which the caller has found.
+    template <class T>
+    std::optional<T> read_required(std::string_view key, std::size_t count = 0) const
+    {
+        return read_value<T>(key, count, true);
+    }
 
 private:
-    Cursor(const YAML::Node& node, bool present, std::string path, const YAML::Mark& mark, bool command_line,
-           const DeckSource& source, IssueList& issues);
+    Cursor(const YAML::Node& node, bool present, std::string path, std::string schema_path, const YAML::Mark& mark,
+           bool command_line, const DeckSource& source, IssueList& issues);
+    /// The schema's entry for `key` of this map; checks that it holds a value of `type` (a reader bug otherwise).
+    const DeckKey& schema_key(std::string_view key, ValueType type) const;
+    template <class T>
+    std::optional<T> read_value(std::string_view key, std::size_t count, bool required) const;
     std::optional<std::string> scalar(const char* expected) const;
     std::optional<std::string> name_of_item() const;
 
     YAML::Node node_;
     bool present_ = true;
     std::string path_;
+    std::string schema_path_;
     YAML::Mark mark_;
     bool command_line_ = false;
     const DeckSource* source_;
@@ -189,6 +191,71 @@ std::optional<E> Cursor::to_enum() const
                 return entry.value;
     fail("expected one of " + join_names(names) + (text ? did_you_mean(*text, names) : std::string()));
     return std::nullopt;
+}
+
+/// The schema's type of a value the reader reads as T.
+template <class T>
+constexpr ValueType value_type_of()
+{
+    if constexpr (std::is_same_v<T, double>)
+        return ValueType::number;
+    else if constexpr (std::is_same_v<T, int>)
+        return ValueType::integer;
+    else if constexpr (std::is_same_v<T, bool>)
+        return ValueType::boolean;
+    else if constexpr (std::is_same_v<T, std::string>)
+        return ValueType::string;
+    else if constexpr (std::is_same_v<T, std::vector<double>>)
+        return ValueType::numbers;
+    else if constexpr (std::is_same_v<T, std::vector<int>>)
+        return ValueType::integers;
+    else if constexpr (std::is_enum_v<T>)
+        return ValueType::choice;
+    else
+        static_assert(std::is_same_v<T, void>, "value_type_of: unsupported type");
+}
+
+template <class T>
+std::optional<T> Cursor::read_value(std::string_view key, std::size_t count, bool required) const
+{
+    const DeckKey& entry = schema_key(key, value_type_of<T>());
+    if constexpr (std::is_enum_v<T>) {
+        std::vector<std::string> words;
+        for (const auto& e : DeckNames<T>::all)
+            words.emplace_back(e.name);
+        IGA_CHECK(entry.words == words, "deck schema: '" + entry.path + "' is read with other words");
+    }
+    const Cursor c = child(key);
+    if (!c.exists()) {
+        if (required || entry.presence == Presence::required)
+            fail_missing(key);
+        return std::nullopt;
+    }
+    std::optional<T> value;
+    if constexpr (std::is_same_v<T, std::vector<double>>)
+        value = c.to_numbers(count);
+    else if constexpr (std::is_same_v<T, std::vector<int>>)
+        value = c.to_integers(count);
+    else
+        value = c.to<T>();
+    if (!value)
+        return std::nullopt;
+    if constexpr (std::is_same_v<T, double> || std::is_same_v<T, int>) {
+        if (!entry.range.admits(*value)) {
+            c.fail(entry.range.failure());
+            return std::nullopt;
+        }
+    } else if constexpr (std::is_same_v<T, std::vector<double>> || std::is_same_v<T, std::vector<int>>) {
+        bool ok = true;
+        for (std::size_t i = 0; i < value->size(); ++i)
+            if (!entry.range.admits((*value)[i])) {
+                c.item(i).fail(entry.range.failure());
+                ok = false;
+            }
+        if (!ok)
+            return std::nullopt;
+    }
+    return value;
 }
 
 template <class T>

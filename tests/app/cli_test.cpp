@@ -101,6 +101,33 @@ TEST(Cli, VersionPrintsTheProgramVersion)
         << r.out << r.err;
 }
 
+// `igacontact keys` (not in --help): the keys of the deck schema, and docs/deck.md
+// with its key tables generated (scripts/update_deck_tables.py writes it back).
+TEST(Cli, KeysListsTheDeckFormatAndGeneratesTheKeyTables)
+{
+    const auto dir = scratch_dir("keys");
+    const CliResult list = run_cli("keys", dir);
+    EXPECT_EQ(list.exit_code, 0) << list.err;
+    EXPECT_NE(list.out.find("\ncontact.*.friction.coefficient  [number ≥ 0]  default: —\n"), std::string::npos)
+        << list.out;
+
+    const std::string deck_md = source_path("docs/deck.md");
+    const CliResult docs = run_cli("keys --markdown " + shell_quote(deck_md), dir);
+    EXPECT_EQ(docs.exit_code, 0) << docs.err;
+    EXPECT_EQ(docs.out, read_text(deck_md)) << "docs/deck.md is out of date: run scripts/update_deck_tables.py";
+    EXPECT_EQ(docs.err, "");
+
+    const CliResult missing = run_cli("keys --markdown no_such_docs", dir);
+    EXPECT_EQ(missing.exit_code, 2);
+    EXPECT_NE(missing.err.find("igacontact: error: cannot read no_such_docs"), std::string::npos) << missing.err;
+    std::ofstream(dir / "bad_markers.txt") << "<!-- keys: contact.*.frction -->\n<!-- /keys -->\n";
+    const CliResult bad = run_cli("keys --markdown " + shell_quote((dir / "bad_markers.txt").string()), dir);
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find("bad_markers.txt: line 1: 'contact.*.frction' names no map of the deck schema"),
+              std::string::npos)
+        << bad.err;
+}
+
 TEST(Cli, UsageErrorsExitTwo)
 {
     const auto dir = scratch_dir("usage");

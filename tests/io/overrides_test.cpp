@@ -163,7 +163,8 @@ void collect_leaves(const YAML::Node& node, const std::string& path, std::vector
 TEST(Overrides, EveryKeyOfTheResolvedDeckCanBeSet)
 {
     // Setting each key to the value it already has must be accepted and change
-    // nothing: this ties the --set schema to the keys the reader and writer know.
+    // nothing: --set walks the deck schema (io/deck_schema.hpp), so this holds the
+    // keys the writer emits to the schema, and their values to the reader.
     // The second deck adds the keys only some items have (amplitudes, a motion).
     const std::string with_paths =
         replaced(replaced(replaced(minimal_deck, "{body: block, side: u0, fix: [x]}",
