@@ -22,6 +22,10 @@
 namespace iga::contact {
 namespace {
 
+/// A Gauss point at rest within this fraction of the master's size from it touches:
+/// round-off of the closest-point projection (which is accurate to ~1e-15 of it).
+constexpr double touching_tolerance = 1e-12;
+
 /// Control points closer than this fraction of the coordinates' magnitude count
 /// as coincident (a few hundred ulps): such a side is collapsed.
 constexpr double collapsed_relative_tolerance = 1e-13;
@@ -368,8 +372,9 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
 
 void ContactPair::anchor_on_reference_masters()
 {
-    // At rest a point sticks to the master material point under it: the foot of its
-    // reference position on the master's reference surface, where one exists.
+    // A point touching at rest (gap >= 0, to round-off of the surface's size) sticks to
+    // the master material point under it: the foot of its reference position on the
+    // master's reference surface. Others are anchored where they first touch.
     PairEvaluation scratch;
     Stopwatch search, projection;
     std::vector<int> candidates;
@@ -385,7 +390,8 @@ void ContactPair::anchor_on_reference_masters()
             bool failed = false;
             const std::optional<Projection> foot =
                 project_on_master(c.master, view, c.points[g].reference, Foot{}, scratch, timing, failed);
-            if (!failed && foot && foot->status == Projection::Status::ok)
+            if (!failed && foot && foot->status == Projection::Status::ok &&
+                foot->gap >= -touching_tolerance * view.size)
                 committed_friction_[ci][g] = FrictionHistory{foot->point, 0.0, true};
         }
     }

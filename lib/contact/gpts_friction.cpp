@@ -19,7 +19,10 @@ Index packed(Index a, Index b, Index q)
 
 FrictionHistory open_history(const FrictionHistory& committed, const MasterReference& reference)
 {
-    return FrictionHistory{reference.point, committed.slip, true};
+    // Not anchored: where an open point will touch is not the foot it has now (on a
+    // curved master the closest point moves as the gap closes), so it sticks where it
+    // touches, at the end of the increment in which it first presses.
+    return FrictionHistory{reference.point, committed.slip, false};
 }
 
 TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W, const MasterFoot& master,
@@ -46,7 +49,7 @@ TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W
     }
     if (!committed.anchored) {  // first touch: it sticks where it touches
         out.status = StickSlip::stick;
-        out.next = open_history(committed, reference);
+        out.next = FrictionHistory{reference.point, committed.slip, true};
         return out;
     }
     const FootVariation v = foot_variation(N, master);

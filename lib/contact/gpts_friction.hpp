@@ -20,8 +20,11 @@
 //   C = dc/dxibar:  C_ga = -e_ga + M^-1 (X,al ga . (A - Xbar) - dM/dxi^ga c),
 // dp/du = -eps_N Nn (p > 0), and the master rows' foot moving: W t_T (R_b,al D_al)^T.
 // The anchor of a converged slip state is moved so that the traction is
-// reproduced: A = Xbar + G m^-1 a^T t_T / eps_T. A point that touches for the first
-// time (no anchor) sticks where it touches: no tangential traction in that increment.
+// reproduced: A = Xbar + G m^-1 a^T t_T / eps_T. An open point has no anchor: where
+// it will touch is not its foot while open (on a curved master the closest point moves
+// as the gap closes, and anchoring there would load two identical cylinders pressed
+// together with tangential tractions). In the increment in which it first presses it
+// sticks without traction, and is anchored where it touches when that increment converges.
 
 #include "contact/friction.hpp"
 #include "contact/gpts_kernel.hpp"
@@ -47,8 +50,8 @@ TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W
                                  const FrictionHistory& committed, const KernelSettings& settings,
                                  const Vector& dW = Vector());
 
-/// The history of a point that does not press (open): it sticks where it touches
-/// next, the master material point under it now.
+/// The history of a point that does not press (open): no anchor; it will stick
+/// where it touches (its slip is kept).
 FrictionHistory open_history(const FrictionHistory& committed, const MasterReference& reference);
 
 /// Adds a slave Gauss point's tangential traction (basis N, fixed weight W) to a

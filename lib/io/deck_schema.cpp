@@ -203,7 +203,7 @@ constexpr Row deck_rows[] = {
     {"contact.*.augmented_lagrangian.max_updates", integer(at_least(1)), fallback("`30`"),
      "multiplier updates per increment before the attempt counts as failed (below)"},
     {"contact.*.friction", map(), fallback("none (frictionless)"),
-     "Coulomb friction, against a rigid obstacle only (below)"},
+     "Coulomb friction, in any pair (below)"},
     {"contact.*.friction.coefficient", number(at_least(0, "0: frictionless")), required,
      "the friction coefficient μ; 0 is frictionless"},
     {"contact.*.friction.tangential_penalty", number_or_auto(above(0)), fallback("`auto`"),
