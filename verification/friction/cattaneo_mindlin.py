@@ -17,7 +17,7 @@ Exit status 1 when a check fails: c/a off by more than --tolerance (5 %), or the
 L2 error of q, in units of mu p (the bound of the tangential traction), above
 --l2-factor (3) times the relative L2 error of p plus 1 % ("comparable").
 
-Usage: /usr/bin/python3 verification/friction/cattaneo_mindlin.py RESULTS.h5 [--plot cm.png]
+Usage: /usr/bin/python3 verification/friction/cattaneo_mindlin.py RESULTS.h5 [--plot FIGURE.png]
 """
 import argparse
 import sys
