@@ -198,7 +198,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
                                        side.side_name,
                                    pair.name + " " + side.side_name, side.gauss_points.coordinates.rows(),
                                    side.postprocessed.coordinates.rows(), scene.dim, side.postprocessed.grid[1],
-                                   side.postprocessed.grid[0], side.postprocessed.patch_grids, side.patch_sides});
+                                   side.postprocessed.grid[0], side.postprocessed.patch_grids, side.patch_sides,
+                                   side.gauss_points.tangential_traction_vector.size() > 0});
         return x;
     };
 

@@ -55,6 +55,17 @@ std::string sample_topology(long long n_v, long long n_u)
                        n_u * n_v);
 }
 
+/// The components of an n x d tangential traction dataset, one scalar attribute each.
+std::string traction_components(const std::string& h5, const std::string& path, long long n, int d)
+{
+    std::string out;
+    for (int k = 0; k < d; ++k)
+        out += fmt::format("     <Attribute Name=\"tangential_traction_{}\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+                           "      {}\n     </Attribute>\n",
+                           "xyz"[k], column(h5, path, n, d, k));
+    return out;
+}
+
 /// Column order of fields/<body>/stress (results.md).
 constexpr std::array<const char*, 6> stress_components = {"xx", "yy", "zz", "xy", "yz", "xz"};
 
@@ -125,6 +136,16 @@ std::string xdmf_text(const std::string& h5_name, const std::vector<XdmfMesh>& m
                 out += fmt::format("     <Attribute Name=\"{}\" AttributeType=\"Scalar\" Center=\"Node\">\n      {}\n"
                                    "     </Attribute>\n",
                                    name, item(h5, g + "/gauss_points/" + name, std::to_string(side.n_gauss), false));
+            if (side.friction) {
+                out += fmt::format("     <Attribute Name=\"status\" AttributeType=\"Scalar\" Center=\"Node\">\n      {}\n"
+                                   "     </Attribute>\n",
+                                   item(h5, g + "/gauss_points/status", std::to_string(side.n_gauss), true));
+                for (const char* name : {"slip", "slip_increment"})
+                    out += fmt::format("     <Attribute Name=\"{}\" AttributeType=\"Scalar\" Center=\"Node\">\n      {}\n"
+                                       "     </Attribute>\n",
+                                       name, item(h5, g + "/gauss_points/" + name, std::to_string(side.n_gauss), false));
+                out += traction_components(h5, g + "/gauss_points/tangential_traction_vector", side.n_gauss, side.dim);
+            }
             out += "    </Grid>\n";
             if (!side.patch_grids.empty()) {  // one sample grid per patch side, rows in storage order
                 long long first = 0;
@@ -156,8 +177,11 @@ std::string xdmf_text(const std::string& h5_name, const std::vector<XdmfMesh>& m
                                item(h5, g + "/postprocessed/coordinates",
                                     fmt::format("{} {}", side.n_samples, side.dim), false));
             out += fmt::format("     <Attribute Name=\"pressure\" AttributeType=\"Scalar\" Center=\"Node\">\n      {}\n"
-                               "     </Attribute>\n    </Grid>\n",
+                               "     </Attribute>\n",
                                item(h5, g + "/postprocessed/pressure", std::to_string(side.n_samples), false));
+            if (side.friction)
+                out += traction_components(h5, g + "/postprocessed/tangential_traction_vector", side.n_samples, side.dim);
+            out += "    </Grid>\n";
         }
         out += "   </Grid>\n";
     }

@@ -22,6 +22,11 @@
 //     after patch side, postprocessed/patch_grid_shape) gets one post-processed
 //     grid per patch side, named after it, each a HyperSlab of the rows of its
 //     samples in postprocessed/coordinates and postprocessed/pressure.
+//     With friction the Gauss points also carry "status" (0 open, 1 stick, 2 slip),
+//     "slip", "slip_increment" and the components "tangential_traction_x", "_y"
+//     (, "_z") of gauss_points/tangential_traction_vector, and a one-patch-side
+//     post-processed grid the components of postprocessed/tangential_traction_vector
+//     (scalars, each a HyperSlab column: ParaView colours by them directly).
 
 #include <array>
 #include <string>
@@ -49,6 +54,7 @@ struct XdmfContactSide {
     /// in storage order, and their names ("left.v0"); empty for one side.
     std::vector<std::array<long long, 2>> patch_grids;
     std::vector<std::string> patch_sides;
+    bool friction = false;  ///< the side holds the friction datasets (a pair with friction)
 };
 
 struct XdmfStep {

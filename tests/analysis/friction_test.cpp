@@ -4,12 +4,16 @@
 // sticks, held only by the tangential penalty; Newton converges quadratically
 // once the stick/slip set has settled.
 
+#include "io/output_paths.hpp"
 #include "run_support.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
+#include <iterator>
+#include <regex>
+#include <sstream>
 
 namespace iga::test {
 namespace {
@@ -176,6 +180,41 @@ steps: {count: 2}
 
 namespace iga::test {
 namespace {
+
+// ParaView: with output.paraview the XDMF index of a frictional run announces, on
+// the Gauss points, status, slip, slip_increment and the tangential traction's
+// components, and on the post-processed curve the recovered traction's; every HDF5
+// item it points to exists in the results file with the size it announces.
+TEST(Friction, TheParaViewIndexShowsTheFrictionState)
+{
+    const auto file = scratch_dir("friction_paraview") / "drag.h5";
+    const auto outcome = run_deck(source_path("tests/analysis/decks/block_friction_floor_2d.yaml"),
+                                  {"output.paraview=true"}, file);
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    std::ifstream in(io::xdmf_path(file.string()));
+    ASSERT_TRUE(in) << "no XDMF file";
+    const std::string xdmf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const char* name : {"status", "slip", "slip_increment", "tangential_traction_x", "tangential_traction_y"})
+        EXPECT_NE(xdmf.find(std::string("<Attribute Name=\"") + name + "\""), std::string::npos) << name;
+    const std::string last = "/steps/0004/contact/slide/block.v0/";
+    EXPECT_NE(xdmf.find(last + "gauss_points/tangential_traction_vector"), std::string::npos);
+    EXPECT_NE(xdmf.find(last + "postprocessed/tangential_traction_vector"), std::string::npos);
+
+    const Results results(file);
+    const std::regex item(R"re(<DataItem Dimensions="([0-9 ]+)"[^>]*Format="HDF">[^:<]+:([^<]+)</DataItem>)re");
+    int checked = 0;
+    for (auto it = std::sregex_iterator(xdmf.begin(), xdmf.end(), item); it != std::sregex_iterator(); ++it) {
+        const std::string path = (*it)[2].str().substr(1);
+        std::istringstream dims((*it)[1].str());
+        long long size = 1;
+        for (long long n = 0; dims >> n;)
+            size *= n;
+        ASSERT_TRUE(results.exists(path)) << path;
+        EXPECT_EQ(static_cast<long long>(results.reals(path).size()), size) << path;
+        ++checked;
+    }
+    EXPECT_GT(checked, 40);
+}
 
 // A cutback in the middle of a frictional slide: the dragged block's last increment
 // needs 6 Newton iterations; with newton.max_iterations = 5 it fails once and is cut
