@@ -162,6 +162,21 @@ std::string string_attribute(hid_t object, const std::string& name)
     return a.type == io::h5::Array::Type::string && a.strings.size() == 1 ? a.strings[0] : "<not a string>";
 }
 
+/// Whether a results file opens and its root attribute `status` reads.
+bool status_readable(const fs::path& file)
+{
+    io::h5::ErrorSilencer silence;
+    const hid_t id = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (id < 0)
+        return false;
+    io::h5::Handle f(id, H5Fclose, "open " + file.string());
+    try {
+        return !string_attribute(f.id(), "status").empty();
+    } catch (const std::exception&) {
+        return false;
+    }
+}
+
 double real_attribute(hid_t object, const std::string& name)
 {
     const io::h5::Array a = io::h5::read_attribute(object, name);
@@ -313,12 +328,19 @@ TEST(Interrupt, SigkillLeavesThePreviousResultsUntouched)
         EXPECT_EQ(string_attribute(f.id(), "status"), "completed");
     }
 
-    // The temporary file of the killed run, if any: readable, still "running",
-    // with complete increments (it is flushed after each one).
+    // The temporary file of the killed run, if any. It is flushed after every converged
+    // increment, but a SIGKILL that lands while the next increment is being written can
+    // leave HDF5's metadata inconsistent (an HDF5 file is not crash-consistent; seen once
+    // under load: "incorrect metadata checksum"), so it is either unreadable or readable,
+    // still "running", with complete increments (docs/results.md, "Failed and interrupted runs").
     const std::vector<fs::path> temps = temp_files(dir, "stretch.h5");
     EXPECT_LE(temps.size(), 1u);
     for (const fs::path& temp : temps) {
         EXPECT_EQ(temp.filename().string(), "stretch.h5.tmp-" + std::to_string(child.pid));
+        if (!status_readable(temp)) {
+            std::cerr << "note: the killed run's temporary file is unreadable (killed inside a write)\n";
+            continue;
+        }
         std::string file_status, message;
         const int k = check_complete_increments(temp, file_status, message);
         EXPECT_EQ(file_status, "running");
