@@ -490,6 +490,27 @@ std::vector<Coupling> ContactPair::candidate_couplings() const
     return out;
 }
 
+/// One evaluation's shared state: what it fills (the pair's residual, coupling
+/// blocks, counters), the kinematics, the settings of its kernels and its timers.
+struct ContactPair::Sweep {
+    PairEvaluation& ev;
+    const std::array<RowMatrix, 2>& current;  ///< current control points of each deformable surface
+    bool need_tangent = true;
+    double load_factor = 0.0;
+    KernelSettings kernel_base;
+    std::map<Coupling, std::size_t> block_of;  ///< coupling -> index in ev.tangent
+    Stopwatch search_time, projection_time;
+    std::vector<int> candidates;
+
+    /// Records a numerical failure; the evaluation stops there.
+    bool fail(std::string message)
+    {
+        ev.ok = false;
+        ev.message = std::move(message);
+        return false;
+    }
+};
+
 PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatrix& disp_second, bool need_tangent,
                                      RunContext* ctx, double load_factor) const
 {
@@ -497,7 +518,6 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
     PairEvaluation ev;
     ev.residual = Vector::Zero(n_local_dofs());
     const RowMatrix* disp[2] = {&disp_first, &disp_second};
-    const int offset[2] = {0, n_control_points(0)};
     for (int i = 0; i < 2; ++i) {
         const int n_cp = n_control_points(i);
         IGA_CHECK((n_cp == 0 && disp[i]->size() == 0) || (disp[i]->rows() == n_cp && disp[i]->cols() == d),
@@ -513,235 +533,240 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
         if (const auto* side = std::get_if<DeformableSide>(&surfaces_[i]))
             current[i] = current_points(*side, *disp[i]);
 
-    Stopwatch search_time, projection_time;
-    auto flush = [&]() {
-        if (!ctx)
-            return;
-        ctx->add_time("contact_search", search_time.seconds);
-        ctx->add_time("projection", projection_time.seconds);
-        ctx->add_count("contact_candidates", ev.candidates);
-        ctx->add_count("projections", ev.projections);
-        ctx->add_count("projection_iterations", ev.projection_iterations);
-    };
-    const KernelSettings kernel_base{.penalty = settings_.penalty, .master_rows = false, .need_tangent = need_tangent};
-    std::vector<int> candidates;
-    std::map<Coupling, std::size_t> block_of;  // coupling -> index in ev.tangent
-
-    for (std::size_t ci = 0; ci < carriers_.size(); ++ci) {
-        const Carrier& c = carriers_[ci];
-        const int n_g = static_cast<int>(c.points.size());
-        CarrierResult cr;
-        cr.surface = c.slave;
-        cr.piece.resize(static_cast<std::size_t>(n_g));
-        cr.parameter.resize(n_g, d - 1);
-        cr.reference_coordinates.resize(n_g, d);
-        cr.coordinates.resize(n_g, d);
-        cr.gap = Vector::Constant(n_g, -search_distance_);
-        cr.pressure = Vector::Zero(n_g);
-        cr.multiplier = multiplier_[ci];
-        // The part of the initial overlap not yet released enters the pressure law as a
-        // shift of the multiplier: p = <(lambda - eps (1 - r) g_0) + eps g_N>.
-        const double unreleased = releasing_ ? 1.0 - std::clamp(load_factor / release_end_, 0.0, 1.0) : 0.0;
-        const Vector shifted_multiplier = multiplier_[ci] - settings_.penalty * unreleased * initial_overlap_[ci];
-        cr.weight.resize(n_g);
-        cr.stretch = Vector::Ones(n_g);
-        cr.state.assign(n_g, PointState::far);
-        cr.friction.status.assign(static_cast<std::size_t>(n_g), StickSlip::open);
-        cr.friction.traction = RowMatrix::Zero(n_g, d);
-        cr.friction.slip_increment = Vector::Zero(n_g);
-        cr.friction.slip.resize(n_g);
-        for (int g = 0; g < n_g; ++g)
-            cr.friction.slip(g) = committed_friction_[ci][static_cast<std::size_t>(g)].slip;
-        for (int g = 0; g < n_g; ++g) {
-            const GaussPoint& gp = c.points[g];
-            VecN x = VecN::Zero(d);
-            for (std::size_t a = 0; a < gp.indices.size(); ++a)
-                x += gp.N(a) * current[c.slave].row(gp.indices[a]).transpose();
-            cr.piece[static_cast<std::size_t>(g)] = gp.piece;
-            cr.parameter.row(g) = gp.xi.transpose();
-            cr.reference_coordinates.row(g) = gp.reference.transpose();
-            cr.coordinates.row(g) = x.transpose();
-            cr.weight(g) = c.current_measure ? current_weight(gp.rule_weight, gp.dN, gp.indices, current[c.slave]).first
-                                             : gp.weight;
-            cr.stretch(g) = cr.weight(g) / gp.weight;
-        }
-
-        // Scatters a kernel's local residual (slave cps then master cps) into the
-        // pair's residual and its tangent into the block of the coupling.
-        auto scatter = [&](const KernelResult& kr, const GaussPoint& gp, const std::vector<int>& master_indices,
-                           int master_element) {
-            const std::size_t n_slave = gp.indices.size();
-            for (std::size_t a = 0; a < n_slave + master_indices.size(); ++a) {
-                const int surface = a < n_slave ? c.slave : c.master;
-                const int cp = a < n_slave ? gp.indices[a] : master_indices[a - n_slave];
-                for (int i = 0; i < d; ++i)
-                    ev.residual((offset[surface] + cp) * d + i) += kr.residual(static_cast<Index>(a) * d + i);
-            }
-            if (!need_tangent)
-                return;
-            Coupling key{-1, -1};
-            key[static_cast<std::size_t>(c.slave)] = gp.element;
-            key[static_cast<std::size_t>(c.master)] = master_element;
-            auto [it, inserted] = block_of.try_emplace(key, ev.tangent.size());
-            if (inserted) {
-                LocalBlock block;
-                block.element = key;
-                block.dofs = coupling_dofs(key);
-                block.K = Matrix::Zero(static_cast<Index>(block.dofs.size()), static_cast<Index>(block.dofs.size()));
-                ev.tangent.push_back(std::move(block));
-            }
-            LocalBlock& block = ev.tangent[it->second];
-            // Kernel row/column -> block position: the block lists the first
-            // surface element's cps, then the second's (coupling_dofs).
-            std::vector<Index> map;
-            map.reserve(static_cast<std::size_t>(kr.residual.size()));
-            auto position = [&](int surface, int element, int cp) {
-                const std::vector<int>& points = element_points_[surface][static_cast<std::size_t>(element)];
-                const auto found = std::find(points.begin(), points.end(), cp);
-                IGA_ASSERT(found != points.end(), "contact: a basis function outside its element");
-                const Index before = surface == 1 && key[0] >= 0
-                                         ? static_cast<Index>(element_points_[0][static_cast<std::size_t>(key[0])].size())
-                                         : 0;
-                return (before + static_cast<Index>(found - points.begin())) * d;
-            };
-            for (const int a : gp.indices)
-                for (int i = 0; i < d; ++i)
-                    map.push_back(position(c.slave, gp.element, a) + i);
-            for (const int b : master_indices)
-                for (int i = 0; i < d; ++i)
-                    map.push_back(position(c.master, master_element, b) + i);
-            for (std::size_t col = 0; col < map.size(); ++col)
-                for (std::size_t row = 0; row < map.size(); ++row)
-                    block.K(map[row], map[col]) += kr.tangent(static_cast<Index>(row), static_cast<Index>(col));
-        };
-
-        if (const auto* obstacle = std::get_if<RigidObstacle>(&surfaces_[c.master])) {
-            for (int g = 0; g < n_g; ++g) {
-                const VecN x = cr.coordinates.row(g).transpose();
-                const ObstacleFoot foot = obstacle->foot(x, load_factor);
-                if (!foot.ok) {
-                    ev.ok = false;
-                    ev.message = "contact: " + describe_point(c.slave, g, c.points[g].xi, x) +
-                                 " is at the centre of the rigid obstacle (no contact normal); the bodies overlap "
-                                 "far too much: check the obstacle's position and motion";
-                    flush();
-                    return ev;
-                }
-                cr.gap(g) = foot.gap;
-                cr.state[g] = PointState::ok;
-                KernelSettings point_settings = kernel_base;
-                point_settings.multiplier = shifted_multiplier(g);
-                KernelResult kr = gpts_rigid_kernel(c.points[g].N, c.points[g].weight, foot.normal, foot.gap,
-                                                    point_settings, foot.radius);
-                cr.pressure(g) = kr.pressure;
-                if (settings_.friction.active()) {
-                    // Slip in the obstacle's frame; dp/dy = -eps n where the point presses.
-                    const VecN y = x - obstacle->shift(load_factor);
-                    const VecN d_pressure = kr.pressure > 0.0 ? VecN(-settings_.penalty * foot.normal)
-                                                              : VecN(VecN::Zero(d));
-                    const FrictionHistory& committed = committed_friction_[ci][static_cast<std::size_t>(g)];
-                    const TangentialResponse t = coulomb_response(settings_.friction, committed, y, foot.normal,
-                                                                  kr.pressure, d_pressure, foot.radius);
-                    add_tangential(kr, c.points[g].N, c.points[g].weight, t);
-                    trial_friction_[ci][static_cast<std::size_t>(g)] = t.next;
-                    record_friction(cr.friction, g, t);
-                }
-                if (kr.pressure > 0.0) {
-                    ++ev.n_active;
-                    ev.max_penetration = std::max(ev.max_penetration, foot.gap);
-                    scatter(kr, c.points[g], {}, -1);
-                }
-            }
-            trial_friction_state_[ci] = cr.friction;
-            ev.carriers.push_back(std::move(cr));
-            continue;
-        }
-
-        const DeformableSide& master = std::get<DeformableSide>(surfaces_[c.master]);
-        search_time.start();
-        const MasterView view = master_view(master, current[c.master], search_distance_);
-        const Box slave_box = bounding_box(current[c.slave]);
-        bool may_touch = false;
-        for (const ElementSearch& search : view.searches)
-            may_touch = may_touch || slave_box.overlaps(search.bounds());
-        search_time.stop();
-        // Against a deformable master a point is unanchored until it finds a foot.
-        if (settings_.friction.active())
-            for (int g = 0; g < n_g; ++g)
-                trial_friction_[ci][g].anchored = false;
-        if (!may_touch) {  // the slave side's hull misses every inflated master span box
-            trial_friction_state_[ci] = cr.friction;
-            ev.carriers.push_back(std::move(cr));
-            continue;
-        }
-        KernelSettings kernel_settings = kernel_base;
-        kernel_settings.master_rows = c.master_rows;
-        Timing timing{search_time, projection_time, candidates};
-        const bool friction = settings_.friction.active();
-
-        for (int g = 0; g < n_g; ++g) {
-            const GaussPoint& gp = c.points[g];
-            const VecN x = cr.coordinates.row(g).transpose();
-            bool failed = false;
-            std::optional<Projection> best = project_on_master(c.master, view, x, trial_xi_[ci][g], ev, timing, failed);
-            if (failed) {
-                ev.ok = false;
-                ev.message = "contact: closest-point projection failed at " + describe_point(c.slave, g, gp.xi, x);
-                flush();
-                return ev;
-            }
-            if (!best)
-                continue;
-            const Projection& proj = *best;
-            trial_xi_[ci][g] = Foot{proj.xi, proj.element};
-            cr.gap(g) = proj.gap;
-            if (proj.status != Projection::Status::ok) {
-                cr.state[g] = proj.status == Projection::Status::off_end ? PointState::off_end : PointState::at_kink;
-                continue;
-            }
-            const MasterFoot foot = master_foot(proj);
-            cr.state[g] = PointState::ok;
-            // Active when <lambda + eps g_N> > 0: with a multiplier, also at a small open gap.
-            kernel_settings.multiplier = shifted_multiplier(g);
-            const MasterReference reference =
-                friction ? master_reference(c.master, proj.basis) : MasterReference{};
-            if (!(kernel_settings.multiplier + kernel_settings.penalty * foot.gap > 0.0)) {
-                if (friction)
-                    trial_friction_[ci][g] = open_history(committed_friction_[ci][g], reference);
-                continue;
-            }
-            Vector dW;
-            double W = gp.weight;
-            if (c.current_measure)
-                std::tie(W, dW) = current_weight(gp.rule_weight, gp.dN, gp.indices, current[c.slave]);
-            KernelResult kr = gpts_kernel(gp.N, W, foot, kernel_settings, need_tangent ? dW : Vector());
-            if (!kr.ok) {
-                ev.ok = false;
-                ev.message = "contact: the penetration at " + describe_point(c.slave, g, gp.xi, x) +
-                             " exceeds the master's radius of curvature (the projection is not a distance "
-                             "minimum); try a larger penalty or smaller load steps";
-                flush();
-                return ev;
-            }
-            cr.pressure(g) = kr.pressure;
-            if (friction) {
-                const TangentialResponse t = gpts_friction(kr, gp.N, W, foot, reference, settings_.friction,
-                                                           committed_friction_[ci][g], kernel_settings,
-                                                           need_tangent ? dW : Vector());
-                trial_friction_[ci][g] = t.next;
-                record_friction(cr.friction, g, t);
-            }
-            ++ev.n_active;
-            ev.max_penetration = std::max(ev.max_penetration, foot.gap);
-            scatter(kr, gp, proj.basis.indices, proj.element);
-        }
+    Sweep sweep{ev, current, need_tangent, load_factor,
+                KernelSettings{.penalty = settings_.penalty, .master_rows = false, .need_tangent = need_tangent},
+                {}, {}, {}, {}};
+    // The part of the initial overlap not yet released enters the pressure law as a
+    // shift of the multiplier: p = <(lambda - eps (1 - r) g_0) + eps g_N>.
+    const double unreleased = releasing_ ? 1.0 - std::clamp(load_factor / release_end_, 0.0, 1.0) : 0.0;
+    for (std::size_t ci = 0; ci < carriers_.size() && ev.ok; ++ci) {
+        CarrierResult cr = carrier_kinematics(ci, current);
+        const Vector multiplier = multiplier_[ci] - settings_.penalty * unreleased * initial_overlap_[ci];
+        const bool ok = std::holds_alternative<RigidObstacle>(surfaces_[carriers_[ci].master])
+                            ? evaluate_on_obstacle(ci, cr, multiplier, sweep)
+                            : evaluate_on_surface(ci, cr, multiplier, sweep);
+        if (!ok)
+            break;
         trial_friction_state_[ci] = cr.friction;
         ev.carriers.push_back(std::move(cr));
     }
-    flush();
+    if (ctx) {
+        ctx->add_time("contact_search", sweep.search_time.seconds);
+        ctx->add_time("projection", sweep.projection_time.seconds);
+        ctx->add_count("contact_candidates", ev.candidates);
+        ctx->add_count("projections", ev.projections);
+        ctx->add_count("projection_iterations", ev.projection_iterations);
+    }
     std::sort(ev.tangent.begin(), ev.tangent.end(),
               [](const LocalBlock& a, const LocalBlock& b) { return a.element < b.element; });
     return ev;
+}
+
+CarrierResult ContactPair::carrier_kinematics(std::size_t ci, const std::array<RowMatrix, 2>& current) const
+{
+    const int d = dim_;
+    const Carrier& c = carriers_[ci];
+    const int n_g = static_cast<int>(c.points.size());
+    CarrierResult cr;
+    cr.surface = c.slave;
+    cr.piece.resize(static_cast<std::size_t>(n_g));
+    cr.parameter.resize(n_g, d - 1);
+    cr.reference_coordinates.resize(n_g, d);
+    cr.coordinates.resize(n_g, d);
+    cr.gap = Vector::Constant(n_g, -search_distance_);
+    cr.pressure = Vector::Zero(n_g);
+    cr.multiplier = multiplier_[ci];
+    cr.weight.resize(n_g);
+    cr.stretch = Vector::Ones(n_g);
+    cr.state.assign(n_g, PointState::far);
+    cr.friction.status.assign(static_cast<std::size_t>(n_g), StickSlip::open);
+    cr.friction.traction = RowMatrix::Zero(n_g, d);
+    cr.friction.slip_increment = Vector::Zero(n_g);
+    cr.friction.slip.resize(n_g);
+    for (int g = 0; g < n_g; ++g)
+        cr.friction.slip(g) = committed_friction_[ci][static_cast<std::size_t>(g)].slip;
+    for (int g = 0; g < n_g; ++g) {
+        const GaussPoint& gp = c.points[g];
+        VecN x = VecN::Zero(d);
+        for (std::size_t a = 0; a < gp.indices.size(); ++a)
+            x += gp.N(a) * current[c.slave].row(gp.indices[a]).transpose();
+        cr.piece[static_cast<std::size_t>(g)] = gp.piece;
+        cr.parameter.row(g) = gp.xi.transpose();
+        cr.reference_coordinates.row(g) = gp.reference.transpose();
+        cr.coordinates.row(g) = x.transpose();
+        cr.weight(g) = c.current_measure ? current_weight(gp.rule_weight, gp.dN, gp.indices, current[c.slave]).first
+                                         : gp.weight;
+        cr.stretch(g) = cr.weight(g) / gp.weight;
+    }
+    return cr;
+}
+
+void ContactPair::scatter(const KernelResult& kr, const Carrier& c, const GaussPoint& gp,
+                          const std::vector<int>& master_indices, int master_element, Sweep& sweep) const
+{
+    const int d = dim_;
+    PairEvaluation& ev = sweep.ev;
+    const int offset[2] = {0, n_control_points(0)};
+    const std::size_t n_slave = gp.indices.size();
+    for (std::size_t a = 0; a < n_slave + master_indices.size(); ++a) {
+        const int surface = a < n_slave ? c.slave : c.master;
+        const int cp = a < n_slave ? gp.indices[a] : master_indices[a - n_slave];
+        for (int i = 0; i < d; ++i)
+            ev.residual((offset[surface] + cp) * d + i) += kr.residual(static_cast<Index>(a) * d + i);
+    }
+    if (!sweep.need_tangent)
+        return;
+    Coupling key{-1, -1};
+    key[static_cast<std::size_t>(c.slave)] = gp.element;
+    key[static_cast<std::size_t>(c.master)] = master_element;
+    auto [it, inserted] = sweep.block_of.try_emplace(key, ev.tangent.size());
+    if (inserted) {
+        LocalBlock block;
+        block.element = key;
+        block.dofs = coupling_dofs(key);
+        block.K = Matrix::Zero(static_cast<Index>(block.dofs.size()), static_cast<Index>(block.dofs.size()));
+        ev.tangent.push_back(std::move(block));
+    }
+    LocalBlock& block = ev.tangent[it->second];
+    // Kernel row/column -> block position: the block lists the first
+    // surface element's cps, then the second's (coupling_dofs).
+    std::vector<Index> map;
+    map.reserve(static_cast<std::size_t>(kr.residual.size()));
+    auto position = [&](int surface, int element, int cp) {
+        const std::vector<int>& points = element_points_[surface][static_cast<std::size_t>(element)];
+        const auto found = std::find(points.begin(), points.end(), cp);
+        IGA_ASSERT(found != points.end(), "contact: a basis function outside its element");
+        const Index before = surface == 1 && key[0] >= 0
+                                 ? static_cast<Index>(element_points_[0][static_cast<std::size_t>(key[0])].size())
+                                 : 0;
+        return (before + static_cast<Index>(found - points.begin())) * d;
+    };
+    for (const int a : gp.indices)
+        for (int i = 0; i < d; ++i)
+            map.push_back(position(c.slave, gp.element, a) + i);
+    for (const int b : master_indices)
+        for (int i = 0; i < d; ++i)
+            map.push_back(position(c.master, master_element, b) + i);
+    for (std::size_t col = 0; col < map.size(); ++col)
+        for (std::size_t row = 0; row < map.size(); ++row)
+            block.K(map[row], map[col]) += kr.tangent(static_cast<Index>(row), static_cast<Index>(col));
+}
+
+bool ContactPair::evaluate_on_obstacle(std::size_t ci, CarrierResult& cr, const Vector& multiplier,
+                                       Sweep& sweep) const
+{
+    const int d = dim_;
+    const Carrier& c = carriers_[ci];
+    const auto& obstacle = std::get<RigidObstacle>(surfaces_[c.master]);
+    PairEvaluation& ev = sweep.ev;
+    for (int g = 0; g < static_cast<int>(c.points.size()); ++g) {
+        const VecN x = cr.coordinates.row(g).transpose();
+        const ObstacleFoot foot = obstacle.foot(x, sweep.load_factor);
+        if (!foot.ok)
+            return sweep.fail("contact: " + describe_point(c.slave, g, c.points[g].xi, x) +
+                              " is at the centre of the rigid obstacle (no contact normal); the bodies overlap "
+                              "far too much: check the obstacle's position and motion");
+        cr.gap(g) = foot.gap;
+        cr.state[g] = PointState::ok;
+        KernelSettings point_settings = sweep.kernel_base;
+        point_settings.multiplier = multiplier(g);
+        KernelResult kr = gpts_rigid_kernel(c.points[g].N, c.points[g].weight, foot.normal, foot.gap,
+                                            point_settings, foot.radius);
+        cr.pressure(g) = kr.pressure;
+        if (settings_.friction.active()) {
+            // Slip in the obstacle's frame; dp/dy = -eps n where the point presses.
+            const VecN y = x - obstacle.shift(sweep.load_factor);
+            const VecN d_pressure = kr.pressure > 0.0 ? VecN(-settings_.penalty * foot.normal)
+                                                      : VecN(VecN::Zero(d));
+            const FrictionHistory& committed = committed_friction_[ci][static_cast<std::size_t>(g)];
+            const TangentialResponse t = coulomb_response(settings_.friction, committed, y, foot.normal,
+                                                          kr.pressure, d_pressure, foot.radius);
+            add_tangential(kr, c.points[g].N, c.points[g].weight, t);
+            trial_friction_[ci][static_cast<std::size_t>(g)] = t.next;
+            record_friction(cr.friction, g, t);
+        }
+        if (kr.pressure > 0.0) {
+            ++ev.n_active;
+            ev.max_penetration = std::max(ev.max_penetration, foot.gap);
+            scatter(kr, c, c.points[g], {}, -1, sweep);
+        }
+    }
+    return true;
+}
+
+bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr, const Vector& multiplier,
+                                      Sweep& sweep) const
+{
+    const Carrier& c = carriers_[ci];
+    const int n_g = static_cast<int>(c.points.size());
+    PairEvaluation& ev = sweep.ev;
+    const DeformableSide& master = std::get<DeformableSide>(surfaces_[c.master]);
+    sweep.search_time.start();
+    const MasterView view = master_view(master, sweep.current[c.master], search_distance_);
+    const Box slave_box = bounding_box(sweep.current[c.slave]);
+    bool may_touch = false;
+    for (const ElementSearch& search : view.searches)
+        may_touch = may_touch || slave_box.overlaps(search.bounds());
+    sweep.search_time.stop();
+    const bool friction = settings_.friction.active();
+    // Against a deformable master a point is unanchored until it finds a foot.
+    if (friction)
+        for (int g = 0; g < n_g; ++g)
+            trial_friction_[ci][g].anchored = false;
+    if (!may_touch)  // the slave side's hull misses every inflated master span box
+        return true;
+    KernelSettings kernel_settings = sweep.kernel_base;
+    kernel_settings.master_rows = c.master_rows;
+    Timing timing{sweep.search_time, sweep.projection_time, sweep.candidates};
+
+    for (int g = 0; g < n_g; ++g) {
+        const GaussPoint& gp = c.points[g];
+        const VecN x = cr.coordinates.row(g).transpose();
+        bool failed = false;
+        std::optional<Projection> best = project_on_master(c.master, view, x, trial_xi_[ci][g], ev, timing, failed);
+        if (failed)
+            return sweep.fail("contact: closest-point projection failed at " + describe_point(c.slave, g, gp.xi, x));
+        if (!best)
+            continue;
+        const Projection& proj = *best;
+        trial_xi_[ci][g] = Foot{proj.xi, proj.element};
+        cr.gap(g) = proj.gap;
+        if (proj.status != Projection::Status::ok) {
+            cr.state[g] = proj.status == Projection::Status::off_end ? PointState::off_end : PointState::at_kink;
+            continue;
+        }
+        const MasterFoot foot = master_foot(proj);
+        cr.state[g] = PointState::ok;
+        // Active when <lambda + eps g_N> > 0: with a multiplier, also at a small open gap.
+        kernel_settings.multiplier = multiplier(g);
+        const MasterReference reference = friction ? master_reference(c.master, proj.basis) : MasterReference{};
+        if (!(kernel_settings.multiplier + kernel_settings.penalty * foot.gap > 0.0)) {
+            if (friction)
+                trial_friction_[ci][g] = open_history(committed_friction_[ci][g], reference);
+            continue;
+        }
+        Vector dW;
+        double W = gp.weight;
+        if (c.current_measure)
+            std::tie(W, dW) = current_weight(gp.rule_weight, gp.dN, gp.indices, sweep.current[c.slave]);
+        KernelResult kr = gpts_kernel(gp.N, W, foot, kernel_settings, sweep.need_tangent ? dW : Vector());
+        if (!kr.ok)
+            return sweep.fail("contact: the penetration at " + describe_point(c.slave, g, gp.xi, x) +
+                              " exceeds the master's radius of curvature (the projection is not a distance "
+                              "minimum); try a larger penalty or smaller load steps");
+        cr.pressure(g) = kr.pressure;
+        if (friction) {
+            const TangentialResponse t = gpts_friction(kr, gp.N, W, foot, reference, settings_.friction,
+                                                       committed_friction_[ci][g], kernel_settings,
+                                                       sweep.need_tangent ? dW : Vector());
+            trial_friction_[ci][g] = t.next;
+            record_friction(cr.friction, g, t);
+        }
+        ++ev.n_active;
+        ev.max_penetration = std::max(ev.max_penetration, foot.gap);
+        scatter(kr, c, gp, proj.basis.indices, proj.element, sweep);
+    }
+    return true;
 }
 
 MasterReference ContactPair::master_reference(int master_surface, const nurbs::BasisValues& basis) const

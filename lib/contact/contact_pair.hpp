@@ -50,9 +50,11 @@
 // point lies in the normal fan of the crease between them (at_kink, inactive, as
 // at an interior C0 knot of one patch). off_end only at the surface's own boundary.
 //
-// Warm starts: evaluate() remembers each Gauss point's last foot point as a
-// trial state; commit() keeps the trial state (call it after a converged
-// increment), rollback() returns to the last committed one (after a cutback).
+// Per-Gauss-point state: each point carries a committed and a trial state -- its
+// last foot point (warm start), its multiplier and its friction history (anchor,
+// accumulated slip, contact_pair's FrictionHistory) -- read from the committed one and
+// written to the trial one by evaluate(); commit() keeps the trial state (call it after
+// a converged increment), rollback() returns to the last committed one (after a cutback).
 // Because of this cache, evaluate() is const but not thread-safe on one pair.
 //
 // Augmented Lagrangian (docs/theory.md "Augmented Lagrangian"): every Gauss point
@@ -329,6 +331,18 @@ private:
         double size = 0.0;               ///< diagonal of the surface's control points
     };
     struct Timing;
+    struct Sweep;  ///< one evaluation's shared state (contact_pair.cpp)
+    /// evaluate() in its steps: the carrying side's Gauss points in the current
+    /// configuration; then, per Gauss point, the foot on the master (the obstacle's
+    /// exact foot, or global search and closest-point projection), the kernels (normal
+    /// and tangential) and the scatter of their results into the pair's residual and
+    /// coupling blocks. The two evaluate_on_* return false on a numerical failure
+    /// (recorded in the sweep's evaluation).
+    CarrierResult carrier_kinematics(std::size_t carrier, const std::array<RowMatrix, 2>& current) const;
+    bool evaluate_on_obstacle(std::size_t carrier, CarrierResult& cr, const Vector& multiplier, Sweep& sweep) const;
+    bool evaluate_on_surface(std::size_t carrier, CarrierResult& cr, const Vector& multiplier, Sweep& sweep) const;
+    void scatter(const KernelResult& kr, const Carrier& c, const GaussPoint& gp, const std::vector<int>& master_indices,
+                 int master_element, Sweep& sweep) const;
     /// Friction against a deformable master: anchors each Gauss point at the foot of
     /// its reference position on the master's reference surface (constructor).
     void anchor_on_reference_masters();
