@@ -52,7 +52,7 @@
 //
 // Per-Gauss-point state: each point carries a committed and a trial state -- its
 // last foot point (warm start), its multiplier and its friction history (anchor,
-// accumulated slip, contact_pair's FrictionHistory) -- read from the committed one and
+// accumulated slip: friction.hpp's FrictionHistory) -- read from the committed one and
 // written to the trial one by evaluate(); commit() keeps the trial state (call it after
 // a converged increment), rollback() returns to the last committed one (after a cutback).
 // Because of this cache, evaluate() is const but not thread-safe on one pair.

@@ -216,6 +216,54 @@ TEST(Friction, TheParaViewIndexShowsTheFrictionState)
     EXPECT_GT(checked, 40);
 }
 
+// Friction across a patch interface (tests/analysis/decks/roller_across_patches_friction_2d.yaml):
+// a roller dragged over a two-patch block keeps sliding with mu times its normal force
+// while its contact zone crosses from the left patch onto the right one, and the
+// accumulated slip grows at every step. The bound below mu: a Gauss point that first
+// touches during an increment sticks without traction in it (gpts_friction.hpp), so the
+// leading edge lags by one increment: measured down to 0.933 mu; 0.9 mu allows for it.
+// Above: |sum t W| <= sum |t| W = mu sum p W, to round-off.
+constexpr double leading_edge_share = 0.9;
+
+TEST(FrictionBetweenBodies, ARollerKeepsSlidingAcrossAPatchInterface)
+{
+    constexpr double mu = 0.3;
+    const auto file = scratch_dir("friction_across_patches") / "roller.h5";
+    const auto outcome =
+        run_deck(source_path("tests/analysis/decks/roller_across_patches_friction_2d.yaml"), {}, file);
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    const Results results(file);
+    double last_slip = 0.0, first_lo = 0.0, last_lo = 0.0;
+    int sliding_steps = 0;
+    for (const std::string& step : results.steps()) {
+        const double t = results.number("steps/" + step, "load_factor");
+        if (t < 1.1)  // pressing, and the first increment of the drag
+            continue;
+        const std::string side = "steps/" + step + "/contact/rub/roller.v0";
+        const io::h5::Handle object = io::h5::open_object(results.id(), side);
+        const std::vector<double> force = io::h5::read_attribute(object.id(), "friction_force").reals;
+        const double N = results.number(side, "normal_force");
+        const double ratio = std::hypot(force.at(0), force.at(1)) / N;
+        EXPECT_LE(ratio, mu * (1.0 + 1e-9)) << "t = " << t;
+        EXPECT_GE(ratio, leading_edge_share * mu) << "t = " << t;
+        const Vector slip = results.matrix(side + "/gauss_points/slip").col(0);
+        EXPECT_GT(slip.maxCoeff(), last_slip) << "t = " << t;
+        last_slip = slip.maxCoeff();
+        const Vector p = results.matrix(side + "/gauss_points/pressure").col(0);
+        const RowMatrix x = results.matrix(side + "/gauss_points/coordinates");
+        double lo = 1e300;
+        for (Index g = 0; g < p.size(); ++g)
+            if (p(g) > 0.0)
+                lo = std::min(lo, x(g, 0));
+        if (sliding_steps++ == 0)
+            first_lo = lo;
+        last_lo = lo;
+    }
+    EXPECT_GT(sliding_steps, 10);
+    EXPECT_LT(first_lo, 0.0) << "the slide starts on the left patch";
+    EXPECT_GT(last_lo, 0.0) << "and ends with the whole contact zone on the right one";
+}
+
 // A cutback in the middle of a frictional slide: the dragged block's last increment
 // needs 6 Newton iterations; with newton.max_iterations = 5 it fails once and is cut
 // back into two halves from the state at t = 0.75. Its failed attempt slid the block
