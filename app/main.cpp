@@ -14,6 +14,7 @@
 #include "commands.hpp"
 #include "summary_json.hpp"
 
+#include "core/allocator.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "core/stop.hpp"
@@ -80,6 +81,7 @@ int run_main(int argc, char** argv, const iga::Communicator& comm)
 
 int main(int argc, char** argv)
 {
+    iga::restore_allocator_defaults();  // before any large allocation (core/allocator.hpp)
     // Under mpirun (or srun) MPI first: every rank then builds the same scene and
     // works on its part (core/parallel.hpp). A plain run starts no MPI.
     iga::parallel::initialize();

@@ -224,7 +224,8 @@ void SceneSystem::assemble_constant_stiffness(const StopRequest& stop)
     for (int block = 0; block < scene_.n_element_blocks; ++block)
         blocks.push_back(owns(block) ? dofs_of(block) : std::vector<int>{});
     const assembly::SparsePattern full_pattern(unconstrained, std::move(blocks), scene_.n_element_blocks);
-    SparseMatrix K0 = full_pattern.make_matrix();
+    SparseMatrix K0;
+    full_pattern.shape(K0);
     for (int block = 0; block < scene_.n_element_blocks; ++block) {  // once per run: not worth threads
         if (!owns(block))
             continue;
@@ -236,8 +237,8 @@ void SceneSystem::assemble_constant_stiffness(const StopRequest& stop)
                              .K,
                          K0);
     }
-    full_stiffness_ = std::move(K0);
-    }
+    full_stiffness_.emplace().swap(K0);  // swapped, not moved: Eigen 3.4 copies a "moved" sparse matrix
+}
 
 void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vector& r_full, SparseMatrix& K,
                                     solver::Evaluation& out, Vector& magnitude,
@@ -360,13 +361,13 @@ void SceneSystem::evaluate_into(const Vector& u_free, double t, bool need_tangen
     Vector r_full = Vector::Zero(dofs.n_full());
     if (need_tangent) {
         if (!pattern.matches(out.tangent))
-            out.tangent = pattern.make_matrix();
+            pattern.shape(out.tangent);
         else
             out.tangent.coeffs().setZero();
     } else if (out.tangent.nonZeros() > 0) {
         // A line search's trial states need no tangent: a stale one would keep a
         // tangent-sized block of memory per trial evaluation (docs/performance.md "Memory in 3D").
-        out.tangent = SparseMatrix();
+        release(out.tangent);
     }
 
     // Per dof, the sum of the absolute values of the terms summed into r: machine

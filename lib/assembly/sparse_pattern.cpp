@@ -199,12 +199,21 @@ int SparsePattern::extend(std::vector<std::vector<int>> blocks, bool* entries_ad
 
 SparseMatrix SparsePattern::make_matrix() const
 {
-    const std::vector<double> zeros(inner_.size(), 0.0);
-    const Eigen::Map<const SparseMatrix> view(n_free_, n_free_, static_cast<Index>(inner_.size()), outer_.data(),
-                                              inner_.data(), zeros.data());
-    SparseMatrix K = view;
-    K.makeCompressed();
+    SparseMatrix K;
+    shape(K);
     return K;
+}
+
+void SparsePattern::shape(SparseMatrix& K) const
+{
+    // Written in place: a 3D tangent is ~100 MB at 30k dofs, and a copy through a
+    // temporary (or an Eigen assignment, which copies) would briefly double it.
+    const auto nnz = static_cast<Index>(inner_.size());
+    K.resize(n_free_, n_free_);
+    K.resizeNonZeros(nnz);
+    std::copy(outer_.begin(), outer_.end(), K.outerIndexPtr());
+    std::copy(inner_.begin(), inner_.end(), K.innerIndexPtr());
+    std::fill(K.valuePtr(), K.valuePtr() + nnz, 0.0);
 }
 
 bool SparsePattern::matches(const SparseMatrix& K) const

@@ -83,6 +83,8 @@ public:
 
     /// n_free x n_free, compressed, every stored value zero.
     SparseMatrix make_matrix() const;
+    /// K takes this pattern (compressed, every stored value zero), reusing its storage.
+    void shape(SparseMatrix& K) const;
     /// True when K has exactly this pattern (the precondition of add()).
     bool matches(const SparseMatrix& K) const;
 

@@ -54,6 +54,15 @@ public:
     /// update of an earlier one, or a preconditioner. `singular` for an exactly
     /// singular K, `failed` for a non-finite K or one the backend rejects.
     virtual LinearStatus factorize(const SparseMatrix& K) = 0;
+    /// factorize(K) for a caller that no longer needs K: the backend may take its
+    /// storage, and K is left empty either way. A 3D tangent is ~100 MB at 30k dofs,
+    /// and a backend that copies K would otherwise hold it twice while it factorizes.
+    virtual LinearStatus factorize_taking(SparseMatrix& K)
+    {
+        const LinearStatus status = factorize(K);
+        release(K);
+        return status;
+    }
 
     /// Prepares solves with K + mu D, K the matrix of the last factorize() and
     /// D = diag(|K_ii|) of the summed K, a zero entry replaced by the mean nonzero

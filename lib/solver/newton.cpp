@@ -87,15 +87,16 @@ struct StepResult {
     double mu = 0;
 };
 
-// Solves K du = -r; on a singular K retries with K + mu D (see the header).
-StepResult newton_step(const SparseMatrix& K, const Vector& r, LinearSolver& solver, RunContext* context,
-                       Vector& du)
+// Solves K du = -r; on a singular K retries with K + mu D (see the header). With
+// `consume` the solver may take K's storage and K is left empty (the caller needs it no more).
+StepResult newton_step(SparseMatrix& K, const Vector& r, LinearSolver& solver, RunContext* context, Vector& du,
+                       bool consume)
 {
     ScopedTimer timer(context, "linear_solve");
     const Vector rhs = -r;
     StepResult result;
     const int refusals = solver.statistics().cholesky_fallbacks;
-    result.status = solver.factorize(K);
+    result.status = consume ? solver.factorize_taking(K) : solver.factorize(K);
     if (context && solver.statistics().cholesky_fallbacks > refusals)
         context->log(Verbosity::verbose, "  tangent not positive definite: factorized by LU");
     if (result.status == LinearStatus::ok)
@@ -243,7 +244,7 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
 
     if (system.linear) {
         Vector du;
-        const StepResult step = newton_step(current.tangent, current.residual, solver, context, du);
+        const StepResult step = newton_step(current.tangent, current.residual, solver, context, du, false);
         if (step.status != LinearStatus::ok)
             return finish(NewtonStatus::singular, std::string("linear solve failed (") + status_name(step.status) +
                                                       "), even with regularization up to mu = " +
@@ -296,6 +297,7 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
     bool previous_at_floor = false;  // the last iteration ended at the round-off floor
     for (int iteration = 1; iteration <= settings.max_iterations; ++iteration) {
         if (!have_tangent) {
+            current.tangent.swap(trial.tangent);  // the rejected full step's tangent: its storage, not a second one
             evaluate(system, u, load_factor, true, current, context);
             if (!current.ok)
                 return finish(NewtonStatus::evaluation_failed,
@@ -304,7 +306,9 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         }
 
         Vector du;
-        const StepResult step = newton_step(current.tangent, current.residual, solver, context, du);
+        // The tangent is handed to the solver: neither Newton nor the trial below needs it,
+        // and a copying solver would hold it twice while it factorizes.
+        const StepResult step = newton_step(current.tangent, current.residual, solver, context, du, true);
         if (step.status != LinearStatus::ok)
             return finish(NewtonStatus::singular,
                           "iteration " + std::to_string(iteration) + ": tangent singular (" +
@@ -411,7 +415,7 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         const double correction = du.lpNorm<Eigen::Infinity>();  // the full Newton correction (capped)
         const double step_size = alpha * correction;
         u = std::move(u_new);
-        std::swap(current, *chosen);
+        swap(current, *chosen);  // member-wise (newton.hpp)
         have_tangent = chosen_has_tangent;
         report.iterations = iteration;
         if (context)

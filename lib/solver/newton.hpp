@@ -73,6 +73,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace iga::solver {
@@ -93,6 +94,18 @@ struct Evaluation {
     bool ok = true;
     std::string message;
 };
+
+/// Member-wise: Eigen 3.4's sparse matrix cannot be moved, so std::swap of two
+/// evaluations would copy a tangent three times.
+inline void swap(Evaluation& a, Evaluation& b) noexcept
+{
+    a.residual.swap(b.residual);
+    a.tangent.swap(b.tangent);
+    std::swap(a.force_scale, b.force_scale);
+    std::swap(a.residual_floor, b.residual_floor);
+    std::swap(a.ok, b.ok);
+    a.message.swap(b.message);
+}
 
 struct NonlinearSystem {
     /// Fills out.residual (always) and out.tangent (when need_tangent) at state u

@@ -24,9 +24,8 @@ Vector shift_scale(const Vector& diagonal)
     return D;
 }
 
-SparseMatrix with_diagonal(const SparseMatrix& K, std::vector<int>& diagonal_position)
+bool complete_diagonal(SparseMatrix& A, std::vector<int>& diagonal_position)
 {
-    SparseMatrix A = K;
     A.makeCompressed();
     const int n = static_cast<int>(A.rows());
     auto find_diagonal = [&]() {
@@ -40,19 +39,20 @@ SparseMatrix with_diagonal(const SparseMatrix& K, std::vector<int>& diagonal_pos
         }
         return std::find(diagonal_position.begin(), diagonal_position.end(), -1) == diagonal_position.end();
     };
-    if (!find_diagonal()) {
-        SparseMatrix zero_diagonal(n, n);
-        std::vector<Triplet> entries;
-        entries.reserve(n);
-        for (int j = 0; j < n; ++j)
-            entries.emplace_back(j, j, 0.0);
-        zero_diagonal.setFromTriplets(entries.begin(), entries.end());
-        A = SparseMatrix(A + zero_diagonal);  // the sum keeps the union pattern, zeros included
-        A.makeCompressed();
-        const bool complete = find_diagonal();
-        IGA_CHECK(complete, "with_diagonal: diagonal entries missing after adding them");
-    }
-    return A;
+    if (find_diagonal())
+        return false;  // the usual case: a stiffness couples every dof with itself
+    SparseMatrix zero_diagonal(n, n);
+    std::vector<Triplet> entries;
+    entries.reserve(n);
+    for (int j = 0; j < n; ++j)
+        entries.emplace_back(j, j, 0.0);
+    zero_diagonal.setFromTriplets(entries.begin(), entries.end());
+    SparseMatrix sum = A + zero_diagonal;  // the union pattern, zeros included
+    A.swap(sum);
+    A.makeCompressed();
+    const bool complete = find_diagonal();
+    IGA_CHECK(complete, "complete_diagonal: diagonal entries missing after adding them");
+    return true;
 }
 
 }  // namespace iga::solver

@@ -62,6 +62,8 @@ public:
     /// Returns `singular` for an exactly singular LU (also the fallback LU of
     /// Kind::cholesky), `failed` for a non-finite K or an input the backend rejects.
     LinearStatus factorize(const SparseMatrix& K) override;
+    /// As factorize(K); K's storage becomes the reference's instead of a copy of it.
+    LinearStatus factorize_taking(SparseMatrix& K) override;
 
     /// K + mu D of the last factorize()'s K (solver/linear.hpp); the diagonal is
     /// added to K's pattern once if it lacks entries, so the symbolic analysis of
@@ -112,7 +114,10 @@ public:
 private:
     struct Backend;  // the Eigen/SuiteSparse objects, kept out of this header
 
-    LinearStatus factorize_matrix(const SparseMatrix& K);  // factorize() without forgetting the shift base
+    // factorize(); owned: K itself, handed over by factorize_taking() (swapped in, not copied)
+    LinearStatus factorize_matrix(const SparseMatrix& K, SparseMatrix* owned);
+    LinearStatus factorize_reference();  // reference_ as it stands, Cholesky or LU by the policy above
+    Vector apply(const Vector& x) const;  // K x for the K of the last factorize() (an update's: K_ref + P^T D P)
 
     bool same_pattern(const SparseMatrix& K) const;  // as reference_
     LinearStatus factorize_with(Kind kind);  // reference_ by one backend, after its analysis if needed
@@ -123,9 +128,8 @@ private:
     Kind factorized_kind_;
     std::unique_ptr<Backend> backend_;
     SparseMatrix reference_;      // the factorized matrix (compressed), read by solve()
-    SparseMatrix K_;              // the matrix of the last factorize() when it was an update
     std::unique_ptr<WoodburyUpdate> update_;  // set_updates(true)
-    bool updated_ = false;        // the last factorize() was an update: solve() corrects and checks against K_
+    bool updated_ = false;        // the last factorize() was an update: solve() corrects, and checks against K_ref + P^T D P
     double factor_flops_ = 0;     // of reference_'s factorization (backend's count)
     double column_flops_ = 0;     // of one solve with it
     double factor_entries_ = 0;   // nonzeros of its factors
@@ -141,9 +145,8 @@ private:
     int n_numeric_ = 0;
     int n_updates_ = 0;
     Ordering ordering_ = Ordering::minimum_degree;
-    // factorize_shifted(): K with its whole diagonal (made at the first shift after a
-    // factorize()), its unshifted diagonal values and D, and where they sit.
-    SparseMatrix shift_base_;
+    // factorize_shifted(): reference_ holds K with its whole diagonal (made at the first
+    // shift after a factorize()); its unshifted diagonal values, D, and where they sit.
     std::vector<int> diagonal_position_;
     Vector base_diagonal_, shift_scale_;
     bool shift_base_valid_ = false;

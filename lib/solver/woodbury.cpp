@@ -94,4 +94,31 @@ void WoodburyUpdate::correct(Vector& y) const
         y -= z(b) * column(dofs_[static_cast<std::size_t>(b)]);
 }
 
+void WoodburyUpdate::add_difference_product(const Vector& x, Vector& y) const
+{
+    const auto m = static_cast<Index>(dofs_.size());
+    if (m == 0)
+        return;
+    Vector Px(m);
+    for (Index a = 0; a < m; ++a)
+        Px(a) = x(dofs_[static_cast<std::size_t>(a)]);
+    const Vector DPx = D_ * Px;
+    for (Index a = 0; a < m; ++a)
+        y(dofs_[static_cast<std::size_t>(a)]) += DPx(a);
+}
+
+void WoodburyUpdate::add_difference(SparseMatrix& R) const
+{
+    std::vector<Triplet> entries;
+    for (Index j = 0; j < D_.cols(); ++j)
+        for (Index i = 0; i < D_.rows(); ++i)
+            if (D_(i, j) != 0.0)
+                entries.emplace_back(dofs_[static_cast<std::size_t>(i)], dofs_[static_cast<std::size_t>(j)], D_(i, j));
+    SparseMatrix difference(R.rows(), R.cols());
+    difference.setFromTriplets(entries.begin(), entries.end());
+    SparseMatrix sum = R + difference;
+    R.swap(sum);
+    R.makeCompressed();
+}
+
 }  // namespace iga::solver

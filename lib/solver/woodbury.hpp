@@ -51,6 +51,11 @@ public:
     /// Turns y = K_ref^-1 b into x = K^-1 b, in place.
     void correct(Vector& y) const;
 
+    /// y += P^T D P x: with y = K_ref x this is K x, so K itself need not be kept.
+    void add_difference_product(const Vector& x, Vector& y) const;
+    /// R += P^T D P (R = K_ref gives K; the pattern grows where K has entries R lacks).
+    void add_difference(SparseMatrix& R) const;
+
 private:
     const Vector& column(int dof) const
     {

@@ -1,4 +1,5 @@
 #include "solver/woodbury.hpp"
+#include "solver/shift.hpp"
 #include "solver/suitesparse_solver.hpp"
 #include "support/tolerance.hpp"
 
@@ -8,6 +9,7 @@
 
 #include <limits>
 #include <random>
+#include <vector>
 
 namespace iga::solver {
 
@@ -286,6 +288,72 @@ TEST(SuiteSparseSolver, AGrownPatternIsAnalysedAgain)
             << (solver == &updating ? "updating" : "plain");
     }
     EXPECT_EQ(plain.n_symbolic(), 2) << "one analysis per pattern";
+}
+
+TEST(SuiteSparseSolver, AShiftAfterAnUpdateShiftsTheUpdatedMatrix)
+{
+    // Newton shifts the K of its last factorize() (K + mu D, D = |diag K|). When that
+    // factorize() was served by an update, K is K_ref + P^T D P, which the solver
+    // keeps only as the reference and the update: the shift must be of that K, not
+    // of the reference (whose contact block is another one).
+    const SparseMatrix K0 = grid_matrix(8);
+    const Index n = K0.rows();
+    SparseMatrix K = K0;
+    for (int a : {40, 41, 48})
+        for (int b : {40, 41, 48})
+            K.coeffRef(a, b) += a == b ? 30.0 : 10.0;  // diagonal entries change too: D is K's, not K0's
+    constexpr double mu = 1e-2;  // large enough that shifting the wrong matrix shows
+    for (SuiteSparseSolver::Kind kind : {SuiteSparseSolver::Kind::cholesky, SuiteSparseSolver::Kind::lu}) {
+        SuiteSparseSolver solver(kind);
+        solver.set_updates(true);
+        ASSERT_EQ(solver.factorize(K0), LinearStatus::ok);
+        ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+        ASSERT_TRUE(solver.updated()) << kind_name(kind);
+        ASSERT_EQ(solver.factorize_shifted(mu), LinearStatus::ok);
+        const Vector b = random_vector(n, 21);
+        Vector x;
+        ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+        SparseMatrix expected = K;
+        const Vector D = shift_scale(Vector(K.diagonal()));
+        for (Index i = 0; i < n; ++i)
+            expected.coeffRef(i, i) += mu * D(i);
+        const Vector r = expected * x - b;
+        EXPECT_TRUE(test::at_most(r.norm() / b.norm(), agreement)) << kind_name(kind);
+    }
+}
+
+TEST(SuiteSparseSolver, FactorizeTakingSolvesAsFactorizeAndLeavesKEmpty)
+{
+    // Newton hands its tangent over (factorize_taking) so that a 3D tangent is not held
+    // twice: the solves are those of factorize(), whether the call factorized, was an
+    // update or kept the factorization, and the caller's matrix is freed every time.
+    const SparseMatrix K0 = grid_matrix(8);
+    const Index n = K0.rows();
+    SparseMatrix K1 = K0;
+    for (int a : {40, 41})
+        for (int b : {40, 41})
+            K1.coeffRef(a, b) += a == b ? 2.0 : 1.0;
+    const Vector b = random_vector(n, 5);
+    for (SuiteSparseSolver::Kind kind : {SuiteSparseSolver::Kind::cholesky, SuiteSparseSolver::Kind::lu}) {
+        SuiteSparseSolver copying(kind), taking(kind);
+        copying.set_updates(true);
+        taking.set_updates(true);
+        for (const SparseMatrix* K : std::vector<const SparseMatrix*>{&K0, &K0, &K1}) {  // a factorization, the same matrix again, an update
+            SparseMatrix handed = *K;
+            ASSERT_EQ(copying.factorize(*K), LinearStatus::ok);
+            ASSERT_EQ(taking.factorize_taking(handed), LinearStatus::ok);
+            EXPECT_EQ(handed.nonZeros(), 0);
+            EXPECT_EQ(handed.data().allocatedSize(), 0) << kind_name(kind) << ": the storage is freed, not kept";
+            EXPECT_EQ(taking.updated(), copying.updated());
+            Vector x_copying, x_taking;
+            ASSERT_EQ(copying.solve(b, x_copying), LinearStatus::ok);
+            ASSERT_EQ(taking.solve(b, x_taking), LinearStatus::ok);
+            EXPECT_TRUE(test::at_most((*K * x_taking - b).norm() / b.norm(), agreement)) << kind_name(kind);
+            EXPECT_TRUE(test::at_most((x_taking - x_copying).norm() / x_copying.norm(), agreement));
+        }
+        EXPECT_EQ(taking.n_numeric(), 1) << kind_name(kind);
+        EXPECT_EQ(taking.n_updates(), 1) << kind_name(kind);
+    }
 }
 
 }  // namespace iga::solver
