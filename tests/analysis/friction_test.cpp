@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <iterator>
@@ -400,6 +401,70 @@ TEST(FrictionBetweenBodies, IdenticalCylindersFollowCattaneoMindlinThenMindlinDe
         EXPECT_GT(unloaded.slipping, 0) << "no annulus slips back";
         EXPECT_EQ(unloaded.slipping_along, 0) << "annulus points slipping along the first shear, not back";
     }
+}
+
+
+// Cattaneo-Mindlin in 3D (tests/analysis/decks/cattaneo_mindlin_coarse_3d.yaml, written
+// by verification/friction/make_cattaneo_mindlin_3d.py --coarse; the fine deck, its
+// script and plot: verification/friction/): two identical bodies with paraboloid ends,
+// half model y >= 0, pressed, then sheared along x with the press held. The stick zone
+// is a central disc c/a = (1 - Q/(mu P))^(1/3); on a half model its radius is measured
+// from areas, c/a = sqrt(A_stick / A_pressed) (sums of the Gauss weights), which is
+// less tied to the Gauss grid than an extent. Tolerances: the stick zone to the issue's
+// 8 %, measured -2.3 % on this a/4 mesh (the fine a/8 deck: verification/friction/README.md).
+// While only pressed, a Gauss point's foot on the other curved face moves by about
+// (penetration) x (slope) as the press grows, which the tangential penalty turns into
+// traction: measured 1.0 % of mu p_max here (it falls with the penalty's compliance); 2 %.
+// The two sides' friction forces balance by the bodies' mirror symmetry (Newton's 1e-10).
+constexpr double press_traction_share_3d = 0.02;
+constexpr double stick_zone_tolerance_3d = 0.08;
+
+TEST(FrictionBetweenBodies, IdenticalParaboloidsFollowCattaneoMindlin3D)
+{
+    constexpr double mu = 0.3;
+    const auto file = scratch_dir("friction_cattaneo_mindlin_3d") / "cm.h5";
+    const auto outcome = run_deck(source_path("tests/analysis/decks/cattaneo_mindlin_coarse_3d.yaml"), {}, file);
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    const Results results(file);
+    const std::vector<std::string> steps = results.steps();
+    ASSERT_EQ(results.number("steps/" + steps.back(), "load_factor"), 2.0);
+    bool pressed_checked = false;
+    for (const std::string& step : steps) {
+        const double t = results.number("steps/" + step, "load_factor");
+        std::array<double, 2> Q{};
+        for (int k = 0; k < 2; ++k) {
+            const std::string side = "steps/" + step + "/contact/mate/" + (k == 0 ? "upper.w0" : "lower.w1");
+            const Vector p = results.matrix(side + "/gauss_points/pressure").col(0);
+            const Vector w = results.matrix(side + "/gauss_points/weight").col(0);
+            const RowMatrix traction = results.matrix(side + "/gauss_points/tangential_traction_vector");
+            const std::vector<double> status = results.reals(side + "/gauss_points/status");
+            const io::h5::Handle object = io::h5::open_object(results.id(), side);
+            Q[static_cast<std::size_t>(k)] = io::h5::read_attribute(object.id(), "friction_force").reals.at(0);
+            if (t <= 1.0) {  // pressed, not yet sheared
+                EXPECT_LE(traction.rowwise().norm().maxCoeff(), press_traction_share_3d * mu * p.maxCoeff())
+                    << side << " at t = " << t;
+                pressed_checked = true;
+            }
+            if (t == 2.0) {  // sheared to Q ~ 0.5 mu P with P held
+                SCOPED_TRACE(side);
+                const double P = results.number(side, "normal_force");
+                const double ratio = std::abs(Q[static_cast<std::size_t>(k)]) / (mu * P);
+                ASSERT_GT(ratio, 0.3) << "the shear no longer reaches a sizeable share of mu P";
+                ASSERT_LT(ratio, 0.8);
+                double pressed = 0.0, sticking = 0.0;
+                for (Index g = 0; g < p.size(); ++g) {
+                    if (!(p(g) > 0.0))
+                        continue;
+                    pressed += w(g);
+                    sticking += status[static_cast<std::size_t>(g)] == 1.0 ? w(g) : 0.0;
+                }
+                EXPECT_NEAR(std::sqrt(sticking / pressed) / std::cbrt(1.0 - ratio), 1.0, stick_zone_tolerance_3d)
+                    << "Cattaneo-Mindlin: Q/(mu P) = " << ratio;
+            }
+        }
+        EXPECT_LE(std::abs(Q[0] + Q[1]), balance_tolerance * std::max(std::abs(Q[0]), 1.0)) << "t = " << t;
+    }
+    EXPECT_TRUE(pressed_checked) << "no step at t <= 1";
 }
 
 }  // namespace
