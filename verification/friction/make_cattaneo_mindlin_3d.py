@@ -17,7 +17,7 @@ the contact, had one).
 
 The upper body's flat end is driven: down by `press` over t in [0, 1] (P is measured),
 then along x by `shear` over t in [1, 2] with the press held, then back to zero over
-[2, 3] (not with --no-unload or --coarse). The lower body's flat end is held; y = 0 is a symmetry plane of
+[2, 3] (not with --no-unload). The lower body's flat end is held; y = 0 is a symmetry plane of
 both. The bodies are mirror images across z = 0 (meshes and supports too), which is
 what decouples the normal and tangential problems (Johnson, Contact Mechanics, 7.1).
 
@@ -74,16 +74,16 @@ def main():
     ap.add_argument("--height", type=float, default=0.6, help="H: the flat ends at z = +-H")
     ap.add_argument("--a", type=float, default=0.1, help="the contact radius the mesh is graded for")
     ap.add_argument("--coarse", action="store_true",
-                    help="the fast test's deck: h = a/4, zone and depth zone 1.25 a, growth 2, no unloading, 8 steps")
+                    help="the fast test's mesh: h = a/4, zone and depth zone 1.25 a, growth 2")
     ap.add_argument("--h", type=float, default=None, help="span size over the zone (default a/8; --coarse a/4)")
     ap.add_argument("--zone", type=float, default=None, help="the fine zone in x and y, in units of a (default 1.2; --coarse 1.25)")
     ap.add_argument("--depth-zone", type=float, default=None, help="the fine zone in depth, in units of a (default 0.5; --coarse 1.25)")
     ap.add_argument("--growth", type=float, default=None, help="span growth beyond the zone (default 1.6; --coarse 2)")
     ap.add_argument("--press", type=float, default=0.0175, help="downward travel of the upper end")
     ap.add_argument("--shear", type=float, default=0.0030, help="travel of the upper end along x")
-    ap.add_argument("--no-unload", action="store_true", help="stop at t = 2, sheared (default with --coarse)")
+    ap.add_argument("--no-unload", action="store_true", help="stop at t = 2, sheared")
     ap.add_argument("--press-only", action="store_true", help="stop at t = 1 (a quick look at the press)")
-    ap.add_argument("--steps", type=int, default=None, help="steps.count (default 2 per unit of time; --coarse 8)")
+    ap.add_argument("--steps", type=int, default=None, help="steps.count (default 2 per unit of time)")
     ap.add_argument("--mu", type=float, default=0.3)
     ap.add_argument("--penalty", default="1.0e6", help="kappa = eps a / E* = 180 at a = 0.1")
     ap.add_argument("--formulation", default="two_half_pass", choices=["two_half_pass", "single_pass"])
@@ -103,8 +103,8 @@ def main():
     v = [y / L for y in xs]
     w_upper = [z / H for z in zs]                   # the face is w = 0, the end w = 1
     w_lower = sorted(1.0 - z / H for z in zs)       # the face is w = 1, the end w = 0
-    T = 1 if args.press_only else 2 if (args.no_unload or args.coarse) else 3
-    steps = pick(args.steps, 2 * T, 8)
+    T = 1 if args.press_only else 2 if args.no_unload else 3
+    steps = args.steps if args.steps else 2 * T
     shear_path = {1: "[[0, 0], [1, 0]]", 2: "[[0, 0], [1, 0], [2, 1]]", 3: "[[0, 0], [1, 0], [2, 1], [3, 0]]"}[T]
 
     # Control values of x^2 and y^2 on one degree-2 span: the blossom x(t_1) x(t_2).
