@@ -129,12 +129,14 @@ def main():
     n_dofs = 3 * 2 * (n_spans[0] + 2) * (n_spans[1] + 2) * (n_spans[2] + 2)
     ratio_words = "pressed, sheared, unsheared" if T == 3 else "pressed, then sheared"
     cmd = " ".join(["make_cattaneo_mindlin_3d.py"] + sys.argv[1:])
+    coarse_note = ("\n# The coarse copy for the fast test tests/analysis/friction_test.cpp (FrictionBetweenBodies);"
+                   "\n# the fine deck: verification/friction/cattaneo_mindlin_3d.yaml.") if args.coarse else ""
     out = []
     out.append(f"""# Cattaneo-Mindlin in 3D: two identical elastic bodies with paraboloid ends
 # z = +-(x^2 + y^2) / (2R), R = {fmt(R)} (Hertz's profile, exact in a degree-2 B-spline patch),
 # E = {fmt(E)}, nu = {fmt(NU)}, mu = {fmt(args.mu)}; half model y >= 0 (symmetry plane y = 0 holds
 # the shear direction x). The upper body's flat end z = {fmt(H)} is driven down by {fmt(args.press)}
-# (t in [0, 1]; P is measured, about 1.5 for a ~ 0.1), then along x by {fmt(args.shear)} with the
+# (t in [0, 1]; P is measured: 1.36 with the defaults, a = 0.098), then along x by {fmt(args.shear)} with the
 # press held (t in [1, 2], Q ~ 0.5 mu P){', then back to 0 (t in [2, 3], Mindlin-Deresiewicz)' if T == 3 else ''}.
 # The lower body's flat end z = -{fmt(H)} is held. The bodies are mirror images across z = 0, so
 # the normal and tangential problems decouple (Johnson, Contact Mechanics, 7.1): the
@@ -145,8 +147,10 @@ def main():
 # {fmt(growth)} beyond; spans {n_spans[0]} x {n_spans[1]} x {n_spans[2]} per body, {n_dofs} dofs.
 # Sides of both bodies: u0/u1 the faces x = -+L, v0 the symmetry plane y = 0, v1 y = L;
 # upper: w0 the contact face, w1 the flat end; lower: w0 the flat end, w1 the contact face.
-# Written by verification/friction/{cmd} (change sizes there).
+# Written by verification/friction/{cmd} (change sizes there).{coarse_note}
+# Run:   build/bin/igacontact THIS_DECK.yaml -o RESULTS.h5 --threads 1
 # Check: /usr/bin/python3 verification/friction/cattaneo_mindlin_3d.py RESULTS.h5 --plot FIG.png
+# Measured stick zones, errors and run times: verification/friction/README.md.
 format: 1
 title: Cattaneo-Mindlin 3D, two identical paraboloid-ended bodies {ratio_words}
 
