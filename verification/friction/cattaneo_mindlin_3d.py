@@ -161,7 +161,6 @@ def main():
                         failures.append(f"{name}: tangential traction while pressed {100 * share:.2f} % of mu p0")
                     rows.append((name, label, m, float("nan")))
                     continue
-                load = m["Q"] * sign if label == "sheared" else m["back"]
                 x = abs(m["Q"]) / (mu * m["P"]) if label == "sheared" else m["back"] / (mu * m["P"])
                 err = m["ratio"] / m["theory"] - 1
                 print(f"{name}, {label} (t = {times[k]:g}): P = {m['P']:.5g}, Q = {m['Q']:.5g}, "
