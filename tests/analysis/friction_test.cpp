@@ -312,6 +312,25 @@ TEST(Friction, ACutBackIncrementResumesFromTheCommittedFrictionState)
 // master) gave 34 %. Stick zones: the 5 %; measured +0.6 % (sheared) and
 // -0.8 % (unloaded) on this mesh. The two sides' friction forces balance by the
 // bodies' mirror symmetry, to Newton's 1e-10.
+// A slipping point's traction lies on the Coulomb cone, |t| = mu p, with t and p in the
+// same units: under small kinematics the two-half-pass pressure is stored per unit
+// reference area (p j/J, docs/results.md), and so must the traction be (it was once
+// stored per current area, off the cone by the surface stretch: |t|/(mu p) in
+// 0.989 .. 1.033 on the 3D deck, and the friction force with it). Round-off: 1e-10.
+constexpr double cone_tolerance = 1e-10;
+
+void expect_slip_on_the_cone(const Results& results, const std::string& side, double mu)
+{
+    const Vector p = results.matrix(side + "/gauss_points/pressure").col(0);
+    const RowMatrix traction = results.matrix(side + "/gauss_points/tangential_traction_vector");
+    const std::vector<double> status = results.reals(side + "/gauss_points/status");
+    for (Index g = 0; g < p.size(); ++g) {
+        if (p(g) > 0.0 && status[static_cast<std::size_t>(g)] == 2.0) {
+            ASSERT_NEAR(traction.row(g).norm(), mu * p(g), cone_tolerance * mu * p(g)) << side << ", Gauss point " << g;
+        }
+    }
+}
+
 constexpr double press_traction_share = 0.01;
 constexpr double stick_zone_tolerance = 0.05;
 constexpr double balance_tolerance = 1e-6;
@@ -378,6 +397,7 @@ TEST(FrictionBetweenBodies, IdenticalCylindersFollowCattaneoMindlinThenMindlinDe
                 EXPECT_LE(traction.rowwise().norm().maxCoeff(), press_traction_share * mu * p.maxCoeff())
                     << side << " at t = " << t;
             }
+            expect_slip_on_the_cone(results, side, mu);
         }
         EXPECT_LE(std::abs(Q[0] + Q[1]), balance_tolerance * std::max(std::abs(Q[0]), 1.0)) << "t = " << t;
     }
@@ -485,6 +505,7 @@ TEST(FrictionBetweenBodies, IdenticalParaboloidsFollowCattaneoMindlinThenMindlin
             const std::string side = "steps/" + step + "/contact/mate/" + (k == 0 ? "upper.w0" : "lower.w1");
             const ContactDisc d = contact_disc(results, side, 1.0, 0.0);
             Q[static_cast<std::size_t>(k)] = d.Q;
+            expect_slip_on_the_cone(results, side, mu);
             if (t <= 1.0) {  // pressed, not yet sheared
                 EXPECT_LE(d.max_traction, press_traction_share_3d * mu * d.max_pressure) << side << " at t = " << t;
                 pressed_checked = true;
