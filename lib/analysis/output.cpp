@@ -175,12 +175,20 @@ VecN master_normal_at(const contact::DeformableSide& side, const RowMatrix& side
 /// master's normal (contact::tangent_basis along the x axis, or y where the
 /// normal is near x; the obstacle's normal, or minus the side's own against a
 /// deformable master), recovered at the samples component by component as the
-/// pressure is, and its resultant.
+/// pressure is, and its resultant. `per_reference_area` (small kinematics): the
+/// traction is shown per unit reference area, t j/J, as the pressure is (step_data), so
+/// that a slipping point keeps |t| = mu p and sum t W (reference weights) is the friction
+/// force; `carrier` is then the rescaled one, whose `stretch` is j/J (1 but for
+/// two-half-pass).
 void add_friction(io::ContactSideResult& r, const PairModel& model, int carrier_index,
                   const contact::CarrierResult& carrier, const contact::DeformableSide& side,
-                  const RowMatrix& side_displacement, double load_factor, int samples_per_span)
+                  const RowMatrix& side_displacement, double load_factor, int samples_per_span,
+                  bool per_reference_area)
 {
     const contact::FrictionState& state = model.pair.converged_friction(carrier_index);
+    RowMatrix traction = state.traction;
+    if (per_reference_area)
+        traction.array().colwise() *= carrier.stretch.array();
     const auto* obstacle = std::get_if<contact::RigidObstacle>(&model.pair.surface(1 - carrier.surface));
     const Index n_g = carrier.coordinates.rows();
     const Index d = carrier.coordinates.cols();
@@ -202,8 +210,8 @@ void add_friction(io::ContactSideResult& r, const PairModel& model, int carrier_
                                 carrier.parameter.row(g).transpose());
     };
     io::GaussPointData& gp = r.gauss_points;
-    gp.tangential_traction_vector = state.traction;
-    gp.tangential_traction = local(state.traction, gauss_normal);
+    gp.tangential_traction_vector = traction;
+    gp.tangential_traction = local(traction, gauss_normal);
     gp.status.resize(static_cast<std::size_t>(n_g));
     for (Index g = 0; g < n_g; ++g)
         gp.status[static_cast<std::size_t>(g)] = static_cast<int>(state.status[static_cast<std::size_t>(g)]);
@@ -212,14 +220,14 @@ void add_friction(io::ContactSideResult& r, const PairModel& model, int carrier_
     r.friction_force.assign(static_cast<std::size_t>(d), 0.0);
     for (Index g = 0; g < n_g; ++g)
         for (Index i = 0; i < d; ++i)
-            r.friction_force[static_cast<std::size_t>(i)] += carrier.weight(g) * state.traction(g, i);
+            r.friction_force[static_cast<std::size_t>(i)] += carrier.weight(g) * traction(g, i);
 
     contact::CarrierResult component = carrier;
     io::PostProcessedData& pp = r.postprocessed;
     pp.tangential_traction_vector.resize(pp.coordinates.rows(), d);
     contact::RecoveredPressure recovered;
     for (Index i = 0; i < d; ++i) {
-        component.pressure = state.traction.col(i);
+        component.pressure = traction.col(i);
         recovered = contact::recover_pressure(side, side_displacement, component, samples_per_span);
         pp.tangential_traction_vector.col(i) = recovered.pressure;
     }
@@ -357,7 +365,7 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
             if (model.pair.settings().friction.active())
                 add_friction(r, model, static_cast<int>(c), carrier, *side,
                              system.side_displacement(u_full, static_cast<int>(p), carrier.surface), load_factor,
-                             samples_per_span);
+                             samples_per_span, scene.kinematics == mechanics::Kinematics::small);
             result.sides.push_back(std::move(r));
         }
         step.contact.push_back(std::move(result));
