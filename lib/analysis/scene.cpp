@@ -460,9 +460,11 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
         if (!scene.partition.owns(static_cast<int>(k)))
             blocks[k].clear();
     // Small kinematics assembles the element blocks once (SceneSystem's constant
-    // stiffness): their entry positions would outweigh the tangent in 3D.
-    const int searched = scene.kinematics == mechanics::Kinematics::small ? scene.n_element_blocks : 0;
-    scene.pattern = std::make_unique<assembly::SparsePattern>(dofs, std::move(blocks), searched);
+    // stiffness): their entry positions would outweigh the tangent in 3D. Contact
+    // couplings: coupling_blocks_searched().
+    std::vector<char> searched(blocks.size(), coupling_blocks_searched(scene.dim) ? 1 : 0);
+    std::fill_n(searched.begin(), scene.n_element_blocks, scene.kinematics == mechanics::Kinematics::small ? 1 : 0);
+    scene.pattern = std::make_unique<assembly::SparsePattern>(dofs, std::move(blocks), std::move(searched));
     if (comm.parallel())  // another rank evaluates those elements
         release_element_geometry(scene, [&](int block) { return scene.partition.owns(block); });
     scene.path = deck_load_path(deck);

@@ -180,6 +180,15 @@ std::vector<BodySide> sides_of(const io::Deck& deck, const Scene& scene, const s
 /// Full dofs of a coupling of pair p, in contact::LocalBlock::dofs order.
 std::vector<int> coupling_full_dofs(const PairModel& pair, const contact::Coupling& coupling);
 
+/// Whether contact coupling blocks keep no entry positions in the pattern
+/// (assembly/sparse_pattern.hpp): in 3D a coupling of two quadratic spans has 162
+/// dofs and 105 kB of positions (the candidate couplings of the crossed cylinders,
+/// 35k dofs, held 919 MB), so its entries are searched; a 2D one has 5 kB.
+inline bool coupling_blocks_searched(int dim)
+{
+    return dim == 3;
+}
+
 /// The load path of a deck: its loads, prescribed displacements (items with a
 /// non-zero value or an amplitude) and obstacle motions, each with its amplitude.
 LoadPath deck_load_path(const io::Deck& deck);

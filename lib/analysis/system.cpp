@@ -580,7 +580,7 @@ void SceneSystem::register_couplings(const std::vector<contact::PairEvaluation>&
     if (new_blocks.empty())
         return;
     const Index nnz_before = scene_.pattern->n_nonzeros();
-    const int first = scene_.pattern->extend(std::move(new_blocks));
+    const int first = scene_.pattern->extend(std::move(new_blocks), nullptr, coupling_blocks_searched(scene_.dim));
     for (std::size_t k = 0; k < owners.size(); ++k)
         scene_.pairs[owners[k].first].blocks.emplace(owners[k].second, first + static_cast<int>(k));
     if (context)

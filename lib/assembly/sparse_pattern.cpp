@@ -46,9 +46,25 @@ std::vector<std::vector<int>> color_blocks(const std::vector<std::vector<int>>& 
 }  // namespace
 
 SparsePattern::SparsePattern(const DofMap& dofs, std::vector<std::vector<int>> blocks, int n_searched)
-    : n_free_(dofs.n_free()), free_of_full_(dofs.free_of_full()), blocks_(std::move(blocks)),
-      n_searched_(std::min(blocks_.size(), static_cast<std::size_t>(std::max(n_searched, 0))))
+    : SparsePattern(dofs, std::move(blocks), std::vector<char>{}, std::max(n_searched, 0))
 {
+}
+
+SparsePattern::SparsePattern(const DofMap& dofs, std::vector<std::vector<int>> blocks, std::vector<char> searched)
+    : SparsePattern(dofs, std::move(blocks), std::move(searched), -1)
+{
+}
+
+SparsePattern::SparsePattern(const DofMap& dofs, std::vector<std::vector<int>> blocks, std::vector<char> searched,
+                             int n_searched)
+    : n_free_(dofs.n_free()), free_of_full_(dofs.free_of_full()), blocks_(std::move(blocks)),
+      searched_(std::move(searched))
+{
+    if (n_searched >= 0) {  // the first n_searched blocks
+        searched_.assign(blocks_.size(), 0);
+        std::fill_n(searched_.begin(), std::min(blocks_.size(), static_cast<std::size_t>(n_searched)), 1);
+    }
+    IGA_CHECK(searched_.size() == blocks_.size(), "SparsePattern: one searched flag per block");
     const int n_full = static_cast<int>(free_of_full_.size());
     block_free_.resize(blocks_.size());
     for (std::size_t b = 0; b < blocks_.size(); ++b) {
@@ -118,7 +134,9 @@ void SparsePattern::add_block_positions(std::size_t first_block)
         position_offset_[b + 1] =
             position_offset_[b] + (searched(static_cast<int>(b)) ? 0 : blocks_[b].size() * blocks_[b].size());
     positions_.resize(position_offset_.back(), -1);
-    for (std::size_t b = std::max(first_block, n_searched_); b < blocks_.size(); ++b) {
+    for (std::size_t b = first_block; b < blocks_.size(); ++b) {
+        if (searched(static_cast<int>(b)))
+            continue;
         const std::vector<int>& f = block_free_[b];
         const std::size_t n = f.size();
         int* pos = positions_.data() + position_offset_[b];
@@ -132,9 +150,10 @@ void SparsePattern::add_block_positions(std::size_t first_block)
     }
 }
 
-int SparsePattern::extend(std::vector<std::vector<int>> blocks, bool* entries_added)
+int SparsePattern::extend(std::vector<std::vector<int>> blocks, bool* entries_added, bool searched)
 {
     const std::size_t first_block = blocks_.size();
+    searched_.resize(first_block + blocks.size(), searched ? 1 : 0);
     const int n_full = static_cast<int>(free_of_full_.size());
     for (std::vector<int>& block : blocks) {
         std::vector<int> f;

@@ -26,10 +26,13 @@
 // 1.3 kB, a 2D quadratic span; 81 dofs: 26 kB, a 3D quadratic span: 210 MB for
 // 8000 spans, more than the tangent itself). Blocks added once only (the element
 // blocks under small kinematics, whose constant stiffness is assembled once) are
-// better left without: the constructor's first n_searched blocks keep no
-// positions, and add() finds each of their entries by a binary search in its
-// column, the search that precomputing does, so a single add costs the same and
-// gives the same sums in the same order. Blocks from extend() keep their positions.
+// better left without, and so are blocks too large to pay for theirs (a 3D contact
+// coupling of two quadratic spans: 162 dofs, 105 kB; the candidate couplings of two
+// crossed cylinders at 35k dofs held 919 MB of positions, more than the factor): a
+// searched block keeps no positions, and add() finds each of its entries by a
+// binary search in its column, the search that precomputing does, so the sums are
+// the same, in the same order. The constructor's first n_searched blocks, or those
+// flagged, are searched; extend() says for the blocks it adds.
 //
 // Parallel assembly: the blocks are greedily colored so that no two blocks of
 // one color share a free dof; for_each_block runs the colors one after the
@@ -70,6 +73,8 @@ public:
     /// blocks: full dof indices of each block (any order; a dof may repeat).
     /// Blocks [0, n_searched) keep no positions (see above).
     SparsePattern(const DofMap& dofs, std::vector<std::vector<int>> blocks, int n_searched = 0);
+    /// searched[b] != 0: block b keeps no positions (one flag per block).
+    SparsePattern(const DofMap& dofs, std::vector<std::vector<int>> blocks, std::vector<char> searched);
 
     int n_free() const { return n_free_; }
     int n_blocks() const { return static_cast<int>(blocks_.size()); }
@@ -79,7 +84,8 @@ public:
     /// Adds blocks after construction (see above); returns the index of the first
     /// new block. True in *entries_added when the structure grew (then matrices
     /// from make_matrix() before the call no longer match()).
-    int extend(std::vector<std::vector<int>> blocks, bool* entries_added = nullptr);
+    /// `searched`: the new blocks keep no positions (see above).
+    int extend(std::vector<std::vector<int>> blocks, bool* entries_added = nullptr, bool searched = false);
 
     /// n_free x n_free, compressed, every stored value zero.
     SparseMatrix make_matrix() const;
@@ -118,10 +124,13 @@ public:
     void for_each_block(const std::function<void(int block)>& kernel, const Execution& execution) const;
 
 private:
+    // searched: one flag per block, or (n_searched >= 0) the first n_searched blocks.
+    SparsePattern(const DofMap& dofs, std::vector<std::vector<int>> blocks, std::vector<char> searched,
+                  int n_searched);
     void add_block_positions(std::size_t first_block);
     /// Position of (row, column) in K.valuePtr() (both free and in the pattern).
     int search_position(int row, int column) const;
-    bool searched(int block) const { return static_cast<std::size_t>(block) < n_searched_; }
+    bool searched(int block) const { return searched_[static_cast<std::size_t>(block)] != 0; }
 
     int n_free_;
     std::vector<int> free_of_full_;            // copy of the DofMap table (n_full)
@@ -131,7 +140,7 @@ private:
     std::vector<int> inner_;                   // row indices, sorted within each column
     std::vector<std::size_t> position_offset_; // n_blocks + 1, into positions_
     std::vector<int> positions_;               // per block, n x n column-major, -1 = skipped
-    std::size_t n_searched_ = 0;               // blocks [0, n_searched_) keep no positions
+    std::vector<char> searched_;               // per block: keeps no positions
     std::vector<std::vector<int>> colors_;
 };
 

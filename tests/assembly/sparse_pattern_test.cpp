@@ -322,5 +322,45 @@ TEST(SparsePattern, SearchedPositionsGiveTheStoredSums)
         ASSERT_EQ(K_twice.valuePtr()[k], K_extended.valuePtr()[k]) << "entry " << k;
 }
 
+TEST(SparsePattern, FlaggedSearchedBlocksGiveTheStoredSums)
+{
+    // The scene's choice (analysis/scene.hpp): elements stored (finite strain), the
+    // contact couplings searched, also those that extend() adds later (3D).
+    const Scene scene;
+    std::mt19937 rng(seed + 5);
+    const std::vector<Matrix> locals = random_locals(scene.blocks, rng);
+    const std::size_t n_blocks = scene.blocks.size();
+    ASSERT_GE(n_blocks, 2u);
+    std::vector<char> flags(n_blocks, 0);
+    flags[n_blocks - 1] = 1;  // the contact block
+    const SparsePattern stored(scene.dofs, scene.blocks);
+    SparsePattern searched(scene.dofs, scene.blocks, flags);
+    ASSERT_TRUE(searched.matches(stored.make_matrix()));
+    SparseMatrix K_stored = stored.make_matrix(), K_searched = searched.make_matrix();
+    for (int b = 0; b < stored.n_blocks(); ++b) {
+        stored.add(b, locals[static_cast<std::size_t>(b)], K_stored);
+        searched.add(b, locals[static_cast<std::size_t>(b)], K_searched);
+    }
+    const std::vector<int> gp = {0, 3, 4};
+    const Matrix K_sub = random_locals({std::vector<int>(3)}, rng).front();
+    stored.add(static_cast<int>(n_blocks) - 1, gp, K_sub, K_stored);
+    searched.add(static_cast<int>(n_blocks) - 1, gp, K_sub, K_searched);
+    for (Index k = 0; k < K_stored.nonZeros(); ++k)
+        ASSERT_EQ(K_stored.valuePtr()[k], K_searched.valuePtr()[k]) << "entry " << k;
+
+    // A searched extension: the same sums as a stored one.
+    SparsePattern stored_extended(scene.dofs, scene.blocks);
+    stored_extended.extend({scene.blocks.back()});
+    searched.extend({scene.blocks.back()}, nullptr, true);
+    SparseMatrix A = stored_extended.make_matrix(), B = searched.make_matrix();
+    stored_extended.add(stored_extended.n_blocks() - 1, locals.back(), A);
+    searched.add(searched.n_blocks() - 1, locals.back(), B);
+    ASSERT_EQ(A.nonZeros(), B.nonZeros());
+    for (Index k = 0; k < A.nonZeros(); ++k)
+        ASSERT_EQ(A.valuePtr()[k], B.valuePtr()[k]) << "entry " << k;
+
+    EXPECT_THROW(SparsePattern(scene.dofs, scene.blocks, std::vector<char>(n_blocks + 1, 0)), iga::Error);
+}
+
 }  // namespace
 }  // namespace iga::assembly
