@@ -340,6 +340,7 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
             // Against a deformable master the anchor is a material point of the master: none
             // until the point first touches (gpts_friction.hpp).
             point.friction = FrictionHistory{gp.reference - start, 0.0, obstacle != nullptr};
+            point.tangential_multiplier = VecN::Zero(dim_);
             point.clear_response(dim_);
             committed_[c].push_back(std::move(point));
         }
@@ -355,7 +356,9 @@ void ContactPair::ContactPointState::clear_response(int d)
 {
     status = StickSlip::open;
     traction = VecN::Zero(d);
+    frame_traction = VecN::Zero(d);
     slip_increment = 0.0;
+    elastic_slip = 0.0;
 }
 
 void ContactPair::ContactPointState::record(const TangentialResponse& t)
@@ -363,7 +366,19 @@ void ContactPair::ContactPointState::record(const TangentialResponse& t)
     friction = t.next;
     status = t.status;
     traction = t.traction;
+    frame_traction = t.frame_traction;
     slip_increment = t.slip_increment;
+    elastic_slip = t.elastic_slip;
+}
+
+void ContactPair::commit()
+{
+    // Lost contact, lost traction: an open point starts its next touch from lambda_T = 0.
+    for (std::vector<ContactPointState>& points : trial_)
+        for (ContactPointState& point : points)
+            if (point.status == StickSlip::open)
+                point.tangential_multiplier.setZero();
+    committed_ = trial_;
 }
 
 FrictionState ContactPair::friction_state(const std::vector<ContactPointState>& points) const
@@ -374,12 +389,16 @@ FrictionState ContactPair::friction_state(const std::vector<ContactPointState>& 
     out.traction.resize(n_g, dim_);
     out.slip_increment.resize(n_g);
     out.slip.resize(n_g);
+    out.elastic_slip.resize(n_g);
+    out.frame_traction.resize(n_g, dim_);
     for (Index g = 0; g < n_g; ++g) {
         const ContactPointState& point = points[static_cast<std::size_t>(g)];
         out.status[static_cast<std::size_t>(g)] = point.status;
         out.traction.row(g) = point.traction.transpose();
         out.slip_increment(g) = point.slip_increment;
         out.slip(g) = point.friction.slip;
+        out.elastic_slip(g) = point.elastic_slip;
+        out.frame_traction.row(g) = point.frame_traction.transpose();
     }
     return out;
 }
@@ -387,6 +406,15 @@ FrictionState ContactPair::friction_state(const std::vector<ContactPointState>& 
 FrictionState ContactPair::converged_friction(int carrier) const
 {
     return friction_state(committed_[static_cast<std::size_t>(carrier)]);
+}
+
+RowMatrix ContactPair::tangential_multipliers(int carrier) const
+{
+    const std::vector<ContactPointState>& points = trial_[static_cast<std::size_t>(carrier)];
+    RowMatrix out(static_cast<Index>(points.size()), dim_);
+    for (std::size_t g = 0; g < points.size(); ++g)
+        out.row(static_cast<Index>(g)) = points[g].tangential_multiplier.transpose();
+    return out;
 }
 
 Vector ContactPair::multipliers(int carrier) const
@@ -454,9 +482,16 @@ void ContactPair::update_multipliers(const PairEvaluation& state)
         std::vector<ContactPointState>& points = trial_[c];
         IGA_CHECK(cr.pressure.size() == static_cast<Index>(points.size()),
                   "contact: the evaluation has another number of Gauss points than the pair");
-        // p = <lambda + eps g_N> where the point is ok, 0 elsewhere: the Uzawa step.
-        for (std::size_t g = 0; g < points.size(); ++g)
+        // p = <lambda + eps g_N> where the point is ok, 0 elsewhere: the Uzawa step;
+        // with friction lambda_T <- t_T, the traction returned to the cone of that p.
+        const bool friction = settings_.friction.active();
+        IGA_CHECK(!friction || cr.friction.frame_traction.rows() == cr.pressure.size(),
+                  "contact: a frictional evaluation reports each point's traction in its anchor's frame");
+        for (std::size_t g = 0; g < points.size(); ++g) {
             points[g].multiplier = cr.pressure(static_cast<Index>(g));
+            if (friction)
+                points[g].tangential_multiplier = cr.friction.frame_traction.row(static_cast<Index>(g)).transpose();
+        }
     }
 }
 
@@ -705,10 +740,12 @@ bool ContactPair::evaluate_on_obstacle(std::size_t ci, CarrierResult& cr, const 
             const VecN d_pressure = kr.pressure > 0.0 ? VecN(-settings_.penalty * foot.normal)
                                                       : VecN(VecN::Zero(d));
             const FrictionHistory& committed = committed_[ci][static_cast<std::size_t>(g)].friction;
-            const TangentialResponse t = coulomb_response(settings_.friction, committed, y, foot.normal,
-                                                          kr.pressure, d_pressure, foot.radius);
+            ContactPointState& point = trial_[ci][static_cast<std::size_t>(g)];
+            const TangentialResponse t = coulomb_response(settings_.friction, committed, point.tangential_multiplier,
+                                                          y, foot.normal, kr.pressure, d_pressure, foot.radius);
             add_tangential(kr, c.points[g].N, c.points[g].weight, t);
-            trial_[ci][static_cast<std::size_t>(g)].record(t);
+            point.record(t);
+            ev.max_elastic_slip = std::max(ev.max_elastic_slip, t.elastic_slip);
         }
         if (kr.pressure > 0.0) {
             ++ev.n_active;
@@ -785,9 +822,10 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr, const V
         cr.pressure(g) = kr.pressure;
         if (friction) {
             const TangentialResponse t = gpts_friction(kr, gp.N, W, foot, reference, settings_.friction,
-                                                       committed_[ci][g].friction, kernel_settings,
-                                                       sweep.need_tangent ? dW : Vector());
+                                                       committed_[ci][g].friction, points[g].tangential_multiplier,
+                                                       kernel_settings, sweep.need_tangent ? dW : Vector());
             points[g].record(t);
+            ev.max_elastic_slip = std::max(ev.max_elastic_slip, t.elastic_slip);
         }
         ++ev.n_active;
         ev.max_penetration = std::max(ev.max_penetration, foot.gap);

@@ -66,6 +66,11 @@
 // lambda <- p of an evaluation at a converged state. The multipliers are state
 // like the foot points: commit() keeps them, rollback() restores the committed
 // ones. set_penalty() changes eps (the safeguard that raises it); it is not rolled back.
+// With friction each point also carries a tangential multiplier lambda_T (a traction, in
+// the frame of its anchor: friction.hpp, gpts_friction.hpp), which shifts the trial
+// traction; update_multipliers() adopts the returned traction, lambda_T <- t_T
+// (docs/theory.md "Frictional augmented Lagrangian"). A point that is open at a committed
+// state carries no lambda_T forward: a traction it had does not survive losing contact.
 //
 // Both surfaces live in the same dimension d (2 or 3), else the constructor throws
 // iga::Error.
@@ -157,6 +162,8 @@ struct FrictionState {
     RowMatrix traction;             ///< n_g x d, t_T on the slave (tangential, force per area)
     Vector slip_increment;          ///< n_g, slip length since the last converged increment
     Vector slip;                    ///< n_g, accumulated slip length (with this increment's)
+    Vector elastic_slip;            ///< n_g, |t_T - lambda_T| / eps_T (0 where open)
+    RowMatrix frame_traction;       ///< n_g x d, t_T in the anchor's frame: what an Uzawa update adopts as lambda_T
 };
 
 /// Gauss point data of one carrying side, n_g points in element order.
@@ -196,6 +203,7 @@ struct PairEvaluation {
     long long projections = 0;
     long long projection_iterations = 0;
     double max_penetration = 0.0; ///< largest positive gap of an ok point, 0 if none
+    double max_elastic_slip = 0.0; ///< largest elastic slip |t_T - lambda_T| / eps_T (friction), 0 if none
     std::vector<CarrierResult> carriers;  ///< one per carrying side (2 for two_half_pass, else 1)
 };
 
@@ -235,7 +243,7 @@ public:
     /// Keeps the state of the last evaluate() (call it after a converged increment,
     /// whose final evaluation is the last one): foot points, multipliers, friction
     /// anchors and slip, and the tangential response of that increment.
-    void commit() { committed_ = trial_; }
+    void commit();
     /// Returns to the state of the last commit() (after a cutback).
     void rollback() { trial_ = committed_; }
     /// The friction state of carrier c at the last committed increment (what the
@@ -245,9 +253,13 @@ public:
     /// Uzawa update lambda_g <- <lambda_g + eps g_N,g> = p_g for every Gauss point,
     /// from `state`, an evaluation of this pair (all carriers, in order) at a
     /// converged state. Points that are not `ok` (far, off an end, at a kink) get 0.
+    /// With friction also lambda_T,g <- t_T,g (its frame_traction; 0 where open).
     void update_multipliers(const PairEvaluation& state);
     /// The multipliers in use on carrier c, n_gauss_points(c).
     Vector multipliers(int carrier) const;
+    /// The tangential multipliers in use on carrier c, n_gauss_points(c) x d, each in
+    /// its anchor's frame (zeros without friction or before any update).
+    RowMatrix tangential_multipliers(int carrier) const;
     /// Replaces eps_N (> 0, finite); the multipliers are kept.
     void set_penalty(double penalty);
 
@@ -302,12 +314,15 @@ private:
     struct ContactPointState {
         Foot foot;
         double multiplier = 0.0;   ///< lambda >= 0 in use (trial) or at the last commit
+        VecN tangential_multiplier; ///< lambda_T, d, in the anchor's frame; like `multiplier`
         FrictionHistory friction;  ///< committed: what evaluate() starts from; trial: what it leads to
         // The tangential response of the evaluation that made this state (the results
         // report a committed one): open and zeros where no friction kernel ran.
         StickSlip status = StickSlip::open;
         VecN traction;             ///< t_T on the slave, d
+        VecN frame_traction;       ///< t_T in the anchor's frame, d
         double slip_increment = 0.0;
+        double elastic_slip = 0.0;
 
         /// Clears the tangential response (before an evaluation; d the dimension).
         void clear_response(int d);
