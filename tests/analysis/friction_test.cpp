@@ -211,7 +211,7 @@ struct PushedBlock {
     double largest_slide = 0.0;  ///< max |u_x| over the pressed points: their slide from where they stuck
     double mean_slide = 0.0;     ///< sum W u_x
     int sticking = 0, pressed = 0;
-    int uzawa_updates = 0;       ///< over the run
+    int uzawa_updates = 0;       ///< over the run (the sum of /history/uzawa_updates)
 };
 
 PushedBlock push_block(const std::string& name, const std::string& contact_extra)
@@ -238,7 +238,8 @@ PushedBlock push_block(const std::string& name, const std::string& contact_extra
         out.largest_slide = std::max(out.largest_slide, std::abs(u_x));
         out.mean_slide += s.weight(g) * u_x;
     }
-    out.uzawa_updates = static_cast<int>(results.number("results", "uzawa_updates"));
+    for (const double updates : results.reals("history/uzawa_updates"))
+        out.uzawa_updates += static_cast<int>(updates);
     return out;
 }
 
@@ -246,8 +247,10 @@ PushedBlock push_block(const std::string& name, const std::string& contact_extra
 // it stood (mean push / eps_T = 3e-5, as in the test above). With the augmented
 // Lagrangian the tangential multipliers take over the stick tractions, and Uzawa updates
 // drive the slide of every sticking point below gap_tolerance: 1e-7, then 1e-9 with
-// more updates -- the constraint "a sticking point does not move", whatever eps_T.
-// Both hold the push with friction alone, to Newton's tolerance.
+// more updates (measured 7 and 23 in the last increment: the rate is slow on the
+// short-wave modes along the base, stiffer than eps_T, hence max_updates 50) -- the
+// constraint "a sticking point does not move", whatever eps_T. Both hold the push with
+// friction alone, to Newton's tolerance.
 TEST(FrictionAugmentedLagrangian, SticksWithTheSlideOfEveryPointBelowTheGapTolerance)
 {
     constexpr double push = 0.3, normal = 10.0, tangential_penalty = 1.0e4;
@@ -263,7 +266,7 @@ TEST(FrictionAugmentedLagrangian, SticksWithTheSlideOfEveryPointBelowTheGapToler
         const PushedBlock al = push_block(std::string("friction_al_push_") + text,
                                           std::string("    enforcement: augmented_lagrangian\n"
                                                       "    augmented_lagrangian: {gap_tolerance: ") +
-                                              text + "}\n");
+                                              text + ", max_updates: 50}\n");
         EXPECT_EQ(al.pressed, penalty.pressed);
         EXPECT_EQ(al.sticking, al.pressed) << "below mu N every pressed point sticks";
         EXPECT_TRUE(std::isfinite(al.largest_slide) && al.largest_slide <= tolerance)
