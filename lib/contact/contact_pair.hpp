@@ -355,7 +355,7 @@ private:
     bool evaluate_on_surface(std::size_t carrier, CarrierResult& cr, const Vector& multiplier, Sweep& sweep) const;
     void scatter(const KernelResult& kr, const Carrier& c, const GaussPoint& gp, const std::vector<int>& master_indices,
                  int master_element, Sweep& sweep) const;
-    /// The tangential state of carrier c's points as the results report it.
+    /// The tangential state of one carrier's points as the results report it.
     FrictionState friction_state(const std::vector<ContactPointState>& points) const;
     /// Friction against a deformable master: anchors each Gauss point at the foot of
     /// its reference position on the master's reference surface (constructor).

@@ -209,6 +209,7 @@ contact:
 struct PushedBlock {
     double friction_force = 0.0, normal_force = 0.0;
     double largest_slide = 0.0;  ///< max |u_x| over the pressed points: their slide from where they stuck
+    double largest_elastic_slip = -1.0;  ///< max of gauss_points/elastic_slip over them; -1: not written
     double mean_slide = 0.0;     ///< sum W u_x
     int sticking = 0, pressed = 0;
     int uzawa_updates = 0;       ///< over the run (the sum of /history/uzawa_updates)
@@ -229,9 +230,15 @@ PushedBlock push_block(const std::string& name, const std::string& contact_extra
     const SideState s = side_state(results, results.steps().back(), "block.v0");
     out.friction_force = s.friction_force.at(0);
     out.normal_force = s.normal_force;
+    const std::string points = "steps/" + results.steps().back() + "/contact/slide/block.v0/gauss_points/";
+    const std::vector<double> elastic_slip =
+        results.exists(points + "elastic_slip") ? results.reals(points + "elastic_slip") : std::vector<double>{};
     for (Index g = 0; g < s.pressure.size(); ++g) {
         if (!(s.pressure(g) > 0.0))
             continue;
+        if (!elastic_slip.empty())
+            out.largest_elastic_slip =
+                std::max(out.largest_elastic_slip, elastic_slip.at(static_cast<std::size_t>(g)));
         ++out.pressed;
         out.sticking += s.status[static_cast<std::size_t>(g)] == 1.0 ? 1 : 0;
         const double u_x = s.coordinates(g, 0) - s.reference(g, 0);
@@ -259,6 +266,7 @@ TEST(FrictionAugmentedLagrangian, SticksWithTheSlideOfEveryPointBelowTheGapToler
     EXPECT_GT(penalty.pressed, 20);
     EXPECT_NEAR(penalty.mean_slide, push / tangential_penalty, force_tolerance * normal / tangential_penalty);
     EXPECT_NEAR(penalty.friction_force, -push, force_tolerance * normal);
+    EXPECT_EQ(penalty.largest_elastic_slip, -1.0) << "elastic_slip is written with the augmented Lagrangian only";
 
     int last_updates = 0;
     for (const auto& [tolerance, text] : {std::pair{1e-7, "1.0e-7"}, std::pair{1e-9, "1.0e-9"}}) {
@@ -272,6 +280,10 @@ TEST(FrictionAugmentedLagrangian, SticksWithTheSlideOfEveryPointBelowTheGapToler
         EXPECT_TRUE(std::isfinite(al.largest_slide) && al.largest_slide <= tolerance)
             << "largest slide " << al.largest_slide;
         EXPECT_GT(penalty.largest_slide, 100.0 * tolerance) << "the penalty's slide, for scale";
+        // The reported elastic slip is what the loop held to the tolerance (anchored at
+        // rest, a sticking point's elastic slip is its slide, up to Newton's round-off).
+        EXPECT_TRUE(al.largest_elastic_slip >= 0.0 && al.largest_elastic_slip <= tolerance)
+            << "elastic slip " << al.largest_elastic_slip;
         EXPECT_NEAR(al.friction_force, -push, force_tolerance * normal);
         EXPECT_NEAR(al.normal_force, normal, force_tolerance * normal);
         EXPECT_GT(al.uzawa_updates, last_updates) << "a tighter tolerance takes more updates";
