@@ -209,8 +209,9 @@ int check_command(int argc, char** argv)
                       << "\n";
     for (const analysis::PairModel& pair : scene.pairs)
         if (const contact::FrictionLaw& law = pair.pair.settings().friction; law.active())
-            std::cout << fmt::format("# contact pair {}: Coulomb friction, mu = {:g}, tangential penalty {:g}\n",
-                                     pair.name, law.coefficient, law.tangential_penalty);
+            std::cout << fmt::format("# contact pair {}: Coulomb friction, mu = {:g}, tangential penalty {:g}{}\n",
+                                     pair.name, law.coefficient, law.tangential_penalty,
+                                     pair.augmented ? ", with tangential multipliers (augmented Lagrangian)" : "");
     std::cout.flush();  // the listing before the verdict, also when both streams go to one pipe
     std::cerr << deck_path << ": ok\n";
     return exit_ok;

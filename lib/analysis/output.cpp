@@ -217,6 +217,8 @@ void add_friction(io::ContactSideResult& r, const PairModel& model, int carrier_
         gp.status[static_cast<std::size_t>(g)] = static_cast<int>(state.status[static_cast<std::size_t>(g)]);
     gp.slip_increment = state.slip_increment;
     gp.slip = state.slip;
+    if (model.augmented)  // what the Uzawa loop held to gap_tolerance
+        gp.elastic_slip = state.elastic_slip;
     r.friction_force.assign(static_cast<std::size_t>(d), 0.0);
     for (Index g = 0; g < n_g; ++g)
         for (Index i = 0; i < d; ++i)

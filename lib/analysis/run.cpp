@@ -249,8 +249,9 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     for (const PairModel& p : scene.pairs)
         if (const contact::FrictionLaw& law = p.pair.settings().friction; law.active())
             context.log(Verbosity::verbose, fmt::format("  contact pair '{}': Coulomb friction, mu = {:g}, tangential "
-                                                        "penalty {:g}",
-                                                        p.name, law.coefficient, law.tangential_penalty));
+                                                        "penalty {:g}{}",
+                                                        p.name, law.coefficient, law.tangential_penalty,
+                                                        p.augmented ? ", with tangential multipliers" : ""));
 
     std::optional<io::StepData> last_step;
     std::vector<std::array<double, 4>> convergence;

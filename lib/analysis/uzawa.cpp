@@ -71,14 +71,20 @@ solver::OuterDecision UzawaLoop::after_solve(const Vector& u_free, double load_f
                                       : auto_gap_tolerance(model.rule.element_size, model.rule.modulus, max_pressure);
         model.gap_tolerance_used = tolerance;
         const double held = held_open_fraction(states[p], tolerance);
-        if (penetration > tolerance || held > held_open_tolerance) {
+        // With friction: how far pressed points still slide against the tangential penalty.
+        const double elastic_slip = states[p].max_elastic_slip;
+        if (penetration > tolerance || held > held_open_tolerance || elastic_slip > tolerance) {
             if (over.empty())
                 over = penetration > tolerance
                            ? fmt::format("contact pair '{}': max penetration {:.3g} above gap_tolerance {:.3g}",
                                          model.name, penetration, tolerance)
-                           : fmt::format("contact pair '{}': {:.3g} of its force acts across gaps open wider "
+                       : held > held_open_tolerance
+                           ? fmt::format("contact pair '{}': {:.3g} of its force acts across gaps open wider "
                                          "than gap_tolerance {:.3g} (multipliers of a contact that is opening)",
-                                         model.name, held, tolerance);
+                                         model.name, held, tolerance)
+                           : fmt::format("contact pair '{}': max elastic slip {:.3g} above gap_tolerance {:.3g} "
+                                         "(friction: tangential multipliers not yet converged)",
+                                         model.name, elastic_slip, tolerance);
             max_updates = std::max(max_updates, model.max_updates);
         }
     }

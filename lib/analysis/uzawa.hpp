@@ -8,12 +8,17 @@
 // force that acts across gaps open wider than gap_tolerance, which only multipliers
 // can carry there (p = <lambda + eps g_N> > 0 at g_N < 0: multipliers left from a
 // larger load, a contact being released; docs/deck.md "Load paths"):
-//  - every pair has g_max <= gap_tolerance and that share <= held_open_tolerance:
+//  - every pair has g_max <= gap_tolerance and that share <= held_open_tolerance, and
+//    a frictional pair also its largest elastic slip |t_T - lambda_T| / eps_T over its
+//    pressed points (contact::PairEvaluation::max_elastic_slip: at a sticking point the
+//    slide the tangential penalty still turns into traction, at a slipping one the
+//    change of its traction since the last update, over eps_T) <= gap_tolerance:
 //    accept the increment;
 //  - else, if max_updates updates were already made in this attempt: reject it (the
 //    load stepper cuts the increment back; multipliers are rolled back with it);
 //  - else update the multipliers of every augmented pair, lambda <- <lambda + eps g_N>
-//    (contact::ContactPair::update_multipliers), and solve again.
+//    and, with friction, lambda_T <- t_T (contact::ContactPair::update_multipliers), and
+//    solve again.
 // Safeguard: when a pair's g_max falls from one solve to the next at a rate
 // rho = g_max/g_max_previous that would not bring it within the tolerance in the
 // updates left (rho >= 1, or g_max rho^left > gap_tolerance, stalls() below), its

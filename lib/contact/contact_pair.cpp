@@ -125,15 +125,6 @@ std::string describe_point(int surface, int g, const VecN& xi, const VecN& x)
     return os.str();
 }
 
-/// Writes Gauss point g's tangential response into a carrier's friction state.
-void record_friction(FrictionState& state, int g, const TangentialResponse& t)
-{
-    state.status[static_cast<std::size_t>(g)] = t.status;
-    state.traction.row(g) = t.traction.transpose();
-    state.slip_increment(g) = t.slip_increment;
-    state.slip(g) = t.next.slip;
-}
-
 }  // namespace
 
 namespace {
@@ -337,37 +328,102 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
         }
         }
     }
-    trial_xi_.resize(carriers_.size());
-    multiplier_.resize(carriers_.size());
-    for (std::size_t c = 0; c < carriers_.size(); ++c) {
-        trial_xi_[c].assign(carriers_[c].points.size(), Foot{});
-        multiplier_[c] = Vector::Zero(static_cast<Index>(carriers_[c].points.size()));
-    }
-    committed_xi_ = trial_xi_;
-    committed_multiplier_ = multiplier_;
-    initial_overlap_ = multiplier_;  // zeros: no overclosure until set_initial_overlap()
     // Friction: every point anchored where it starts, in the frame of an obstacle
     // placed where it is at t = 0 (an amplitude may start away from zero).
-    committed_friction_.resize(carriers_.size());
-    converged_friction_.resize(carriers_.size());
+    committed_.resize(carriers_.size());
+    initial_overlap_.resize(carriers_.size());
     for (std::size_t c = 0; c < carriers_.size(); ++c) {
-        const Index n_g = static_cast<Index>(carriers_[c].points.size());
         const auto* obstacle = std::get_if<RigidObstacle>(&surfaces_[static_cast<std::size_t>(carriers_[c].master)]);
         const VecN start = obstacle ? obstacle->shift(0.0) : VecN(VecN::Zero(dim_));
-        // Against a deformable master the anchor is a material point of the master: none
-        // until the point first touches (gpts_friction.hpp).
-        for (const GaussPoint& gp : carriers_[c].points)
-            committed_friction_[c].push_back(FrictionHistory{gp.reference - start, 0.0, obstacle != nullptr});
-        FrictionState& state = converged_friction_[c];
-        state.status.assign(static_cast<std::size_t>(n_g), StickSlip::open);
-        state.traction = RowMatrix::Zero(n_g, dim_);
-        state.slip_increment = Vector::Zero(n_g);
-        state.slip = Vector::Zero(n_g);
+        for (const GaussPoint& gp : carriers_[c].points) {
+            ContactPointState point;
+            // Against a deformable master the anchor is a material point of the master: none
+            // until the point first touches (gpts_friction.hpp).
+            point.friction = FrictionHistory{gp.reference - start, 0.0, obstacle != nullptr};
+            point.tangential_multiplier = VecN::Zero(dim_);
+            point.clear_response(dim_);
+            committed_[c].push_back(std::move(point));
+        }
+        // Zeros: no overclosure until set_initial_overlap().
+        initial_overlap_[c] = Vector::Zero(static_cast<Index>(carriers_[c].points.size()));
     }
     if (settings_.friction.active())
         anchor_on_reference_masters();
-    trial_friction_ = committed_friction_;
-    trial_friction_state_ = converged_friction_;
+    trial_ = committed_;
+}
+
+void ContactPair::ContactPointState::clear_response(int d)
+{
+    status = StickSlip::open;
+    traction = VecN::Zero(d);
+    frame_traction = VecN::Zero(d);
+    slip_increment = 0.0;
+    elastic_slip = 0.0;
+}
+
+void ContactPair::ContactPointState::record(const TangentialResponse& t)
+{
+    friction = t.next;
+    status = t.status;
+    traction = t.traction;
+    frame_traction = t.frame_traction;
+    slip_increment = t.slip_increment;
+    elastic_slip = t.elastic_slip;
+}
+
+void ContactPair::commit()
+{
+    // Lost contact, lost traction: an open point starts its next touch from lambda_T = 0.
+    for (std::vector<ContactPointState>& points : trial_)
+        for (ContactPointState& point : points)
+            if (point.status == StickSlip::open)
+                point.tangential_multiplier.setZero();
+    committed_ = trial_;
+}
+
+FrictionState ContactPair::friction_state(const std::vector<ContactPointState>& points) const
+{
+    const Index n_g = static_cast<Index>(points.size());
+    FrictionState out;
+    out.status.resize(points.size());
+    out.traction.resize(n_g, dim_);
+    out.slip_increment.resize(n_g);
+    out.slip.resize(n_g);
+    out.elastic_slip.resize(n_g);
+    out.frame_traction.resize(n_g, dim_);
+    for (Index g = 0; g < n_g; ++g) {
+        const ContactPointState& point = points[static_cast<std::size_t>(g)];
+        out.status[static_cast<std::size_t>(g)] = point.status;
+        out.traction.row(g) = point.traction.transpose();
+        out.slip_increment(g) = point.slip_increment;
+        out.slip(g) = point.friction.slip;
+        out.elastic_slip(g) = point.elastic_slip;
+        out.frame_traction.row(g) = point.frame_traction.transpose();
+    }
+    return out;
+}
+
+FrictionState ContactPair::converged_friction(int carrier) const
+{
+    return friction_state(committed_[static_cast<std::size_t>(carrier)]);
+}
+
+RowMatrix ContactPair::tangential_multipliers(int carrier) const
+{
+    const std::vector<ContactPointState>& points = trial_[static_cast<std::size_t>(carrier)];
+    RowMatrix out(static_cast<Index>(points.size()), dim_);
+    for (std::size_t g = 0; g < points.size(); ++g)
+        out.row(static_cast<Index>(g)) = points[g].tangential_multiplier.transpose();
+    return out;
+}
+
+Vector ContactPair::multipliers(int carrier) const
+{
+    const std::vector<ContactPointState>& points = trial_[static_cast<std::size_t>(carrier)];
+    Vector out(static_cast<Index>(points.size()));
+    for (std::size_t g = 0; g < points.size(); ++g)
+        out(static_cast<Index>(g)) = points[g].multiplier;
+    return out;
 }
 
 void ContactPair::anchor_on_reference_masters()
@@ -392,7 +448,7 @@ void ContactPair::anchor_on_reference_masters()
                 project_on_master(c.master, view, c.points[g].reference, Foot{}, scratch, timing, failed);
             if (!failed && foot && foot->status == Projection::Status::ok &&
                 foot->gap >= -touching_tolerance * view.size)
-                committed_friction_[ci][g] = FrictionHistory{foot->point, 0.0, true};
+                committed_[ci][g].friction = FrictionHistory{foot->point, 0.0, true};
         }
     }
 }
@@ -423,10 +479,19 @@ void ContactPair::update_multipliers(const PairEvaluation& state)
               "contact: multipliers are updated from a complete evaluation of the same pair");
     for (std::size_t c = 0; c < carriers_.size(); ++c) {
         const CarrierResult& cr = state.carriers[c];
-        IGA_CHECK(cr.pressure.size() == multiplier_[c].size(),
+        std::vector<ContactPointState>& points = trial_[c];
+        IGA_CHECK(cr.pressure.size() == static_cast<Index>(points.size()),
                   "contact: the evaluation has another number of Gauss points than the pair");
-        // p = <lambda + eps g_N> where the point is ok, 0 elsewhere: the Uzawa step.
-        multiplier_[c] = cr.pressure;
+        // p = <lambda + eps g_N> where the point is ok, 0 elsewhere: the Uzawa step;
+        // with friction lambda_T <- t_T, the traction returned to the cone of that p.
+        const bool friction = settings_.friction.active();
+        IGA_CHECK(!friction || cr.friction.frame_traction.rows() == cr.pressure.size(),
+                  "contact: a frictional evaluation reports each point's traction in its anchor's frame");
+        for (std::size_t g = 0; g < points.size(); ++g) {
+            points[g].multiplier = cr.pressure(static_cast<Index>(g));
+            if (friction)
+                points[g].tangential_multiplier = cr.friction.frame_traction.row(static_cast<Index>(g)).transpose();
+        }
     }
 }
 
@@ -541,13 +606,15 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
     const double unreleased = releasing_ ? 1.0 - std::clamp(load_factor / release_end_, 0.0, 1.0) : 0.0;
     for (std::size_t ci = 0; ci < carriers_.size() && ev.ok; ++ci) {
         CarrierResult cr = carrier_kinematics(ci, current);
-        const Vector multiplier = multiplier_[ci] - settings_.penalty * unreleased * initial_overlap_[ci];
+        for (ContactPointState& point : trial_[ci])
+            point.clear_response(d);
+        const Vector multiplier = cr.multiplier - settings_.penalty * unreleased * initial_overlap_[ci];
         const bool ok = std::holds_alternative<RigidObstacle>(surfaces_[carriers_[ci].master])
                             ? evaluate_on_obstacle(ci, cr, multiplier, sweep)
                             : evaluate_on_surface(ci, cr, multiplier, sweep);
         if (!ok)
             break;
-        trial_friction_state_[ci] = cr.friction;
+        cr.friction = friction_state(trial_[ci]);
         ev.carriers.push_back(std::move(cr));
     }
     if (ctx) {
@@ -575,16 +642,10 @@ CarrierResult ContactPair::carrier_kinematics(std::size_t ci, const std::array<R
     cr.coordinates.resize(n_g, d);
     cr.gap = Vector::Constant(n_g, -search_distance_);
     cr.pressure = Vector::Zero(n_g);
-    cr.multiplier = multiplier_[ci];
+    cr.multiplier = multipliers(static_cast<int>(ci));
     cr.weight.resize(n_g);
     cr.stretch = Vector::Ones(n_g);
     cr.state.assign(n_g, PointState::far);
-    cr.friction.status.assign(static_cast<std::size_t>(n_g), StickSlip::open);
-    cr.friction.traction = RowMatrix::Zero(n_g, d);
-    cr.friction.slip_increment = Vector::Zero(n_g);
-    cr.friction.slip.resize(n_g);
-    for (int g = 0; g < n_g; ++g)
-        cr.friction.slip(g) = committed_friction_[ci][static_cast<std::size_t>(g)].slip;
     for (int g = 0; g < n_g; ++g) {
         const GaussPoint& gp = c.points[g];
         VecN x = VecN::Zero(d);
@@ -678,12 +739,13 @@ bool ContactPair::evaluate_on_obstacle(std::size_t ci, CarrierResult& cr, const 
             const VecN y = x - obstacle.shift(sweep.load_factor);
             const VecN d_pressure = kr.pressure > 0.0 ? VecN(-settings_.penalty * foot.normal)
                                                       : VecN(VecN::Zero(d));
-            const FrictionHistory& committed = committed_friction_[ci][static_cast<std::size_t>(g)];
-            const TangentialResponse t = coulomb_response(settings_.friction, committed, y, foot.normal,
-                                                          kr.pressure, d_pressure, foot.radius);
+            const FrictionHistory& committed = committed_[ci][static_cast<std::size_t>(g)].friction;
+            ContactPointState& point = trial_[ci][static_cast<std::size_t>(g)];
+            const TangentialResponse t = coulomb_response(settings_.friction, committed, point.tangential_multiplier,
+                                                          y, foot.normal, kr.pressure, d_pressure, foot.radius);
             add_tangential(kr, c.points[g].N, c.points[g].weight, t);
-            trial_friction_[ci][static_cast<std::size_t>(g)] = t.next;
-            record_friction(cr.friction, g, t);
+            point.record(t);
+            ev.max_elastic_slip = std::max(ev.max_elastic_slip, t.elastic_slip);
         }
         if (kr.pressure > 0.0) {
             ++ev.n_active;
@@ -710,9 +772,12 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr, const V
     sweep.search_time.stop();
     const bool friction = settings_.friction.active();
     // Against a deformable master a point is unanchored until it finds a foot.
+    std::vector<ContactPointState>& points = trial_[ci];
     if (friction)
-        for (int g = 0; g < n_g; ++g)
-            trial_friction_[ci][g].anchored = false;
+        for (int g = 0; g < n_g; ++g) {
+            points[g].friction = committed_[ci][g].friction;
+            points[g].friction.anchored = false;
+        }
     if (!may_touch)  // the slave side's hull misses every inflated master span box
         return true;
     KernelSettings kernel_settings = sweep.kernel_base;
@@ -723,13 +788,13 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr, const V
         const GaussPoint& gp = c.points[g];
         const VecN x = cr.coordinates.row(g).transpose();
         bool failed = false;
-        std::optional<Projection> best = project_on_master(c.master, view, x, trial_xi_[ci][g], ev, timing, failed);
+        std::optional<Projection> best = project_on_master(c.master, view, x, points[g].foot, ev, timing, failed);
         if (failed)
             return sweep.fail("contact: closest-point projection failed at " + describe_point(c.slave, g, gp.xi, x));
         if (!best)
             continue;
         const Projection& proj = *best;
-        trial_xi_[ci][g] = Foot{proj.xi, proj.element};
+        points[g].foot = Foot{proj.xi, proj.element};
         cr.gap(g) = proj.gap;
         if (proj.status != Projection::Status::ok) {
             cr.state[g] = proj.status == Projection::Status::off_end ? PointState::off_end : PointState::at_kink;
@@ -742,7 +807,7 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr, const V
         const MasterReference reference = friction ? master_reference(c.master, proj.basis) : MasterReference{};
         if (!(kernel_settings.multiplier + kernel_settings.penalty * foot.gap > 0.0)) {
             if (friction)
-                trial_friction_[ci][g] = open_history(committed_friction_[ci][g], reference);
+                points[g].friction = open_history(committed_[ci][g].friction, reference);
             continue;
         }
         Vector dW;
@@ -757,10 +822,10 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr, const V
         cr.pressure(g) = kr.pressure;
         if (friction) {
             const TangentialResponse t = gpts_friction(kr, gp.N, W, foot, reference, settings_.friction,
-                                                       committed_friction_[ci][g], kernel_settings,
-                                                       sweep.need_tangent ? dW : Vector());
-            trial_friction_[ci][g] = t.next;
-            record_friction(cr.friction, g, t);
+                                                       committed_[ci][g].friction, points[g].tangential_multiplier,
+                                                       kernel_settings, sweep.need_tangent ? dW : Vector());
+            points[g].record(t);
+            ev.max_elastic_slip = std::max(ev.max_elastic_slip, t.elastic_slip);
         }
         ++ev.n_active;
         ev.max_penetration = std::max(ev.max_penetration, foot.gap);

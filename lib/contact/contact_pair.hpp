@@ -50,11 +50,13 @@
 // point lies in the normal fan of the crease between them (at_kink, inactive, as
 // at an interior C0 knot of one patch). off_end only at the surface's own boundary.
 //
-// Per-Gauss-point state: each point carries a committed and a trial state -- its
-// last foot point (warm start), its multiplier and its friction history (anchor,
-// accumulated slip: friction.hpp's FrictionHistory) -- read from the committed one and
-// written to the trial one by evaluate(); commit() keeps the trial state (call it after
-// a converged increment), rollback() returns to the last committed one (after a cutback).
+// Per-Gauss-point state (ContactPointState): each point carries a committed and a
+// trial state -- its last foot point (warm start), its multipliers and its friction
+// history (anchor, accumulated slip: friction.hpp's FrictionHistory), and the tangential
+// response of the evaluation that made it. evaluate() reads the committed history and
+// the trial multipliers (those in use in the current attempt) and writes the trial foot,
+// history and response; commit() keeps the trial state (call it after a converged
+// increment), rollback() returns to the last committed one (after a cutback).
 // Because of this cache, evaluate() is const but not thread-safe on one pair.
 //
 // Augmented Lagrangian (docs/theory.md "Augmented Lagrangian"): every Gauss point
@@ -64,6 +66,11 @@
 // lambda <- p of an evaluation at a converged state. The multipliers are state
 // like the foot points: commit() keeps them, rollback() restores the committed
 // ones. set_penalty() changes eps (the safeguard that raises it); it is not rolled back.
+// With friction each point also carries a tangential multiplier lambda_T (a traction, in
+// the frame of its anchor: friction.hpp, gpts_friction.hpp), which shifts the trial
+// traction; update_multipliers() adopts the returned traction, lambda_T <- t_T
+// (docs/theory.md "Frictional augmented Lagrangian"). A point that is open at a committed
+// state carries no lambda_T forward: a traction it had does not survive losing contact.
 //
 // Both surfaces live in the same dimension d (2 or 3), else the constructor throws
 // iga::Error.
@@ -155,6 +162,8 @@ struct FrictionState {
     RowMatrix traction;             ///< n_g x d, t_T on the slave (tangential, force per area)
     Vector slip_increment;          ///< n_g, slip length since the last converged increment
     Vector slip;                    ///< n_g, accumulated slip length (with this increment's)
+    Vector elastic_slip;            ///< n_g, |t_T - lambda_T| / eps_T (0 where open)
+    RowMatrix frame_traction;       ///< n_g x d, t_T in the anchor's frame: what an Uzawa update adopts as lambda_T
 };
 
 /// Gauss point data of one carrying side, n_g points in element order.
@@ -194,6 +203,7 @@ struct PairEvaluation {
     long long projections = 0;
     long long projection_iterations = 0;
     double max_penetration = 0.0; ///< largest positive gap of an ok point, 0 if none
+    double max_elastic_slip = 0.0; ///< largest elastic slip |t_T - lambda_T| / eps_T (friction), 0 if none
     std::vector<CarrierResult> carriers;  ///< one per carrying side (2 for two_half_pass, else 1)
 };
 
@@ -232,33 +242,24 @@ public:
 
     /// Keeps the state of the last evaluate() (call it after a converged increment,
     /// whose final evaluation is the last one): foot points, multipliers, friction
-    /// anchors and slip, and the friction state of that increment.
-    void commit()
-    {
-        committed_xi_ = trial_xi_;
-        committed_multiplier_ = multiplier_;
-        committed_friction_ = trial_friction_;
-        converged_friction_ = trial_friction_state_;
-    }
-    void rollback()
-    {
-        trial_xi_ = committed_xi_;
-        multiplier_ = committed_multiplier_;
-        trial_friction_ = committed_friction_;
-    }
+    /// anchors and slip, and the tangential response of that increment.
+    void commit();
+    /// Returns to the state of the last commit() (after a cutback).
+    void rollback() { trial_ = committed_; }
     /// The friction state of carrier c at the last committed increment (what the
     /// results report; an evaluation after the commit measures slip from there).
-    const FrictionState& converged_friction(int carrier) const
-    {
-        return converged_friction_[static_cast<std::size_t>(carrier)];
-    }
+    FrictionState converged_friction(int carrier) const;
 
     /// Uzawa update lambda_g <- <lambda_g + eps g_N,g> = p_g for every Gauss point,
     /// from `state`, an evaluation of this pair (all carriers, in order) at a
     /// converged state. Points that are not `ok` (far, off an end, at a kink) get 0.
+    /// With friction also lambda_T,g <- t_T,g (its frame_traction; 0 where open).
     void update_multipliers(const PairEvaluation& state);
-    /// The multipliers of carrier c, n_gauss_points(c).
-    const Vector& multipliers(int carrier) const { return multiplier_[static_cast<std::size_t>(carrier)]; }
+    /// The multipliers in use on carrier c, n_gauss_points(c).
+    Vector multipliers(int carrier) const;
+    /// The tangential multipliers in use on carrier c, n_gauss_points(c) x d, each in
+    /// its anchor's frame (zeros without friction or before any update).
+    RowMatrix tangential_multipliers(int carrier) const;
     /// Replaces eps_N (> 0, finite); the multipliers are kept.
     void set_penalty(double penalty);
 
@@ -309,18 +310,29 @@ private:
         VecN xi;
         int element = -1;          ///< -1: none yet
     };
-    mutable std::vector<std::vector<Foot>> trial_xi_;
-    std::vector<std::vector<Foot>> committed_xi_;
-    std::vector<Vector> multiplier_;            ///< per carrier, n_g: lambda >= 0 in use
-    std::vector<Vector> committed_multiplier_;  ///< per carrier: at the last commit()
+    /// The state of one Gauss point (see the header paragraph).
+    struct ContactPointState {
+        Foot foot;
+        double multiplier = 0.0;   ///< lambda >= 0 in use (trial) or at the last commit
+        VecN tangential_multiplier; ///< lambda_T, d, in the anchor's frame; like `multiplier`
+        FrictionHistory friction;  ///< committed: what evaluate() starts from; trial: what it leads to
+        // The tangential response of the evaluation that made this state (the results
+        // report a committed one): open and zeros where no friction kernel ran.
+        StickSlip status = StickSlip::open;
+        VecN traction;             ///< t_T on the slave, d
+        VecN frame_traction;       ///< t_T in the anchor's frame, d
+        double slip_increment = 0.0;
+        double elastic_slip = 0.0;
+
+        /// Clears the tangential response (before an evaluation; d the dimension).
+        void clear_response(int d);
+        /// Keeps a friction kernel's response: the history it leads to and what it found.
+        void record(const TangentialResponse& t);
+    };
+    std::vector<std::vector<ContactPointState>> committed_;  ///< per carrier, n_g
+    mutable std::vector<std::vector<ContactPointState>> trial_;
     std::vector<Vector> initial_overlap_;       ///< per carrier, n_g: g_0 >= 0, released up to release_end_
     double release_end_ = 1.0;                  ///< load factor by which the initial overlap is released
-    /// Friction history per carrier and Gauss point: at the last commit, and of the
-    /// last evaluation (mutable, like trial_xi_).
-    std::vector<std::vector<FrictionHistory>> committed_friction_;
-    mutable std::vector<std::vector<FrictionHistory>> trial_friction_;
-    mutable std::vector<FrictionState> trial_friction_state_;
-    std::vector<FrictionState> converged_friction_;
     bool releasing_ = false;                    ///< release_overlap() called
 
     /// A master surface's pieces at given control points, with their element searches.
@@ -343,6 +355,8 @@ private:
     bool evaluate_on_surface(std::size_t carrier, CarrierResult& cr, const Vector& multiplier, Sweep& sweep) const;
     void scatter(const KernelResult& kr, const Carrier& c, const GaussPoint& gp, const std::vector<int>& master_indices,
                  int master_element, Sweep& sweep) const;
+    /// The tangential state of one carrier's points as the results report it.
+    FrictionState friction_state(const std::vector<ContactPointState>& points) const;
     /// Friction against a deformable master: anchors each Gauss point at the foot of
     /// its reference position on the master's reference surface (constructor).
     void anchor_on_reference_masters();

@@ -8,32 +8,36 @@
 
 namespace iga::contact {
 
-TangentialResponse coulomb_response(const FrictionLaw& law, const FrictionHistory& committed, const VecN& y,
-                                    const VecN& normal, double pressure, const VecN& d_pressure,
+TangentialResponse coulomb_response(const FrictionLaw& law, const FrictionHistory& committed, const VecN& multiplier,
+                                    const VecN& y, const VecN& normal, double pressure, const VecN& d_pressure,
                                     double normal_radius)
 {
     const Index d = y.size();
-    IGA_CHECK(committed.anchor.size() == d && normal.size() == d && d_pressure.size() == d,
-              "friction: anchor, normal and dp/dy need the point's dimension");
+    IGA_CHECK(committed.anchor.size() == d && multiplier.size() == d && normal.size() == d && d_pressure.size() == d,
+              "friction: anchor, multiplier, normal and dp/dy need the point's dimension");
     TangentialResponse out;
     out.traction = VecN::Zero(d);
     out.d_traction = Matrix::Zero(d, d);
+    out.frame_traction = VecN::Zero(d);
     out.next = committed;
     if (!(pressure > 0.0) || !law.active()) {
         out.next.anchor = y;  // open: it will stick where it touches
         return out;
     }
+    const double eps = law.tangential_penalty;
     const Matrix P = Matrix::Identity(d, d) - normal * normal.transpose();
-    const VecN w = y - committed.anchor;
+    // The multiplier shifts the anchor: s = P lambda_T - eps P (y - a) = -eps P (y - a - lambda_T / eps).
+    const VecN w = y - committed.anchor - multiplier / eps;
     const VecN gt = P * w;
     Matrix G = P;
     if (std::isfinite(normal_radius))
         G -= (normal.dot(w) * P + normal * gt.transpose()) / normal_radius;
-    const double eps = law.tangential_penalty;
     out = coulomb_return_map(law, -eps * gt, -eps * G, pressure, d_pressure);
     out.next = committed;
+    out.frame_traction = out.traction;
+    out.elastic_slip = (out.traction - P * multiplier).norm() / eps;
     if (out.status == StickSlip::slip) {
-        out.next.anchor = y + out.traction / eps;  // where the traction is reproduced
+        out.next.anchor = y + (out.traction - multiplier) / eps;  // where the traction is reproduced
         out.next.slip = committed.slip + out.slip_increment;
     }
     return out;

@@ -18,7 +18,16 @@
 // t_T / eps_T), sticking points keep their anchor. The force on the slave is
 // +W N_a t_T, so the slave residual gains r_a = -W N_a t_T.
 //
-// Linearization in y (the slave point): with w = y - anchor, rho the distance over
+// Augmented Lagrangian (docs/theory.md "Frictional augmented Lagrangian"): a tangential
+// multiplier lambda_T (a traction, in the anchor's frame; zero: the penalty law), held
+// fixed while Newton solves, adds to the trial, s = P lambda_T - eps_T P (y - anchor):
+// the anchor shifted by lambda_T / eps_T, so everything below holds with w = y - anchor
+// - lambda_T / eps_T. The elastic slip |t_T - P lambda_T| / eps_T is the slide the
+// penalty still turns into traction; an Uzawa update adopts the returned traction,
+// lambda_T <- t_T (frame_traction), and a slipping point's anchor then reproduces
+// t_T with lambda_T kept: anchor = y + (t_T - lambda_T) / eps_T.
+//
+// Linearization in y (the slave point): with w = y - anchor (- lambda_T / eps_T), rho the distance over
 // which the normal turns (dn/dy = P / rho; infinite for a plane),
 //   G = d(P w)/dy = P - ((n . w) P + n (P w)^T) / rho,
 //   stick: dt_T/dy = -eps_T G,
@@ -53,6 +62,8 @@ struct TangentialResponse {
     Matrix d_traction;           ///< dt_T/dz, d x m: z = y (m = d) against a rigid obstacle, the kernel's dofs otherwise
     FrictionHistory next;        ///< the history if this state is committed
     double slip_increment = 0.0; ///< slip length since the committed state
+    VecN frame_traction;         ///< t_T in the anchor's frame, d: the tangential multiplier an Uzawa update adopts
+    double elastic_slip = 0.0;   ///< |t_T - lambda_T| / eps_T (lambda_T in space): 0 where no friction acts
 };
 
 /// The return map alone: the trial traction s (tangential, d) with ds/dz (d x m),
@@ -62,9 +73,11 @@ TangentialResponse coulomb_return_map(const FrictionLaw& law, const VecN& trial,
                                       double pressure, const Vector& d_pressure);
 
 /// Coulomb's law at the slave point y (master frame) with outward normal n of
-/// the master, contact pressure p >= 0 and its derivative dp/dy (d).
-TangentialResponse coulomb_response(const FrictionLaw& law, const FrictionHistory& committed, const VecN& y,
-                                    const VecN& normal, double pressure, const VecN& d_pressure,
+/// the master, contact pressure p >= 0 and its derivative dp/dy (d), and the
+/// tangential multiplier lambda_T (d, in space: the obstacle's frame only translates;
+/// zeros for the penalty law).
+TangentialResponse coulomb_response(const FrictionLaw& law, const FrictionHistory& committed, const VecN& multiplier,
+                                    const VecN& y, const VecN& normal, double pressure, const VecN& d_pressure,
                                     double normal_radius = std::numeric_limits<double>::infinity());
 
 /// An orthonormal tangent basis (d x (d - 1)) of the plane normal to n: in 2D

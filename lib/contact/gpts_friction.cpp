@@ -27,8 +27,8 @@ FrictionHistory open_history(const FrictionHistory& committed, const MasterRefer
 
 TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W, const MasterFoot& master,
                                  const MasterReference& reference, const FrictionLaw& law,
-                                 const FrictionHistory& committed, const KernelSettings& settings,
-                                 const Vector& dW)
+                                 const FrictionHistory& committed, const VecN& multiplier,
+                                 const KernelSettings& settings, const Vector& dW)
 {
     const Index d = master.normal.size();
     const Index q = d - 1;
@@ -40,9 +40,11 @@ TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W
                   reference.tangents.rows() == d && reference.tangents.cols() == q &&
                   reference.second.cols() == q * (q + 1) / 2,
               "friction: a deformable master needs its current and reference derivatives at the foot");
+    IGA_CHECK(multiplier.size() == d, "friction: the tangential multiplier needs the point's dimension");
     TangentialResponse out;
     out.traction = VecN::Zero(d);
     out.d_traction = Matrix::Zero(d, n_dofs);
+    out.frame_traction = VecN::Zero(d);
     if (!(result.pressure > 0.0) || !law.active()) {
         out.next = open_history(committed, reference);
         return out;
@@ -55,12 +57,14 @@ TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W
     const FootVariation v = foot_variation(N, master);
     IGA_CHECK(v.ok, "friction: the foot point is not a distance minimum (the normal kernel reports it first)");
 
-    // c = M^-1 G^T (A - Xbar): the anchor's offset in the foot's reference tangent frame.
+    // c = M^-1 G^T (A + Lambda / eps_T - Xbar): the anchor's offset in the foot's
+    // reference tangent frame, shifted by the multiplier.
+    const double eps_T = law.tangential_penalty;
     const Matrix& G = reference.tangents;
     const Matrix& a = master.tangents;
     const Matrix M = G.transpose() * G;
     const Eigen::LLT<Matrix> M_llt(M);
-    const VecN offset = committed.anchor - reference.point;
+    const VecN offset = committed.anchor - reference.point + multiplier / eps_T;
     const Vector c = M_llt.solve(G.transpose() * offset);
     // C = dc/dxibar, column ga: -e_ga + M^-1 (X,al ga . offset - dM/dxi^ga c).
     Matrix C(q, q);
@@ -81,7 +85,6 @@ TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W
     for (Index ga = 0; ga < q; ++ga)
         for (Index al = 0; al < q; ++al)
             Xc.col(ga) += master.second.col(packed(al, ga, q)) * c(al);
-    const double eps_T = law.tangential_penalty;
     Matrix d_trial = eps_T * (Xc + a * C) * v.D.transpose();
     for (Index b = 0; b < n_m; ++b)
         d_trial.block(0, (n_s + b) * d, d, d).diagonal().array() += eps_T * master.dR.row(b).dot(c);
@@ -89,9 +92,13 @@ TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W
 
     out = coulomb_return_map(law, eps_T * a * c, d_trial, result.pressure, d_pressure);
     out.next = committed;
+    // t_T pulled back to the master's reference space (F_s of it is t_T again).
+    const Eigen::LLT<Matrix> m_llt(master.metric);
+    out.frame_traction = G * m_llt.solve(a.transpose() * out.traction);
+    // lambda_T = F_s Lambda = a M^-1 G^T Lambda in space.
+    out.elastic_slip = (out.traction - a * M_llt.solve(G.transpose() * multiplier)).norm() / eps_T;
     if (out.status == StickSlip::slip) {  // move the anchor to reproduce the traction
-        const Eigen::LLT<Matrix> m_llt(master.metric);
-        out.next.anchor = reference.point + G * m_llt.solve(a.transpose() * out.traction) / eps_T;
+        out.next.anchor = reference.point + (out.frame_traction - multiplier) / eps_T;
         out.next.slip = committed.slip + out.slip_increment;
     }
 

@@ -20,7 +20,12 @@
 //   C = dc/dxibar:  C_ga = -e_ga + M^-1 (X,al ga . (A - Xbar) - dM/dxi^ga c),
 // dp/du = -eps_N Nn (p > 0), and the master rows' foot moving: W t_T (R_b,al D_al)^T.
 // The anchor of a converged slip state is moved so that the traction is
-// reproduced: A = Xbar + G m^-1 a^T t_T / eps_T. An open point has no anchor: where
+// reproduced: A = Xbar + G m^-1 a^T t_T / eps_T. The augmented Lagrangian's tangential
+// multiplier Lambda is kept in the same frame, a vector of the master's reference space
+// with F_s Lambda = lambda_T: it shifts the anchor, c = M^-1 G^T (A + Lambda / eps_T - Xbar),
+// and changes nothing else above (Lambda is fixed within Newton). An Uzawa update adopts
+// Lambda <- G m^-1 a^T t_T (frame_traction), and a slipping anchor then reproduces t_T
+// with Lambda kept: A = Xbar + (G m^-1 a^T t_T - Lambda) / eps_T. An open point has no anchor: where
 // it will touch is not its foot while open (on a curved master the closest point moves
 // as the gap closes, and anchoring there would load two identical cylinders pressed
 // together with tangential tractions). In the increment in which it first presses it
@@ -43,12 +48,13 @@ struct MasterReference {
 /// Adds the tangential traction of a slave Gauss point against a deformable
 /// master foot (gpts_kernel's `master`, with `second` filled) to `result`, the
 /// normal kernel's result at the same point (its pressure is used); rows as
-/// settings.master_rows, dW as in gpts_kernel. Returns the response (status,
-/// traction, slip increment, the history to commit).
+/// settings.master_rows, dW as in gpts_kernel; `multiplier` is the tangential
+/// multiplier Lambda (d, master reference space; zeros for the penalty law). Returns
+/// the response (status, traction, slip increment, the history to commit).
 TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W, const MasterFoot& master,
                                  const MasterReference& reference, const FrictionLaw& law,
-                                 const FrictionHistory& committed, const KernelSettings& settings,
-                                 const Vector& dW = Vector());
+                                 const FrictionHistory& committed, const VecN& multiplier,
+                                 const KernelSettings& settings, const Vector& dW = Vector());
 
 /// The history of a point that does not press (open): no anchor; it will stick
 /// where it touches (its slip is kept).

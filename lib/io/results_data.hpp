@@ -57,6 +57,7 @@ struct GaussPointData {
     std::vector<int> status;
     Vector slip_increment;
     Vector slip;
+    Vector elastic_slip;              ///< n_g, |t_T - lambda_T| / eps_T (augmented Lagrangian; written when non-empty)
     /// Surfaces of several patch sides: n_g, the index into ContactSideResult::patch_sides
     /// of each Gauss point's patch side (gauss_points/patch, int); empty otherwise.
     std::vector<int> patch;

@@ -141,6 +141,8 @@ void write_side(hid_t pair, const ContactSideResult& side)
         h5::write_dataset(gauss.id(), "status", std::span<const int>(gp.status));
         h5::write_dataset(gauss.id(), "slip_increment", gp.slip_increment);
         h5::write_dataset(gauss.id(), "slip", gp.slip);
+        if (gp.elastic_slip.size() > 0)
+            h5::write_dataset(gauss.id(), "elastic_slip", gp.elastic_slip);
     }
     if (!side.patch_sides.empty()) {
         IGA_CHECK(gp.patch.size() == static_cast<std::size_t>(gp.gap.size()),

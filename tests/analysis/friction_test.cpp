@@ -176,6 +176,153 @@ steps: {count: 2}
     (void)penalty;
 }
 
+// ---- frictional augmented Lagrangian (docs/theory.md "Frictional augmented Lagrangian") ----
+
+/// A block (E = 1000, nu = 0: the press does not spread its base) pressed onto a rigid
+/// floor by 10 over the pseudo-time [0, 1], then pushed sideways by 0.3 < mu N = 3 over
+/// [1, 2], with eps_T = 1e4: the tangential penalty alone lets a sticking point slide
+/// t_T / eps_T ~ 3e-5 (the block's shear, ~1e-4, is of the same order). `contact_extra`
+/// ends the contact pair (enforcement and its keys).
+std::string press_then_push_deck(const std::string& contact_extra)
+{
+    return R"(format: 1
+analysis: {dimension: 2, plane: strain, kinematics: small}
+materials:
+  - {name: solid, model: linear_elastic, E: 1000.0, nu: 0.0}
+bodies:
+  - name: block
+    material: solid
+    shape: {type: rectangle, corner: [0.0, 0.0], size: [1.0, 0.25]}
+    refine: {elevate: [1, 1], spans: [8, 2]}
+  - name: floor
+    rigid: {plane: {point: [0.0, 0.0], normal: [0.0, 1.0]}}
+loads:
+  - {body: block, side: v1, force: [0.0, -10.0], amplitude: [[0, 0], [1, 1], [2, 1]]}
+  - {body: block, side: v1, force: [0.3, 0.0], amplitude: [[0, 0], [1, 0], [2, 1]]}
+contact:
+  - name: slide
+    between: [block.v0, floor]
+    penalty: 1.0e6
+    friction: {coefficient: 0.3, tangential_penalty: 1.0e4}
+)" + contact_extra + "steps: {count: 4}\n";
+}
+
+struct PushedBlock {
+    double friction_force = 0.0, normal_force = 0.0;
+    double largest_slide = 0.0;  ///< max |u_x| over the pressed points: their slide from where they stuck
+    double largest_elastic_slip = -1.0;  ///< max of gauss_points/elastic_slip over them; -1: not written
+    double mean_slide = 0.0;     ///< sum W u_x
+    int sticking = 0, pressed = 0;
+    int uzawa_updates = 0;       ///< over the run (the sum of /history/uzawa_updates)
+};
+
+PushedBlock push_block(const std::string& name, const std::string& contact_extra)
+{
+    const auto dir = scratch_dir(name);
+    const auto deck = dir / "push.yaml";
+    std::ofstream(deck) << press_then_push_deck(contact_extra);
+    const auto file = dir / "push.h5";
+    const auto outcome = run_deck(deck.string(), {}, file);
+    EXPECT_EQ(outcome.status, "completed") << outcome.message;
+    PushedBlock out;
+    if (outcome.status != "completed")
+        return out;
+    const Results results(file);
+    const SideState s = side_state(results, results.steps().back(), "block.v0");
+    out.friction_force = s.friction_force.at(0);
+    out.normal_force = s.normal_force;
+    const std::string points = "steps/" + results.steps().back() + "/contact/slide/block.v0/gauss_points/";
+    const std::vector<double> elastic_slip =
+        results.exists(points + "elastic_slip") ? results.reals(points + "elastic_slip") : std::vector<double>{};
+    for (Index g = 0; g < s.pressure.size(); ++g) {
+        if (!(s.pressure(g) > 0.0))
+            continue;
+        if (!elastic_slip.empty())
+            out.largest_elastic_slip =
+                std::max(out.largest_elastic_slip, elastic_slip.at(static_cast<std::size_t>(g)));
+        ++out.pressed;
+        out.sticking += s.status[static_cast<std::size_t>(g)] == 1.0 ? 1 : 0;
+        const double u_x = s.coordinates(g, 0) - s.reference(g, 0);
+        out.largest_slide = std::max(out.largest_slide, std::abs(u_x));
+        out.mean_slide += s.weight(g) * u_x;
+    }
+    for (const double updates : results.reals("history/uzawa_updates"))
+        out.uzawa_updates += static_cast<int>(updates);
+    return out;
+}
+
+// With the penalty alone every pressed point sticks a slide t_T / eps_T away from where
+// it stood (mean push / eps_T = 3e-5, as in the test above). With the augmented
+// Lagrangian the tangential multipliers take over the stick tractions, and Uzawa updates
+// drive the slide of every sticking point below gap_tolerance: 1e-7, then 1e-9 with
+// more updates (measured 7 and 23 in the last increment: the rate is slow on the
+// short-wave modes along the base, stiffer than eps_T, hence max_updates 50) -- the
+// constraint "a sticking point does not move", whatever eps_T. Both hold the push with
+// friction alone, to Newton's tolerance.
+TEST(FrictionAugmentedLagrangian, SticksWithTheSlideOfEveryPointBelowTheGapTolerance)
+{
+    constexpr double push = 0.3, normal = 10.0, tangential_penalty = 1.0e4;
+    const PushedBlock penalty = push_block("friction_al_push_penalty", "");
+    EXPECT_EQ(penalty.sticking, penalty.pressed);
+    EXPECT_GT(penalty.pressed, 20);
+    EXPECT_NEAR(penalty.mean_slide, push / tangential_penalty, force_tolerance * normal / tangential_penalty);
+    EXPECT_NEAR(penalty.friction_force, -push, force_tolerance * normal);
+    EXPECT_EQ(penalty.largest_elastic_slip, -1.0) << "elastic_slip is written with the augmented Lagrangian only";
+
+    int last_updates = 0;
+    for (const auto& [tolerance, text] : {std::pair{1e-7, "1.0e-7"}, std::pair{1e-9, "1.0e-9"}}) {
+        SCOPED_TRACE(text);
+        const PushedBlock al = push_block(std::string("friction_al_push_") + text,
+                                          std::string("    enforcement: augmented_lagrangian\n"
+                                                      "    augmented_lagrangian: {gap_tolerance: ") +
+                                              text + ", max_updates: 50}\n");
+        EXPECT_EQ(al.pressed, penalty.pressed);
+        EXPECT_EQ(al.sticking, al.pressed) << "below mu N every pressed point sticks";
+        EXPECT_TRUE(std::isfinite(al.largest_slide) && al.largest_slide <= tolerance)
+            << "largest slide " << al.largest_slide;
+        EXPECT_GT(penalty.largest_slide, 100.0 * tolerance) << "the penalty's slide, for scale";
+        // The reported elastic slip is what the loop held to the tolerance (anchored at
+        // rest, a sticking point's elastic slip is its slide, up to Newton's round-off).
+        EXPECT_TRUE(al.largest_elastic_slip >= 0.0 && al.largest_elastic_slip <= tolerance)
+            << "elastic slip " << al.largest_elastic_slip;
+        EXPECT_NEAR(al.friction_force, -push, force_tolerance * normal);
+        EXPECT_NEAR(al.normal_force, normal, force_tolerance * normal);
+        EXPECT_GT(al.uzawa_updates, last_updates) << "a tighter tolerance takes more updates";
+        last_updates = al.uzawa_updates;
+    }
+}
+
+// Sliding with the augmented Lagrangian: the dragged block of the first test still
+// slides with mu times its normal force at every step (each slipping point's traction
+// on the cone of its augmented pressure); the tangential multipliers take mu p, and
+// the updates stop once they agree with the tractions to gap_tolerance over eps_T.
+TEST(FrictionAugmentedLagrangian, DraggedBlockSlidesWithMuTimesTheNormalForce)
+{
+    constexpr double mu = 0.3;
+    const auto file = scratch_dir("friction_al_drag") / "drag.h5";
+    const auto outcome = run_deck(source_path("tests/analysis/decks/block_friction_floor_2d.yaml"),
+                                  {"contact.slide.enforcement=augmented_lagrangian"}, file);
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    const Results results(file);
+    for (const std::string& step : results.steps()) {
+        const SideState s = side_state(results, step, "block.v0");
+        int slipping = 0;
+        for (Index g = 0; g < s.pressure.size(); ++g) {
+            if (!(s.pressure(g) > 0.0))
+                continue;
+            EXPECT_EQ(s.status[static_cast<std::size_t>(g)], 2.0) << step << ", Gauss point " << g;
+            EXPECT_NEAR(s.traction.row(g).norm(), mu * s.pressure(g), 1e-10 * mu * s.pressure(g));
+            ++slipping;
+        }
+        EXPECT_GT(slipping, 20);
+        EXPECT_NEAR(s.friction_force[0], -mu * s.normal_force, force_tolerance * s.normal_force) << step;
+        EXPECT_NEAR(s.friction_force[1], 0.0, force_tolerance * s.normal_force) << step;
+        EXPECT_LE(results.number("steps/" + step + "/contact/slide/block.v0", "max_penetration"),
+                  results.number("steps/" + step + "/contact/slide", "gap_tolerance"));
+    }
+    EXPECT_GT(results.number("results", "uzawa_updates"), 0);
+}
+
 }  // namespace
 }  // namespace iga::test
 

@@ -369,6 +369,55 @@ TEST(ContactPair, RollbackRestoresTheCommittedMultipliers)
     EXPECT_EQ((pair.evaluate(u1, u2, false).residual - committed_residual).norm(), 0.0);
 }
 
+// The tangential multipliers (frictional augmented Lagrangian) are state too: after a
+// commit with multipliers taken from a sliding state, an attempt's further updates
+// are undone by rollback(), which gives back the committed multipliers and with them
+// the committed residual bit for bit; and a point open at a commit carries none
+// forward. Against a rigid plane (the multiplier in space) and a deformable block (in
+// the block's reference space); the disc is first pressed and committed so that every
+// touching point has an anchor.
+TEST(ContactPair, RollbackRestoresTheCommittedTangentialMultipliers)
+{
+    const Scene s = make_scene();
+    const RigidPlane floor = RigidPlane::make(vec2(0.0, 0.0), vec2(0.0, 1.0));
+    const FrictionLaw friction{0.3, 1e3};
+    for (const bool rigid : {true, false}) {
+        SCOPED_TRACE(rigid ? "rigid plane" : "deformable block");
+        ContactPair pair = rigid ? ContactPair({.penalty = 1e3, .friction = friction}, s.disc, floor)
+                                 : ContactPair({.penalty = 1e3, .friction = friction}, s.disc, s.block);
+        const RowMatrix u2 = rigid ? RowMatrix(0, 2) : RowMatrix::Zero(pair.n_control_points(1), 2);
+        auto disc_at = [&](double x, double y) {
+            std::mt19937 rng(14);
+            return test::shifted(pair.n_control_points(0), vec2(x, y), noise, rng);
+        };
+        pair.evaluate(disc_at(0.0, -0.03), u2, false);
+        pair.commit();  // pressed: every pressing point anchored
+        const RowMatrix slid = disc_at(0.004, -0.03);
+        pair.update_multipliers(pair.evaluate(slid, u2, false));
+        pair.commit();
+        std::vector<RowMatrix> committed;
+        for (int c = 0; c < pair.n_carriers(); ++c)
+            committed.push_back(pair.tangential_multipliers(c));
+        ASSERT_GT(committed[0].norm(), 0.0) << "the sliding state carries tangential tractions";
+        const Vector committed_residual = pair.evaluate(slid, u2, false).residual;
+
+        const RowMatrix further = disc_at(0.01, -0.031);
+        pair.update_multipliers(pair.evaluate(further, u2, false));  // an attempt's updates...
+        pair.update_multipliers(pair.evaluate(further, u2, false));
+        EXPECT_GT((pair.tangential_multipliers(0) - committed[0]).norm(), 0.0);
+        pair.rollback();  // ...undone by a cutback
+        for (int c = 0; c < pair.n_carriers(); ++c)
+            EXPECT_EQ((pair.tangential_multipliers(c) - committed[static_cast<std::size_t>(c)]).norm(), 0.0)
+                << "carrier " << c;
+        EXPECT_EQ((pair.evaluate(slid, u2, false).residual - committed_residual).norm(), 0.0);
+
+        pair.evaluate(disc_at(0.004, 0.2), u2, false);  // lifted off: every point open
+        pair.commit();
+        for (int c = 0; c < pair.n_carriers(); ++c)
+            EXPECT_EQ(pair.tangential_multipliers(c).norm(), 0.0) << "carrier " << c;
+    }
+}
+
 // With multipliers from one state, evaluated at a state lifted a little (some
 // points open but still active through lambda), the pair tangent is still the
 // derivative of its residual; a raised penalty (set_penalty) keeps it so.

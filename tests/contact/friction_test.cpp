@@ -1,7 +1,9 @@
 // Regularized Coulomb friction against rigid obstacles (contact/friction.hpp):
 // the return map's cases, and the consistent tangent of a slave Gauss point
 // (normal kernel plus tangential traction) against central finite differences
-// of its residual, in 2D and 3D, for a plane and a sphere, sticking and slipping.
+// of its residual, in 2D and 3D, for a plane and a sphere, sticking and slipping,
+// without and with a tangential multiplier (augmented Lagrangian); and what the
+// multiplier does: it carries the traction, and the elastic slip is what is left.
 
 #include "contact/friction.hpp"
 #include "contact/gpts_friction.hpp"
@@ -34,7 +36,8 @@ struct Point {
 
 /// Residual (and tangent) of the point against the obstacle with a committed anchor.
 KernelResult evaluate(const RigidObstacle& obstacle, const Point& point, const RowMatrix& X,
-                      const FrictionHistory& committed, bool need_tangent, TangentialResponse* response = nullptr)
+                      const FrictionHistory& committed, const VecN& multiplier, bool need_tangent,
+                      TangentialResponse* response = nullptr)
 {
     const Index d = X.cols();
     VecN x = VecN::Zero(d);
@@ -44,8 +47,8 @@ KernelResult evaluate(const RigidObstacle& obstacle, const Point& point, const R
     const KernelSettings settings{.penalty = normal_penalty, .need_tangent = need_tangent};
     KernelResult kr = gpts_rigid_kernel(point.N, point.W, foot.normal, foot.gap, settings, foot.radius);
     const VecN dp = kr.pressure > 0.0 ? VecN(-normal_penalty * foot.normal) : VecN(VecN::Zero(d));
-    const TangentialResponse t = coulomb_response({coefficient, tangential_penalty}, committed, x, foot.normal,
-                                                  kr.pressure, dp, foot.radius);
+    const TangentialResponse t = coulomb_response({coefficient, tangential_penalty}, committed, multiplier, x,
+                                                  foot.normal, kr.pressure, dp, foot.radius);
     add_tangential(kr, point.N, point.W, t);
     if (response)
         *response = t;
@@ -54,17 +57,20 @@ KernelResult evaluate(const RigidObstacle& obstacle, const Point& point, const R
 
 /// The point's control points shifted so that x sits `depth` inside the obstacle's
 /// surface along -n and `slide` along a tangent from the anchor.
+/// `multiplier`: the tangential multiplier lambda_T (empty: none, the penalty law).
 void check_tangent(const RigidObstacle& obstacle, const Point& point, const FrictionHistory& committed,
-                   StickSlip expected)
+                   StickSlip expected, VecN multiplier = VecN())
 {
+    if (multiplier.size() == 0)
+        multiplier = VecN::Zero(point.X.cols());
     TangentialResponse response;
-    const KernelResult kr = evaluate(obstacle, point, point.X, committed, true, &response);
+    const KernelResult kr = evaluate(obstacle, point, point.X, committed, multiplier, true, &response);
     ASSERT_EQ(response.status, expected);
     const Index n = point.X.size();
     const Eigen::VectorXd x0 = Eigen::Map<const Eigen::VectorXd>(point.X.data(), n);
     auto residual = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
         const RowMatrix X = Eigen::Map<const RowMatrix>(v.data(), point.X.rows(), point.X.cols());
-        return evaluate(obstacle, point, X, committed, false).residual;
+        return evaluate(obstacle, point, X, committed, multiplier, false).residual;
     };
     const Eigen::MatrixXd fd = test::central_difference_jacobian(residual, x0, fd_step);
     const double scale = kr.tangent.norm();
@@ -113,26 +119,27 @@ TEST(Friction, ReturnMapSticksInsideTheConeAndSlidesOnIt)
     const VecN y = (VecN(2) << 0.0, 0.0).finished();
     const FrictionLaw law{0.5, 100.0};
     const VecN dp = VecN::Zero(2);
+    const VecN none = VecN::Zero(2);  // no tangential multiplier: the penalty law
     // Anchor 1e-3 to the left: trial traction -0.1 along x, inside mu p = 0.5.
-    const TangentialResponse stick = coulomb_response(law, {(VecN(2) << -1e-3, 0.0).finished(), 0.0}, y, n, 1.0, dp);
+    const TangentialResponse stick = coulomb_response(law, {(VecN(2) << -1e-3, 0.0).finished(), 0.0}, none, y, n, 1.0, dp);
     EXPECT_EQ(stick.status, StickSlip::stick);
     EXPECT_NEAR(stick.traction(0), -0.1, 1e-15);
     EXPECT_EQ(stick.next.anchor, (VecN(2) << -1e-3, 0.0).finished());
     // Anchor 0.02 to the left: trial -2 > 0.5, slides with |t| = mu p, slip 0.02 - 0.5/100.
-    const TangentialResponse slip = coulomb_response(law, {(VecN(2) << -0.02, 0.0).finished(), 0.1}, y, n, 1.0, dp);
+    const TangentialResponse slip = coulomb_response(law, {(VecN(2) << -0.02, 0.0).finished(), 0.1}, none, y, n, 1.0, dp);
     EXPECT_EQ(slip.status, StickSlip::slip);
     EXPECT_NEAR(slip.traction(0), -0.5, 1e-15);
     EXPECT_NEAR(slip.slip_increment, 0.015, 1e-15);
     EXPECT_NEAR(slip.next.slip, 0.115, 1e-15);
     // The committed anchor reproduces the traction on the cone: the next trial starts there.
-    const TangentialResponse again = coulomb_response(law, slip.next, y, n, 1.0, dp);
+    const TangentialResponse again = coulomb_response(law, slip.next, none, y, n, 1.0, dp);
     EXPECT_NEAR(again.traction(0), -0.5, 1e-14);
     EXPECT_NEAR(again.slip_increment, 0.0, 1e-14);
     // The normal part of the offset carries no traction; an open point re-anchors where it is.
     const TangentialResponse normal_only =
-        coulomb_response(law, {(VecN(2) << 0.0, -0.3).finished(), 0.0}, y, n, 1.0, dp);
+        coulomb_response(law, {(VecN(2) << 0.0, -0.3).finished(), 0.0}, none, y, n, 1.0, dp);
     EXPECT_NEAR(normal_only.traction.norm(), 0.0, 1e-15);
-    const TangentialResponse open = coulomb_response(law, {(VecN(2) << -0.02, 0.0).finished(), 0.0}, y, n, 0.0, dp);
+    const TangentialResponse open = coulomb_response(law, {(VecN(2) << -0.02, 0.0).finished(), 0.0}, none, y, n, 0.0, dp);
     EXPECT_EQ(open.status, StickSlip::open);
     EXPECT_EQ(open.next.anchor, y);
 }
@@ -170,6 +177,92 @@ TEST(Friction, TangentEqualsFiniteDifferences3DSphere)
     const Point p = point_3d();
     check_tangent(ball, p, anchored(p, (VecN(3) << 1e-3, 5e-4, 2e-4).finished()), StickSlip::stick);
     check_tangent(ball, p, anchored(p, (VecN(3) << -2e-2, 1e-2, 3e-3).finished()), StickSlip::slip);
+}
+
+// A tangential multiplier lambda_T, fixed within Newton, shifts the trial traction:
+// the tangent is the penalty one with the anchor shifted by lambda_T / eps_T. Sizes:
+// |lambda_T| ~ 1.5-2 against mu p ~ 4 (2D) and ~ 6 (3D), so the stick offsets (trial
+// ~1.5 from the slide) stay inside the cone and the slip ones (~30) far outside it. On
+// the curved obstacles lambda_T is given a normal part too (an update makes it tangent
+// to the normal of its own state, which turns as the point moves): the (n . w) term of
+// the turning normal then sees it.
+TEST(Friction, TangentWithATangentialMultiplierEqualsFiniteDifferences)
+{
+    const RigidObstacle line(RigidPlane::make((VecN(2) << 0.0, 0.0).finished(), (VecN(2) << 0.0, 1.0).finished()));
+    const RigidObstacle disc(RigidSphere::make((VecN(2) << 0.05, -0.99).finished(), 1.0));
+    const RigidObstacle plane(
+        RigidPlane::make((VecN(3) << 0.0, 0.0, 0.0).finished(), (VecN(3) << 0.0, 0.0, 1.0).finished()));
+    const RigidObstacle ball(RigidSphere::make((VecN(3) << 0.05, 0.0, -0.99).finished(), 1.0));
+    const Point p2 = point_2d(), p3 = point_3d();
+    {
+        SCOPED_TRACE("2D line");
+        const VecN lambda = (VecN(2) << -1.5, 0.0).finished();
+        check_tangent(line, p2, anchored(p2, (VecN(2) << 1e-3, 0.0).finished()), StickSlip::stick, lambda);
+        check_tangent(line, p2, anchored(p2, (VecN(2) << 2e-2, 0.0).finished()), StickSlip::slip, lambda);
+    }
+    {
+        SCOPED_TRACE("2D circle");
+        const VecN lambda = (VecN(2) << 1.5, 0.2).finished();
+        check_tangent(disc, p2, anchored(p2, (VecN(2) << 1e-3, 4e-4).finished()), StickSlip::stick, lambda);
+        check_tangent(disc, p2, anchored(p2, (VecN(2) << -2e-2, 5e-3).finished()), StickSlip::slip, lambda);
+    }
+    {
+        SCOPED_TRACE("3D plane");
+        const VecN lambda = (VecN(3) << 1.0, 1.2, 0.0).finished();
+        check_tangent(plane, p3, anchored(p3, (VecN(3) << 1e-3, -5e-4, 0.0).finished()), StickSlip::stick, lambda);
+        check_tangent(plane, p3, anchored(p3, (VecN(3) << 2e-2, -1e-2, 0.0).finished()), StickSlip::slip, lambda);
+    }
+    {
+        SCOPED_TRACE("3D sphere");
+        const VecN lambda = (VecN(3) << -1.2, 1.0, 0.3).finished();
+        check_tangent(ball, p3, anchored(p3, (VecN(3) << 1e-3, 5e-4, 2e-4).finished()), StickSlip::stick, lambda);
+        check_tangent(ball, p3, anchored(p3, (VecN(3) << -2e-2, 1e-2, 3e-3).finished()), StickSlip::slip, lambda);
+    }
+}
+
+// What the multiplier does, on a plane (P lambda_T = lambda_T for a tangent lambda_T):
+// the trial is lambda_T - eps_T P (y - a); the elastic slip |t_T - lambda_T| / eps_T is
+// the slide from the anchor while the point sticks; the Uzawa update's new multiplier
+// (frame_traction) is the traction; a slipping point's anchor is moved with the
+// multiplier kept so that the next trial reproduces the traction. Each number is a sum
+// of two or three O(1) terms: round-off.
+TEST(Friction, TheTangentialMultiplierCarriesTheTraction)
+{
+    constexpr double exact = 1e-14;
+    const VecN n = (VecN(2) << 0.0, 1.0).finished();
+    const VecN y = (VecN(2) << 0.3, 0.0).finished();
+    const FrictionLaw law{0.5, 100.0};
+    const VecN dp = VecN::Zero(2);
+    const VecN lambda = (VecN(2) << -0.3, 0.0).finished();  // inside mu p = 0.5
+    // At its anchor the point carries lambda_T exactly, with no elastic slip.
+    const TangentialResponse held = coulomb_response(law, {y, 0.0}, lambda, y, n, 1.0, dp);
+    EXPECT_EQ(held.status, StickSlip::stick);
+    EXPECT_NEAR((held.traction - lambda).norm(), 0.0, exact);
+    EXPECT_NEAR(held.elastic_slip, 0.0, exact);
+    EXPECT_NEAR((held.frame_traction - held.traction).norm(), 0.0, exact);
+    // 1e-3 past its anchor it adds eps_T 1e-3 = 0.1 against the slide: elastic slip 1e-3.
+    const VecN past = (VecN(2) << 0.301, 0.0).finished();
+    const TangentialResponse stick = coulomb_response(law, {y, 0.0}, lambda, past, n, 1.0, dp);
+    EXPECT_EQ(stick.status, StickSlip::stick);
+    EXPECT_NEAR(stick.traction(0), -0.4, exact);
+    EXPECT_NEAR(stick.elastic_slip, 1e-3, exact);
+    EXPECT_EQ(stick.next.anchor, y) << "a sticking point keeps its anchor";
+    // 0.01 past: trial -1.3, slides on the cone at -0.5; elastic slip |-0.5 + 0.3| / 100.
+    const VecN far = (VecN(2) << 0.31, 0.0).finished();
+    const TangentialResponse slip = coulomb_response(law, {y, 0.0}, lambda, far, n, 1.0, dp);
+    EXPECT_EQ(slip.status, StickSlip::slip);
+    EXPECT_NEAR(slip.traction(0), -0.5, exact);
+    EXPECT_NEAR(slip.elastic_slip, 2e-3, exact);
+    EXPECT_NEAR(slip.slip_increment, (1.3 - 0.5) / 100.0, exact);
+    const TangentialResponse again = coulomb_response(law, slip.next, lambda, far, n, 1.0, dp);
+    EXPECT_NEAR((again.traction - slip.traction).norm(), 0.0, exact) << "the moved anchor reproduces t_T";
+    EXPECT_NEAR(again.slip_increment, 0.0, exact);
+    // After the Uzawa update lambda_T <- t_T (the committed anchor kept) the same state
+    // slides on with that traction and no elastic slip is left.
+    const TangentialResponse updated = coulomb_response(law, {y, 0.0}, slip.frame_traction, far, n, 1.0, dp);
+    EXPECT_EQ(updated.status, StickSlip::slip);
+    EXPECT_NEAR((updated.traction - slip.traction).norm(), 0.0, exact);
+    EXPECT_NEAR(updated.elastic_slip, 0.0, exact);
 }
 
 TEST(Friction, TangentBasisIsOrthonormalAndNormalToN)

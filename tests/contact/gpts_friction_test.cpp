@@ -6,8 +6,10 @@
 // rows). The master is deformed (stretched and sheared) so that its reference and
 // current tangents differ, and the anchor lies off the foot, so every term of the
 // linearization -- the turning tangents, dc/dxibar, dp/du, the moving foot of the
-// master rows -- is exercised. Also: the anchor update reproduces the traction,
-// and a rigid motion of both bodies leaves a sticking traction unchanged.
+// master rows -- is exercised; the same with a tangential multiplier (augmented
+// Lagrangian). Also: the anchor update reproduces the traction, a rigid motion of
+// both bodies leaves a sticking traction unchanged, and the multiplier an Uzawa
+// update adopts carries the traction with no elastic slip left.
 
 #include "contact/gpts_friction.hpp"
 #include "contact/gpts_kernel.hpp"
@@ -74,13 +76,18 @@ struct Evaluation {
     Matrix tangent;
     TangentialResponse response;
     Vector foot_xi;
+    VecN reference_foot;  ///< Xbar: the master's material point under the slave point
 };
 
-Evaluation evaluate(const Scene& s, const FrictionHistory& committed, const Vector& u, bool need_tangent)
+/// `multiplier`: the tangential multiplier Lambda (master reference space); empty: none.
+Evaluation evaluate(const Scene& s, const FrictionHistory& committed, const Vector& u, bool need_tangent,
+                    VecN multiplier = VecN())
 {
     const Index d = s.slave.cols();
     const Index n_s = s.slave.rows();
     const Index n_m = s.master.n_control_points();
+    if (multiplier.size() == 0)
+        multiplier = VecN::Zero(d);
     RowMatrix xs = s.slave, xm = s.master.control_points() + s.master_disp;
     for (Index a = 0; a < n_s; ++a)
         xs.row(a) += u.segment(a * d, d).transpose();
@@ -103,9 +110,10 @@ Evaluation evaluate(const Scene& s, const FrictionHistory& committed, const Vect
     const KernelSettings settings{.penalty = normal_penalty, .master_rows = s.master_rows, .need_tangent = need_tangent};
     KernelResult kr = gpts_kernel(s.N, W, foot, settings, need_tangent ? s.dW : Vector());
     Evaluation out;
-    out.response = gpts_friction(kr, s.N, W, foot, reference, {coefficient, tangential_penalty}, committed, settings,
-                                 need_tangent ? s.dW : Vector());
+    out.response = gpts_friction(kr, s.N, W, foot, reference, {coefficient, tangential_penalty}, committed,
+                                 multiplier, settings, need_tangent ? s.dW : Vector());
     out.foot_xi = proj.xi;
+    out.reference_foot = reference.point;
     // Kernel numbering [slave ; the foot's master basis] -> [all slave ; all master].
     std::vector<Index> dof;
     for (Index a = 0; a < n_s; ++a)
@@ -208,15 +216,17 @@ Case make_case(int d, double slide, bool half_pass)
     return out;
 }
 
-void expect_tangent_is_derivative(int d, double slide, bool half_pass, StickSlip expected)
+/// `multiplier`: the tangential multiplier Lambda (empty: none).
+void expect_tangent_is_derivative(int d, double slide, bool half_pass, StickSlip expected,
+                                  const VecN& multiplier = VecN())
 {
     const Case st = make_case(d, slide, half_pass);
     const Index n = (st.scene.slave.rows() + st.scene.master.n_control_points()) * d;
     const Vector u0 = Vector::Zero(n);
-    const Evaluation ev = evaluate(st.scene, st.anchor, u0, true);
+    const Evaluation ev = evaluate(st.scene, st.anchor, u0, true, multiplier);
     ASSERT_EQ(ev.response.status, expected) << "|t_T| = " << ev.response.traction.norm();
     auto residual = [&](const Eigen::VectorXd& u) -> Eigen::VectorXd {
-        return evaluate(st.scene, st.anchor, u, false).residual;
+        return evaluate(st.scene, st.anchor, u, false, multiplier).residual;
     };
     const Matrix fd = test::central_difference_jacobian(residual, u0, fd_step);
     const double scale = ev.tangent.norm();
@@ -239,17 +249,74 @@ TEST(GptsFriction, HalfPassSlipTangentIsDerivative3d) { expect_tangent_is_deriva
 TEST(GptsFriction, SinglePassStickTangentIsDerivative3d) { expect_tangent_is_derivative(3, -stick_slide, false, StickSlip::stick); }
 TEST(GptsFriction, SinglePassSlipTangentIsDerivative3d) { expect_tangent_is_derivative(3, slip_slide, false, StickSlip::slip); }
 
+// With a tangential multiplier Lambda (a vector of the master's reference space, off
+// its tangent plane as any vector may be): |F_s Lambda| ~ 2 against mu p = 8, so the
+// stick slides (trial ~3) stay inside the cone and the slip ones (~45) outside it.
+VecN multiplier(int d)
+{
+    return d == 2 ? VecN((VecN(2) << 1.6, -0.9).finished()) : VecN((VecN(3) << -1.2, 1.4, 0.5).finished());
+}
+
+TEST(GptsFriction, TangentWithATangentialMultiplierIsDerivative2d)
+{
+    for (const bool half_pass : {true, false}) {
+        SCOPED_TRACE(half_pass ? "half pass" : "single pass");
+        expect_tangent_is_derivative(2, stick_slide, half_pass, StickSlip::stick, multiplier(2));
+        expect_tangent_is_derivative(2, half_pass ? slip_slide : -slip_slide, half_pass, StickSlip::slip,
+                                     multiplier(2));
+    }
+}
+
+TEST(GptsFriction, TangentWithATangentialMultiplierIsDerivative3d)
+{
+    for (const bool half_pass : {true, false}) {
+        SCOPED_TRACE(half_pass ? "half pass" : "single pass");
+        expect_tangent_is_derivative(3, half_pass ? stick_slide : -stick_slide, half_pass, StickSlip::stick,
+                                     multiplier(3));
+        expect_tangent_is_derivative(3, slip_slide, half_pass, StickSlip::slip, multiplier(3));
+    }
+}
+
+// The Uzawa update adopts Lambda = G m^-1 a^T t_T, whose image F_s Lambda is t_T again:
+// a point that sticks with traction t_T and is then held at the master's material point
+// under it (anchor = Xbar) with that multiplier carries the same traction, with no
+// elastic slip; without the multiplier its elastic slip is |t_T| / eps_T. A few
+// products of O(1) matrices: round-off of the O(3) traction.
+TEST(GptsFriction, TheUpdatedMultiplierCarriesTheTractionWithoutElasticSlip)
+{
+    constexpr double round_off = 1e-12;
+    for (const int d : {2, 3}) {
+        SCOPED_TRACE(d);
+        const Case st = make_case(d, stick_slide, true);
+        const Vector u0 = Vector::Zero((st.scene.slave.rows() + st.scene.master.n_control_points()) * d);
+        const Evaluation stick = evaluate(st.scene, st.anchor, u0, false);
+        ASSERT_EQ(stick.response.status, StickSlip::stick);
+        const VecN t = stick.response.traction;
+        ASSERT_GT(t.norm(), 1.0);
+        EXPECT_NEAR(stick.response.elastic_slip, t.norm() / tangential_penalty, round_off);
+        const FrictionHistory at_foot{stick.reference_foot, 0.0, true};
+        const Evaluation held = evaluate(st.scene, at_foot, u0, false, stick.response.frame_traction);
+        EXPECT_EQ(held.response.status, StickSlip::stick);
+        EXPECT_LE((held.response.traction - t).norm(), round_off * t.norm());
+        EXPECT_LE(held.response.elastic_slip, round_off * t.norm() / tangential_penalty);
+    }
+}
+
 TEST(GptsFriction, SlipMovesTheAnchorToReproduceTheTraction)
 {
-    for (const int d : {2, 3}) {
+    // With a tangential multiplier the anchor moves so that, with the multiplier kept,
+    // the traction is reproduced.
+    for (const auto& [d, lambda] : {std::pair{2, VecN()}, std::pair{3, VecN()}, std::pair{2, multiplier(2)},
+                                    std::pair{3, multiplier(3)}}) {
+        SCOPED_TRACE(lambda.size() ? "with a tangential multiplier" : "penalty");
         const Case st = make_case(d, slip_slide, true);
         const Vector u0 = Vector::Zero((st.scene.slave.rows() + st.scene.master.n_control_points()) * d);
-        const Evaluation slip = evaluate(st.scene, st.anchor, u0, false);
+        const Evaluation slip = evaluate(st.scene, st.anchor, u0, false, lambda);
         ASSERT_EQ(slip.response.status, StickSlip::slip);
         EXPECT_NEAR(slip.response.traction.norm(), coefficient * normal_penalty * depth, 1e-9);
         EXPECT_NEAR(slip.response.next.slip, st.anchor.slip + slip.response.slip_increment, 1e-15);
         // Evaluated again from the moved anchor, the point sits on the cone's edge: no further slip.
-        const Evaluation again = evaluate(st.scene, slip.response.next, u0, false);
+        const Evaluation again = evaluate(st.scene, slip.response.next, u0, false, lambda);
         EXPECT_LE(again.response.slip_increment, 1e-12 * slip.response.slip_increment);
         EXPECT_LE((again.response.traction - slip.response.traction).norm(), 1e-9 * slip.response.traction.norm());
     }
