@@ -47,6 +47,10 @@ std::string failure_advice(solver::FailureCause cause, const FailureContext& c)
     const std::string smaller_penalty = "a smaller penalty (about 1e2-1e3 E/h is plenty; penalty: auto)";
     switch (cause) {
     case solver::FailureCause::none: return {};
+    case solver::FailureCause::linear_solver:
+        return ". The iterative linear solver did not converge: the tangent may be singular (a body held by "
+               "nothing, or only by contact that is not yet closed) or hard for its preconditioner. "
+               "solver.type: direct tells the two apart; solver.options (PETSc options) changes the method";
     case solver::FailureCause::free_mode:
         return ". Singular tangent: a body may be unconstrained (held by nothing, or only by frictionless "
                "contact that is not yet closed). Constrain every rigid-body motion the loads can excite";

@@ -2,6 +2,7 @@
 
 #include "assembly/threads.hpp"
 #include "mechanics/element.hpp"
+#include "mechanics/small_strain_stiffness.hpp"
 
 #include <fmt/format.h>
 
@@ -226,17 +227,19 @@ void SceneSystem::assemble_constant_stiffness(const StopRequest& stop)
     const assembly::SparsePattern full_pattern(unconstrained, std::move(blocks), scene_.n_element_blocks);
     SparseMatrix K0;
     full_pattern.shape(K0);
-    for (int block = 0; block < scene_.n_element_blocks; ++block) {  // once per run: not worth threads
-        if (!owns(block))
-            continue;
-        stop.check();
-        const mechanics::ElementGeometry& geometry = element_of(block);
-        full_pattern.add(block,
-                         mechanics::element_response(geometry, body_of(block).material, scene_.kinematics,
-                                                     Matrix::Zero(geometry.n_local(), d))
-                             .K,
-                         K0);
-    }
+    // Once per run, but 20 s on one core for a 3D model of 118k dofs (degree 2): worth the threads.
+    std::unique_ptr<assembly::ThreadTeam> team;
+    if (library_threads_ > 1)
+        team = std::make_unique<assembly::ThreadTeam>(library_threads_);
+    full_pattern.for_each_block(
+        [&](int block) {
+            if (!owns(block))
+                return;
+            stop.check();
+            full_pattern.add(block, mechanics::small_strain_stiffness(element_of(block), body_of(block).material),
+                             K0);
+        },
+        assembly::Execution{team.get()});
     full_stiffness_.emplace().swap(K0);  // swapped, not moved: Eigen 3.4 copies a "moved" sparse matrix
 }
 

@@ -28,6 +28,7 @@ const char* cause_name(FailureCause cause)
 {
     switch (cause) {
     case FailureCause::none: return "none";
+    case FailureCause::linear_solver: return "linear_solver";
     case FailureCause::free_mode: return "free_mode";
     case FailureCause::inadmissible: return "inadmissible";
     case FailureCause::growth: return "growth";
@@ -44,7 +45,9 @@ FailureCause failure_cause(const NewtonReport& report)
     const std::vector<double>& r = report.residual_history;
     switch (report.status) {
     case NewtonStatus::converged: return FailureCause::none;
-    case NewtonStatus::singular: return FailureCause::free_mode;
+    case NewtonStatus::singular:
+        return report.linear_status == LinearStatus::not_converged ? FailureCause::linear_solver
+                                                                   : FailureCause::free_mode;
     case NewtonStatus::evaluation_failed: return FailureCause::inadmissible;
     case NewtonStatus::diverged: return FailureCause::growth;
     case NewtonStatus::max_iterations: break;
@@ -71,6 +74,9 @@ std::string cause_text(const NewtonReport& report)
     const double floor = f.size() == r.size() && !f.empty() ? f.back() : 0.0;
     switch (failure_cause(report)) {
     case FailureCause::none: return {};
+    case FailureCause::linear_solver:
+        return "the iterative linear solver did not converge (the tangent may be singular, or hard for its "
+               "preconditioner)";
     case FailureCause::free_mode:
         return "the tangent is singular (a zero-energy mode: a body may be unconstrained)";
     case FailureCause::inadmissible: return "a state along the Newton path is inadmissible";

@@ -2,6 +2,10 @@
 // Why a Newton solve failed, read from its report (status and histories), so that
 // the failure message says only what holds. The classes, in the order they are tested:
 //
+//   linear_solver:   an iterative linear solver stopped short of its tolerance even
+//                    with Levenberg-Marquardt (status singular, linear status
+//                    not_converged): a singular tangent or one its preconditioner
+//                    does not suit, which the run cannot tell apart.
 //   free_mode:       the tangent was singular even with Levenberg-Marquardt
 //                    (status singular), or the last step still needed the
 //                    regularization: a zero-energy mode, e.g. a body not held.
@@ -28,7 +32,7 @@
 
 namespace iga::solver {
 
-enum class FailureCause { none, free_mode, inadmissible, growth, round_off_floor, cycle, stagnation, slow };
+enum class FailureCause { none, linear_solver, free_mode, inadmissible, growth, round_off_floor, cycle, stagnation, slow };
 
 const char* cause_name(FailureCause cause);
 

@@ -31,8 +31,10 @@ namespace iga::solver {
 
 enum class LinearStatus {
     ok,
-    singular,  ///< singular (a zero pivot), or the solution fails the backward-error check
-    failed     ///< Cholesky on a matrix that is not positive definite, or an input the backend rejects
+    singular,       ///< singular (a zero pivot), or the solution fails the backward-error check
+    failed,         ///< Cholesky on a matrix that is not positive definite, or an input the backend rejects
+    not_converged   ///< an iterative method stopped short of its tolerance (iteration cap, breakdown,
+                    ///< an indefinite preconditioner): the matrix may be singular or merely hard for it
 };
 
 const char* status_name(LinearStatus status);
@@ -79,6 +81,9 @@ public:
     virtual std::string describe() const = 0;
     /// Whether the last factorize() was an update of an earlier factorization.
     virtual bool updated() const { return false; }
+    /// What the last solve that did not return `ok` showed, in a clause for a message
+    /// (e.g. "cg + gamg stopped after 1000 iterations: DIVERGED_ITS"); may be empty.
+    virtual std::string failure_detail() const { return {}; }
 };
 
 /// The backends a deck can choose (`solver.backend`).

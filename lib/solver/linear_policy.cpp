@@ -28,6 +28,7 @@ const char* status_name(LinearStatus status)
     case LinearStatus::ok: return "ok";
     case LinearStatus::singular: return "singular";
     case LinearStatus::failed: return "failed";
+    case LinearStatus::not_converged: return "not converged";
     }
     return "unknown";
 }

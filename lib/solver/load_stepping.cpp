@@ -149,7 +149,7 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
                                              : std::string(" (") + status_name(report.status) + "): " + report.message;
             const std::string what = rejected ? "the outer loop rejected the solution" : "Newton did not converge";
             if (system.linear && !rejected) {
-                result.message = increment_text(index, lambda, target) + ": the linear solve failed" + why;
+                result.message = increment_text(index, lambda, target) + ": " + report.message;  // "linear solve failed (...)"
                 return result;
             }
             if (!stepping.adaptive) {

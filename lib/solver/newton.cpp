@@ -101,7 +101,9 @@ StepResult newton_step(SparseMatrix& K, const Vector& r, LinearSolver& solver, R
         context->log(Verbosity::verbose, "  tangent not positive definite: factorized by LU");
     if (result.status == LinearStatus::ok)
         result.status = solver.solve(rhs, du);
-    if (result.status != LinearStatus::singular)
+    // An iterative method that stopped short may have met a singular K (the first
+    // touch) as well as a hard one: the shift helps either.
+    if (result.status != LinearStatus::singular && result.status != LinearStatus::not_converged)
         return result;
 
     double mu = first_mu;
@@ -116,6 +118,13 @@ StepResult newton_step(SparseMatrix& K, const Vector& r, LinearSolver& solver, R
         }
     }
     return result;
+}
+
+/// "singular", or the status with what the solver saw ("not converged: cg + gamg stopped ...").
+std::string linear_failure_text(LinearStatus status, const LinearSolver& solver)
+{
+    const std::string detail = solver.failure_detail();
+    return std::string(status_name(status)) + (detail.empty() ? std::string() : ": " + detail);
 }
 
 }  // namespace
@@ -245,10 +254,12 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
     if (system.linear) {
         Vector du;
         const StepResult step = newton_step(current.tangent, current.residual, solver, context, du, false);
-        if (step.status != LinearStatus::ok)
-            return finish(NewtonStatus::singular, std::string("linear solve failed (") + status_name(step.status) +
+        if (step.status != LinearStatus::ok) {
+            report.linear_status = step.status;
+            return finish(NewtonStatus::singular, "linear solve failed (" + linear_failure_text(step.status, solver) +
                                                       "), even with regularization up to mu = " +
                                                       format_g(largest_mu()));
+        }
         report.regularized_iterations = step.regularized ? 1 : 0;
         // Algebraic residual of the affine system; refine with the same factorization.
         // (On several ranks the tangent is this rank's summand: its products are summed.)
@@ -309,12 +320,16 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         // The tangent is handed to the solver: neither Newton nor the trial below needs it,
         // and a copying solver would hold it twice while it factorizes.
         const StepResult step = newton_step(current.tangent, current.residual, solver, context, du, true);
-        if (step.status != LinearStatus::ok)
+        if (step.status != LinearStatus::ok) {
+            report.linear_status = step.status;
             return finish(NewtonStatus::singular,
-                          "iteration " + std::to_string(iteration) + ": tangent singular (" +
-                              status_name(step.status) + ") even with regularization up to mu = " +
+                          "iteration " + std::to_string(iteration) + ": " +
+                              (step.status == LinearStatus::not_converged ? "linear solver did not converge ("
+                                                                          : "tangent singular (") +
+                              linear_failure_text(step.status, solver) + ") even with regularization up to mu = " +
                               format_g(largest_mu()) +
                               "; last relative residual " + format_g(rel) + tolerance_text());
+        }
         if (step.regularized)
             ++report.regularized_iterations;
         report.last_step_regularized = step.regularized;

@@ -154,6 +154,9 @@ struct NewtonReport {
     /// Last full Newton correction over the displacement, ||du||_inf / ||u||_inf.
     double correction = 0;
     bool last_step_regularized = false;  ///< the last step needed K + mu D
+    /// Status singular: what the last linear solve returned (`not_converged`: an
+    /// iterative method that stopped short, which may or may not be a singular K).
+    LinearStatus linear_status = LinearStatus::ok;
     /// ||r|| at the last accepted state over ||r|| at the start (absolute, unlike the
     /// relative history, whose force scale grows with a diverging residual).
     double norm_ratio = 1;

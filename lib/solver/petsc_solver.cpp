@@ -2,6 +2,7 @@
 
 #include "core/error.hpp"
 
+#include <fmt/format.h>
 #include <petscksp.h>
 
 #include <algorithm>
@@ -178,6 +179,17 @@ PetscSolver::PetscSolver(const LinearSolverPolicy& policy, const Communicator& c
 
 PetscSolver::~PetscSolver() = default;
 
+std::string PetscSolver::describe_method() const
+{
+    KSPType ksp_type = nullptr;
+    PCType pc_type = nullptr;
+    PC pc = nullptr;
+    KSPGetType(state_->ksp, &ksp_type);
+    KSPGetPC(state_->ksp, &pc);
+    PCGetType(pc, &pc_type);
+    return std::string(ksp_type ? ksp_type : "?") + " + " + (pc_type ? pc_type : "?");
+}
+
 std::string PetscSolver::describe() const
 {
     KSPType ksp_type = nullptr;
@@ -308,6 +320,8 @@ LinearStatus PetscSolver::set_up_preconditioner()
     if (code == 0)
         PCGetFailedReasonRank(pc, &reason);
     if (comm_.any(code != 0 || reason != PC_NOERROR)) {
+        failure_detail_ = describe_method() + ": the preconditioner could not be built" +
+                          (reason != PC_NOERROR ? std::string(" (") + PCFailedReasons[reason] + ")" : std::string());
         s.abandoned.push_back(s.ksp);
         s.ksp = make_ksp(policy_);
         return LinearStatus::singular;  // a zero pivot, or a preconditioner that cannot be built
@@ -374,6 +388,7 @@ LinearStatus PetscSolver::solve(const Vector& b, Vector& x)
         if (comm_.any(KSPSolve(s.ksp, s.b, s.x) != 0)) {
             s.ksp_failed = true;
             s.last_converged = false;
+            failure_detail_ = describe_method() + ": the solve stopped with a PETSc error";
             return false;
         }
         KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
@@ -383,6 +398,9 @@ LinearStatus PetscSolver::solve(const Vector& b, Vector& x)
         statistics_.iterations += iterations;
         s.last_iterations = iterations;
         s.last_converged = reason > 0;
+        if (reason <= 0)
+            failure_detail_ = fmt::format("{} stopped after {} iterations: {}", describe_method(), iterations,
+                                          KSPConvergedReasons[reason]);
         if (s.setup_iterations < 0)
             s.setup_iterations = iterations;
         return reason > 0;
@@ -394,12 +412,14 @@ LinearStatus PetscSolver::solve(const Vector& b, Vector& x)
             return LinearStatus::singular;  // (the set-up abandoned its KSP)
         converged = krylov();
     }
-    auto singular = [&] {
+    // A direct method that fails has met a singular K; a Krylov method that stops short
+    // may have met a singular K or merely a hard one: it says only what it saw.
+    auto failure = [&] {
         s.ksp_failed = true;  // see State::abandoned
-        return LinearStatus::singular;
+        return policy_.method == Method::direct ? LinearStatus::singular : LinearStatus::not_converged;
     };
     if (!converged)
-        return singular();
+        return failure();
 
     // The true residual of the whole system, as the direct backend checks it.
     Vec r = nullptr;
@@ -418,8 +438,12 @@ LinearStatus PetscSolver::solve(const Vector& b, Vector& x)
     x = Eigen::Map<const Vector>(a, s.n);
     check(VecRestoreArrayRead(s.x_all, &a), "VecRestoreArrayRead");
     const bool finite = x.allFinite();
-    if (!(std::isfinite(residual) && residual <= backward_error_tolerance * b_norm) || comm_.any(!finite))
-        return singular();
+    if (!(std::isfinite(residual) && residual <= backward_error_tolerance * b_norm) || comm_.any(!finite)) {
+        failure_detail_ = fmt::format("{}: the true residual is {:.3g} of ||b|| (bound {:.0e})", describe_method(),
+                                      residual / b_norm, backward_error_tolerance);
+        return failure();
+    }
+    failure_detail_.clear();
     return LinearStatus::ok;
 }
 

@@ -49,6 +49,9 @@ public:
     LinearStatus solve(const Vector& b, Vector& x) override;
     LinearStatistics statistics() const override { return statistics_; }
     std::string describe() const override;
+    std::string failure_detail() const override { return failure_detail_; }
+    /// "cg + gamg": the Krylov method and preconditioner, for messages.
+    std::string describe_method() const;
 
 private:
     struct State;  // the PETSc objects, kept out of this header
@@ -59,6 +62,7 @@ private:
     Communicator comm_;
     std::unique_ptr<State> state_;
     LinearStatistics statistics_;
+    std::string failure_detail_;  // of the last factorize/solve that did not return ok
 };
 
 }  // namespace iga::solver

@@ -39,7 +39,7 @@ bool linearized_step(const NonlinearSystem& system, const Vector& u_n, double la
     if (status == LinearStatus::ok)
         status = solver.solve(rhs, du);
     if (status != LinearStatus::ok || !du.allFinite()) {
-        note = std::string("the tangent at the converged state is ") + status_name(status);
+        note = std::string("the tangent at the converged state could not be solved (") + status_name(status) + ")";
         return false;
     }
     return true;

@@ -99,5 +99,19 @@ TEST(FailureCause, NonFiniteGrowthIsGrowth)
     EXPECT_EQ(failure_cause(report), FailureCause::growth);
 }
 
+// A singular Newton status is a free mode only when a direct method found K singular;
+// an iterative method that stopped short is reported as such.
+TEST(FailureCause, AnIterativeSolverThatStoppedShortIsNotCalledAFreeMode)
+{
+    NewtonReport report;
+    report.status = NewtonStatus::singular;
+    report.residual_history = {1.0};
+    report.linear_status = LinearStatus::not_converged;
+    EXPECT_EQ(failure_cause(report), FailureCause::linear_solver);
+    EXPECT_NE(cause_text(report).find("iterative linear solver did not converge"), std::string::npos);
+    report.linear_status = LinearStatus::singular;
+    EXPECT_EQ(failure_cause(report), FailureCause::free_mode);
+}
+
 }  // namespace
 }  // namespace iga::solver

@@ -489,7 +489,7 @@ TEST(LoadStepping, LinearSystemTakesOneSolvePerIncrementAndNeverCutsBack)
     const SteppingResult failed = run_load_steps(system, u, stepping, newton, solver, callbacks, nullptr);
     EXPECT_FALSE(failed.completed);
     EXPECT_EQ(failed.total_cutbacks, 0);
-    EXPECT_NE(failed.message.find("linear solve failed"), std::string::npos) << failed.message;
+    EXPECT_NE(failed.message.find("linear solve"), std::string::npos) << failed.message;
 }
 
 TEST(LoadStepping, LogsOneLinePerConvergedIncrement)
