@@ -252,11 +252,26 @@ void SparsePattern::add(int block, const Matrix& K_local, SparseMatrix& K) const
     const double* local = K_local.data();
     if (searched(block)) {  // the same entries in the same order as the stored positions
         const std::vector<int>& f = block_free_[block];
-        for (Index j = 0; j < n; ++j)
-            if (f[j] >= 0)
-                for (Index i = 0; i < n; ++i)
-                    if (f[i] >= 0)
-                        values[search_position(f[i], f[j])] += local[j * n + i];
+        for (Index j = 0; j < n; ++j) {
+            if (f[j] < 0)
+                continue;
+            const int* column = inner_.data();
+            const int end = outer_[f[j] + 1];
+            int position = -1, previous_row = -2;
+            for (Index i = 0; i < n; ++i) {
+                const int row = f[i];
+                if (row < 0)
+                    continue;
+                // A control point's components, and the neighbours along a patch's first
+                // direction, are consecutive rows: the next entry of the column, no search.
+                if (row == previous_row + 1 && position + 1 < end && column[position + 1] == row)
+                    ++position;
+                else
+                    position = search_position(row, f[j]);
+                values[position] += local[j * n + i];
+                previous_row = row;
+            }
+        }
         return;
     }
     const int* pos = positions_.data() + position_offset_[block];

@@ -269,6 +269,7 @@ LinearStatus SuiteSparseSolver::factorize_matrix(const SparseMatrix& K, SparseMa
         if (!(analysed_ && same_pattern(K)))
             analysed_ = analysed_lu_ = analysed_llt_ = false;
         reference_.swap(*owned);  // the caller handed K over (factorize_taking): no copy
+        release(*owned);          // the old reference, now the caller's: freed before the factor is
     } else if (!(analysed_ && K.isCompressed() && same_pattern(K))) {
         SparseMatrix copy = K;
         copy.makeCompressed();
