@@ -9,12 +9,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <fstream>
 #include <iterator>
 #include <regex>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace iga::test {
 namespace {
@@ -498,24 +501,39 @@ ContactZone contact_zone(const Results& results, const std::string& side, double
     const RowMatrix traction = results.matrix(side + "/gauss_points/tangential_traction_vector");
     const std::vector<double> status = results.reals(side + "/gauss_points/status");
     ContactZone z;
-    double lo = 1e300, hi = -1e300, stick_lo = 1e300, stick_hi = -1e300;
+    std::vector<std::pair<double, bool>> pressed;  // (x, sticks) of the pressed points
     for (Index g = 0; g < p.size(); ++g) {
         z.P += p(g) * w(g);
         z.Q += traction(g, 0) * w(g);
         if (!(p(g) > 0.0))
             continue;
-        lo = std::min(lo, x(g, 0));
-        hi = std::max(hi, x(g, 0));
-        if (status[static_cast<std::size_t>(g)] == 1.0) {
-            stick_lo = std::min(stick_lo, x(g, 0));
-            stick_hi = std::max(stick_hi, x(g, 0));
-        } else {
+        const bool sticks = status[static_cast<std::size_t>(g)] == 1.0;
+        pressed.emplace_back(x(g, 0), sticks);
+        if (!sticks) {
             ++z.slipping;
             z.slipping_along += traction(g, 0) * along > 0.0 ? 1 : 0;
         }
     }
-    z.half_width = 0.5 * (hi - lo);
-    z.stick_half_width = 0.5 * (stick_hi - stick_lo);
+    if (pressed.empty())
+        return z;
+    std::sort(pressed.begin(), pressed.end());
+    z.half_width = 0.5 * (pressed.back().first - pressed.front().first);
+    // The stick zone of the theory is the central one: the run of sticking points around
+    // the middle. A point at the edge that has just come into contact sticks where it
+    // first pressed (with no traction yet) but is not part of it.
+    const double middle = 0.5 * (pressed.back().first + pressed.front().first);
+    std::size_t centre = 0;
+    for (std::size_t k = 1; k < pressed.size(); ++k)
+        if (std::abs(pressed[k].first - middle) < std::abs(pressed[centre].first - middle))
+            centre = k;
+    if (!pressed[centre].second)
+        return z;  // no central stick zone: stick_half_width 0
+    std::size_t left = centre, right = centre;
+    while (left > 0 && pressed[left - 1].second)
+        --left;
+    while (right + 1 < pressed.size() && pressed[right + 1].second)
+        ++right;
+    z.stick_half_width = 0.5 * (pressed[right].first - pressed[left].first);
     return z;
 }
 
