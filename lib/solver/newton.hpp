@@ -89,6 +89,10 @@ struct Evaluation {
     /// of the per-dof sums of |term| over the terms summed into r (a residual this
     /// small cannot be reduced in double precision). 0: unknown, no floor is used.
     double residual_floor = 0;
+    /// The system knows the tangent is singular (a body that only contact holds, and no
+    /// contact point carries yet: a first touch): Newton solves with K + mu D at once,
+    /// without the factorization of K that could only fail. Only with the tangent.
+    bool singular_tangent = false;
     /// false: the evaluation itself failed (a projection failed, a non-positive
     /// Jacobian); Newton reports evaluation_failed with this message.
     bool ok = true;
@@ -103,14 +107,15 @@ inline void swap(Evaluation& a, Evaluation& b) noexcept
     a.tangent.swap(b.tangent);
     std::swap(a.force_scale, b.force_scale);
     std::swap(a.residual_floor, b.residual_floor);
+    std::swap(a.singular_tangent, b.singular_tangent);
     std::swap(a.ok, b.ok);
     a.message.swap(b.message);
 }
 
 struct NonlinearSystem {
     /// Fills out.residual (always) and out.tangent (when need_tangent) at state u
-    /// and load factor lambda. Newton resets out.ok = true and out.message before
-    /// each call; out.tangent keeps its previous storage, so it may be refilled in place.
+    /// and load factor lambda. Newton resets out.ok = true, out.singular_tangent = false
+    /// and out.message before each call; out.tangent keeps its previous storage, so it may be refilled in place.
     std::function<void(const Vector& u, double load_factor, bool need_tangent, Evaluation& out)> evaluate;
     bool linear = false;     ///< r is affine in u: one solve per increment
     bool symmetric = true;   ///< K symmetric: Cholesky may be used, else LU is forced
