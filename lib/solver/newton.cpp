@@ -41,10 +41,10 @@ double largest_mu() { return first_mu * std::pow(mu_growth, max_regularizations 
 // A tangent the system knows to be singular starts one rung up. Along its null mode
 // v the shifted solve gives x ~ (v.b) / (mu v^T D v), and a backward-stable solve
 // leaves ||K x - b|| ~ eps ||K|| ||x||: at mu = 1e-10 that is ~ 2e-6 ||K|| / d ||b||
-// for a b along v (d the D-weighted scale of v, <= ||K||), above the solver's bound
-// 1e-6 ||b|| (solver/linear.hpp): the solve is rejected, and its factorization wasted.
-// Measured at the first touch of the Hertz decks (2D and 3D): mu = 1e-10 rejected,
-// 1e-8 accepted.
+// for a b along v (d the D-weighted scale of v, d <= ||K||), above the solver's
+// bound 1e-6 ||b|| (solver/linear.hpp): the solve is rejected, its factorization
+// wasted. Measured at the first touch of inputs/hertz.yaml: 3.6e-6 ||b|| at 1e-10,
+// 1.4e-8 ||b|| at 1e-8 (the 3D sphere octant: 2.6e-8 at 1e-8).
 constexpr int first_singular_attempt = 1;  // mu = first_mu * mu_growth
 // Linear systems: extra solves with the same factorization (iterative refinement)
 // while the algebraic residual is above the tolerance.

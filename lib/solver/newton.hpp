@@ -33,7 +33,11 @@
 // 1e-10, 1e-8, ... 1e0 until the solve succeeds (LinearSolver::factorize_shifted,
 // which knows the summed diagonal on several ranks). The residual is unchanged, so a
 // converged solution is exact; the huge steps along near-null directions are
-// tamed by max_step and the line search.
+// tamed by max_step and the line search. When the system knows the tangent is
+// singular (Evaluation::singular_tangent: a body that only contact holds, no
+// contact point carrying yet), K is not factorized at all and the shifts start at
+// mu = 1e-8 (LinearSolver::factorize_shifted_taking): for a residual along the null
+// mode, mu = 1e-10 cannot pass the solver's backward-error check (newton.cpp).
 //
 // Line search: the full step is taken when ||r(u + du)|| <= (1 - 1e-4) ||r(u)||.
 // Otherwise, first the directional search of Crisfield (Non-linear FE Analysis
