@@ -44,7 +44,9 @@ double largest_mu() { return first_mu * std::pow(mu_growth, max_regularizations 
 // for a b along v (d the D-weighted scale of v, d <= ||K||), above the solver's
 // bound 1e-6 ||b|| (solver/linear.hpp): the solve is rejected, its factorization
 // wasted. Measured at the first touch of inputs/hertz.yaml: 3.6e-6 ||b|| at 1e-10,
-// 1.4e-8 ||b|| at 1e-8 (the 3D sphere octant: 2.6e-8 at 1e-8).
+// 1.4e-8 ||b|| at 1e-8 (the 3D sphere octant: 2.6e-8 at 1e-8). Where 1e-10 would
+// pass (inputs/disc_on_plane_2d.yaml), 1e-8 changes the capped step by ~1e-3 of
+// its length: along the null mode both are the trust radius.
 constexpr int first_singular_attempt = 1;  // mu = first_mu * mu_growth
 // Linear systems: extra solves with the same factorization (iterative refinement)
 // while the algebraic residual is above the tolerance.

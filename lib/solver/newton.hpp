@@ -37,7 +37,7 @@
 // singular (Evaluation::singular_tangent: a body that only contact holds, no
 // contact point carrying yet), K is not factorized at all and the shifts start at
 // mu = 1e-8 (LinearSolver::factorize_shifted_taking): for a residual along the null
-// mode, mu = 1e-10 cannot pass the solver's backward-error check (newton.cpp).
+// mode, mu = 1e-10 fails the solver's backward-error check (newton.cpp).
 //
 // Line search: the full step is taken when ||r(u + du)|| <= (1 - 1e-4) ||r(u)||.
 // Otherwise, first the directional search of Crisfield (Non-linear FE Analysis
