@@ -110,8 +110,9 @@ VecN rigid_motion(const GroupNodes& nodes, int a, const Vector& q, int d)
 }
 
 /// The rows that hold rigid motions: one per prescribed dof, one per contact-side
-/// node against a rigid obstacle. Row . q = the held motion of mode q.
-Matrix holding_rows(const Scene& scene, const std::vector<int>& bodies, const GroupNodes& nodes)
+/// node against a rigid obstacle (with_contact). Row . q = the held motion of mode q.
+Matrix holding_rows(const Scene& scene, const std::vector<int>& bodies, const GroupNodes& nodes,
+                    bool with_contact = true)
 {
     const assembly::DofMap& map = *scene.dofs;
     const int d = scene.dim;
@@ -137,7 +138,7 @@ Matrix holding_rows(const Scene& scene, const std::vector<int>& bodies, const Gr
         count += scene.bodies[static_cast<std::size_t>(b)].n_nodes;
     }
     for (const PairModel& pair : scene.pairs) {
-        if (pair.obstacle < 0)
+        if (pair.obstacle < 0 || !with_contact)
             continue;
         const int k = 1 - pair.obstacle;
         const auto member = std::find(bodies.begin(), bodies.end(), pair.body[static_cast<std::size_t>(k)]);
@@ -183,6 +184,21 @@ Vector full_motion(const Scene& scene, const GroupNodes& nodes, const Vector& q)
         }
     }
     return u;
+}
+
+/// Dimension of the null space of A's first `columns` columns (the rigid modes q
+/// restricted to them that no row holds), by the tolerance of find_free_modes.
+int nullity(const Matrix& A, int columns)
+{
+    if (A.rows() == 0)
+        return columns;
+    const Eigen::JacobiSVD<Matrix> svd(A.leftCols(columns));
+    const Vector& sigma = svd.singularValues();
+    int n = 0;
+    for (int j = 0; j < columns; ++j)
+        if (j >= sigma.size() || sigma(j) <= free_mode_tolerance)
+            ++n;
+    return n;
 }
 
 std::string group_label(const Scene& scene, const std::vector<int>& bodies)
@@ -370,6 +386,25 @@ std::vector<NodeSpring> weak_springs(const Scene& scene, const FreeModeGroup& gr
                 out.push_back(std::move(spring));
         }
     return out;
+}
+
+bool singular_without_contact(const Scene& scene, const std::vector<FreeModeGroup>& free_modes)
+{
+    const int d = scene.dim;
+    // A stressed finite-strain tangent is singular along a free translation (r is
+    // invariant under it) but not along a rotation, which turns the stress.
+    const bool small = scene.kinematics == mechanics::Kinematics::small;
+    const int columns = d + (small ? static_cast<int>(rotation_axes(d).size()) : 0);
+    int constraint_free = 0;  // per body: its elastic stiffness alone is singular along these
+    for (int b = 0; b < static_cast<int>(scene.bodies.size()); ++b) {
+        const GroupNodes nodes = group_nodes(scene, {b});
+        constraint_free += nullity(holding_rows(scene, {b}, nodes, false), columns);
+    }
+    // The weak springs hold the free modes: at most that many of these directions.
+    int spring_held = 0;
+    for (const FreeModeGroup& group : free_modes)
+        spring_held += group.n_modes();
+    return constraint_free > spring_held;
 }
 
 }  // namespace iga::analysis

@@ -78,6 +78,14 @@ struct FreeModeGroup {
 /// The groups that have free modes (none: every body held).
 std::vector<FreeModeGroup> find_free_modes(const Scene& scene);
 
+/// Whether the tangent is singular for sure while no contact point carries: some
+/// body has rigid motions that its constraints leave free (under finite kinematics
+/// translations only, the motions a stressed tangent is still singular along), more
+/// of them than the weak springs of `free_modes` hold, so only contact holds the
+/// rest (a first touch, docs/solver.md "The first touch"). Sufficient, not necessary:
+/// false says nothing.
+bool singular_without_contact(const Scene& scene, const std::vector<FreeModeGroup>& free_modes);
+
 /// "body drum can translate freely in x", one line per group.
 std::string free_mode_text(const FreeModeGroup& group);
 

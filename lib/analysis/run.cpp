@@ -242,6 +242,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
                 springs.push_back(std::move(spring));
         system.set_weak_springs(std::move(springs));
     }
+    // A body that only contact holds: its first-touch tangents are shifted at once (solver/newton.hpp).
+    system.set_singular_without_contact(singular_without_contact(scene, free_modes));
 
     for (const PairModel& p : scene.pairs)
         if (p.penalty_auto)

@@ -320,6 +320,8 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
 void SceneSystem::evaluate(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out)
 {
     evaluate_into(u_free, load_factor, need_tangent, out, &context_, nullptr, nullptr);
+    // last_active_ counts every pair's Gauss points on every rank: the same verdict on all.
+    out.singular_tangent = need_tangent && singular_without_contact_ && last_active_ == 0;
 }
 
 Vector SceneSystem::full_residual(const Vector& u_free, double load_factor,

@@ -107,6 +107,9 @@ public:
 
     /// Weak springs on free rigid-body modes, added to every later evaluation.
     void set_weak_springs(std::vector<NodeSpring> springs) { springs_ = std::move(springs); }
+    /// The tangent is singular while no contact point carries (singular_without_contact,
+    /// analysis/free_modes.hpp): such an evaluation says so (Evaluation::singular_tangent).
+    void set_singular_without_contact(bool singular) { singular_without_contact_ = singular; }
 
     const Communicator& communicator() const { return comm_; }
     /// On several ranks: the stop request, polled by all ranks together once per
@@ -153,6 +156,7 @@ private:
     std::vector<Vector> element_force_;            // finite kinematics: f_int per block (reused storage)
     int last_active_ = 0;
     std::vector<NodeSpring> springs_;
+    bool singular_without_contact_ = false;
     StopRequest collective_stop_;
     std::vector<int> first_block_of_dof_;  // parallel: per full dof, the first element block holding it
 };

@@ -43,7 +43,7 @@ const char* status_name(LinearStatus status);
 struct LinearStatistics {
     int symbolic = 0;            ///< symbolic analyses (fill-reducing orderings)
     int numeric = 0;             ///< numeric factorizations (direct) or preconditioner set-ups (iterative)
-    int updates = 0;             ///< factorize() calls served by a Woodbury update
+    int updates = 0;             ///< factorize() calls served by a (Woodbury) update of an earlier factorization
     int cholesky_fallbacks = 0;  ///< matrices Cholesky refused (then factorized by LU)
     long long iterations = 0;    ///< Krylov iterations over all solves (iterative backends)
 };
@@ -71,6 +71,15 @@ public:
     /// |K_ii| (1 when all are zero): Newton's Levenberg-Marquardt shift for a
     /// singular tangent (solver/newton.hpp). Precondition: factorize() was called.
     virtual LinearStatus factorize_shifted(double mu) = 0;
+    /// factorize_taking(K) then factorize_shifted(mu), for a K the caller knows to be
+    /// singular (Newton at a first touch, solver/newton.hpp): a backend may skip the
+    /// factorization of K, which could only fail. Later factorize_shifted() calls shift
+    /// this K. K is left empty.
+    virtual LinearStatus factorize_shifted_taking(SparseMatrix& K, double mu)
+    {
+        factorize_taking(K);  // its status does not matter: the shifted one does
+        return factorize_shifted(mu);
+    }
 
     /// Solves with what the last factorize*() prepared. `singular` when x is not
     /// finite or ||K x - b|| > 1e-6 ||b||; x is then unspecified.

@@ -38,6 +38,16 @@ constexpr double first_mu = 1e-10;
 constexpr double mu_growth = 100.0;
 constexpr int max_regularizations = 6;
 double largest_mu() { return first_mu * std::pow(mu_growth, max_regularizations - 1); }
+// A tangent the system knows to be singular starts one rung up. Along its null mode
+// v the shifted solve gives x ~ (v.b) / (mu v^T D v), and a backward-stable solve
+// leaves ||K x - b|| ~ eps ||K|| ||x||: at mu = 1e-10 that is ~ 2e-6 ||K|| / d ||b||
+// for a b along v (d the D-weighted scale of v, d <= ||K||), above the solver's
+// bound 1e-6 ||b|| (solver/linear.hpp): the solve is rejected, its factorization
+// wasted. Measured at the first touch of inputs/hertz.yaml: 3.6e-6 ||b|| at 1e-10,
+// 1.4e-8 ||b|| at 1e-8 (the 3D sphere octant: 2.6e-8 at 1e-8). Where 1e-10 would
+// pass (inputs/disc_on_plane_2d.yaml), 1e-8 changes the capped step by ~1e-3 of
+// its length: along the null mode both are the trust radius.
+constexpr int first_singular_attempt = 1;  // mu = first_mu * mu_growth
 // Linear systems: extra solves with the same factorization (iterative refinement)
 // while the algebraic residual is above the tolerance.
 constexpr int max_refinements = 2;
@@ -68,6 +78,7 @@ void evaluate(const NonlinearSystem& system, const Vector& u, double load_factor
     if (context)
         context->stop().check();  // every trial state: a stop request ends the solve within one evaluation
     out.ok = true;
+    out.singular_tangent = false;
     out.message.clear();
     {
         ScopedTimer timer(context, "assembly");
@@ -89,26 +100,33 @@ struct StepResult {
 
 // Solves K du = -r; on a singular K retries with K + mu D (see the header). With
 // `consume` the solver may take K's storage and K is left empty (the caller needs it no more).
+// known_singular (Evaluation::singular_tangent): K is not factorized, and the shifts
+// start at first_singular_attempt.
 StepResult newton_step(SparseMatrix& K, const Vector& r, LinearSolver& solver, RunContext* context, Vector& du,
-                       bool consume)
+                       bool consume, bool known_singular)
 {
     ScopedTimer timer(context, "linear_solve");
     const Vector rhs = -r;
     StepResult result;
-    const int refusals = solver.statistics().cholesky_fallbacks;
-    result.status = consume ? solver.factorize_taking(K) : solver.factorize(K);
-    if (context && solver.statistics().cholesky_fallbacks > refusals)
-        context->log(Verbosity::verbose, "  tangent not positive definite: factorized by LU");
-    if (result.status == LinearStatus::ok)
-        result.status = solver.solve(rhs, du);
-    // An iterative method that stopped short may have met a singular K (the first
-    // touch) as well as a hard one: the shift helps either.
-    if (result.status != LinearStatus::singular && result.status != LinearStatus::not_converged)
-        return result;
+    const bool shift_at_once = known_singular && consume;
+    if (!shift_at_once) {
+        const int refusals = solver.statistics().cholesky_fallbacks;
+        result.status = consume ? solver.factorize_taking(K) : solver.factorize(K);
+        if (context && solver.statistics().cholesky_fallbacks > refusals)
+            context->log(Verbosity::verbose, "  tangent not positive definite: factorized by LU");
+        if (result.status == LinearStatus::ok)
+            result.status = solver.solve(rhs, du);
+        // An iterative method that stopped short may have met a singular K (the first
+        // touch) as well as a hard one: the shift helps either.
+        if (result.status != LinearStatus::singular && result.status != LinearStatus::not_converged)
+            return result;
+    }
 
-    double mu = first_mu;
-    for (int attempt = 0; attempt < max_regularizations; ++attempt, mu *= mu_growth) {
-        result.status = solver.factorize_shifted(mu);
+    const int first_attempt = shift_at_once ? first_singular_attempt : 0;
+    double mu = first_mu * std::pow(mu_growth, first_attempt);
+    for (int attempt = first_attempt; attempt < max_regularizations; ++attempt, mu *= mu_growth) {
+        result.status = shift_at_once && attempt == first_attempt ? solver.factorize_shifted_taking(K, mu)
+                                                                  : solver.factorize_shifted(mu);
         if (result.status == LinearStatus::ok)
             result.status = solver.solve(rhs, du);
         if (result.status == LinearStatus::ok) {
@@ -253,7 +271,7 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
 
     if (system.linear) {
         Vector du;
-        const StepResult step = newton_step(current.tangent, current.residual, solver, context, du, false);
+        const StepResult step = newton_step(current.tangent, current.residual, solver, context, du, false, false);
         if (step.status != LinearStatus::ok) {
             report.linear_status = step.status;
             return finish(NewtonStatus::singular, "linear solve failed (" + linear_failure_text(step.status, solver) +
@@ -319,7 +337,8 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         Vector du;
         // The tangent is handed to the solver: neither Newton nor the trial below needs it,
         // and a copying solver would hold it twice while it factorizes.
-        const StepResult step = newton_step(current.tangent, current.residual, solver, context, du, true);
+        const StepResult step =
+            newton_step(current.tangent, current.residual, solver, context, du, true, current.singular_tangent);
         if (step.status != LinearStatus::ok) {
             report.linear_status = step.status;
             return finish(NewtonStatus::singular,

@@ -33,7 +33,11 @@
 // 1e-10, 1e-8, ... 1e0 until the solve succeeds (LinearSolver::factorize_shifted,
 // which knows the summed diagonal on several ranks). The residual is unchanged, so a
 // converged solution is exact; the huge steps along near-null directions are
-// tamed by max_step and the line search.
+// tamed by max_step and the line search. When the system knows the tangent is
+// singular (Evaluation::singular_tangent: a body that only contact holds, no
+// contact point carrying yet), K is not factorized at all and the shifts start at
+// mu = 1e-8 (LinearSolver::factorize_shifted_taking): for a residual along the null
+// mode, mu = 1e-10 fails the solver's backward-error check (newton.cpp).
 //
 // Line search: the full step is taken when ||r(u + du)|| <= (1 - 1e-4) ||r(u)||.
 // Otherwise, first the directional search of Crisfield (Non-linear FE Analysis
@@ -89,6 +93,10 @@ struct Evaluation {
     /// of the per-dof sums of |term| over the terms summed into r (a residual this
     /// small cannot be reduced in double precision). 0: unknown, no floor is used.
     double residual_floor = 0;
+    /// The system knows the tangent is singular (a body that only contact holds, and no
+    /// contact point carries yet: a first touch): Newton solves with K + mu D at once,
+    /// without the factorization of K that could only fail. Only with the tangent.
+    bool singular_tangent = false;
     /// false: the evaluation itself failed (a projection failed, a non-positive
     /// Jacobian); Newton reports evaluation_failed with this message.
     bool ok = true;
@@ -103,14 +111,15 @@ inline void swap(Evaluation& a, Evaluation& b) noexcept
     a.tangent.swap(b.tangent);
     std::swap(a.force_scale, b.force_scale);
     std::swap(a.residual_floor, b.residual_floor);
+    std::swap(a.singular_tangent, b.singular_tangent);
     std::swap(a.ok, b.ok);
     a.message.swap(b.message);
 }
 
 struct NonlinearSystem {
     /// Fills out.residual (always) and out.tangent (when need_tangent) at state u
-    /// and load factor lambda. Newton resets out.ok = true and out.message before
-    /// each call; out.tangent keeps its previous storage, so it may be refilled in place.
+    /// and load factor lambda. Newton resets out.ok = true, out.singular_tangent = false
+    /// and out.message before each call; out.tangent keeps its previous storage, so it may be refilled in place.
     std::function<void(const Vector& u, double load_factor, bool need_tangent, Evaluation& out)> evaluate;
     bool linear = false;     ///< r is affine in u: one solve per increment
     bool symmetric = true;   ///< K symmetric: Cholesky may be used, else LU is forced

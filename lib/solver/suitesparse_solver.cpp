@@ -23,9 +23,14 @@ constexpr double backward_error_tolerance = 1e-6;
 // residual: a direct solve lands near eps ||K|| ||x||, the update's extra rounding
 // (cancellation between K_ref^-1 b and the correction under a stiff penalty) can
 // leave it orders above that. UMFPACK's own refinement would refine towards
-// K_ref, so it is off for updates and for the columns of K_ref^-1.
+// K_ref, so it is off for updates and for the columns of K_ref^-1. A shifted
+// reference's update solves K + mu D: refinement also takes the shift off, by a
+// factor ~||(K + mu D)^-1 mu D|| per step (measured at mu = 1e-8: 1e-3 on the 3D
+// sphere octant, which reaches the update's rounding in 3 steps; 0.02 on the 2D
+// Hertz cylinder, 7 steps from 3e-3 to 1e-14). The halving rule ends the steps
+// that no longer pay, so the cap only bounds a slow contraction.
 constexpr double refinement_threshold = 1e-14;
-constexpr int max_refinement_steps = 4;
+constexpr int max_refinement_steps = 8;
 constexpr int umfpack_refinement_steps = 2;  // UMFPACK's default, for solves with the factorized K itself
 
 // Woodbury updates: the columns of K_ref^-1 they need are priced at their flops
@@ -67,9 +72,14 @@ void copy_compressed(const SparseMatrix& K, SparseMatrix& into)
 
 // The entries where K and R (n x n, R compressed) differ: K - R = P^T D P on the
 // sorted dofs A of their rows and columns. false when A would exceed max_dofs.
-bool difference_support(const SparseMatrix& K, const SparseMatrix& R, Index max_dofs, std::vector<int>& dofs,
-                        Matrix& D)
+// R_diagonal, when given, holds R's diagonal instead of R's own entries (a shifted
+// reference compared as the unshifted one, bit for bit: no rounding of R_jj - shift).
+bool difference_support(const SparseMatrix& K, const SparseMatrix& R, const Vector* R_diagonal, Index max_dofs,
+                        std::vector<int>& dofs, Matrix& D)
 {
+    auto reference_value = [R_diagonal](const SparseMatrix::InnerIterator& b, Index j) {
+        return R_diagonal && b.row() == j ? (*R_diagonal)(j) : b.value();
+    };
     const Index n = R.rows();
     std::vector<char> in_support(static_cast<std::size_t>(n), 0);
     std::vector<Triplet> entries;
@@ -90,10 +100,10 @@ bool difference_support(const SparseMatrix& K, const SparseMatrix& R, Index max_
                 i = a.row(), delta = a.value();
                 ++a;
             } else if (b && (!a || b.row() < a.row())) {
-                i = b.row(), delta = -b.value();
+                i = b.row(), delta = -reference_value(b, j);
                 ++b;
             } else {
-                i = a.row(), delta = a.value() - b.value();
+                i = a.row(), delta = a.value() - reference_value(b, j);
                 ++a, ++b;
             }
             if (delta != 0) {
@@ -194,13 +204,11 @@ bool SuiteSparseSolver::same_pattern(const SparseMatrix& K) const
 
 LinearStatus SuiteSparseSolver::factorize(const SparseMatrix& K)
 {
-    shift_base_valid_ = false;  // a new K: the next shift starts from it
     return factorize_matrix(K, nullptr);
 }
 
 LinearStatus SuiteSparseSolver::factorize_taking(SparseMatrix& K)
 {
-    shift_base_valid_ = false;
     const LinearStatus status = factorize_matrix(K, &K);
     release(K);  // an update or a kept factorization did not need it
     return status;
@@ -210,12 +218,9 @@ LinearStatus SuiteSparseSolver::factorize_shifted(double mu)
 {
     if (!shift_base_valid_) {
         // The K of the last factorize() becomes the shift base in reference_ itself
-        // (a 3D tangent is ~100 MB at 30k dofs: one copy, not two); after an update
-        // that K is K_ref + P^T D P.
+        // (a 3D tangent is ~100 MB at 30k dofs: one copy, not two).
         const Index entries = reference_.nonZeros();
-        if (updated_)
-            update_->add_difference(reference_);  // the union of both patterns
-        updated_ = false;
+        materialize();
         const bool grown = complete_diagonal(reference_, diagonal_position_) || reference_.nonZeros() != entries;
         if (grown)
             analysed_ = analysed_lu_ = analysed_llt_ = false;  // analyse the new pattern
@@ -229,8 +234,33 @@ LinearStatus SuiteSparseSolver::factorize_shifted(double mu)
     for (Index i = 0; i < reference_.rows(); ++i)
         reference_.valuePtr()[diagonal_position_[static_cast<std::size_t>(i)]] =
             base_diagonal_(i) + mu * shift_scale_(i);
+    shift_ = mu;
+    updated_ = false;  // solves are with reference_ itself, K + mu D
     factorized_ = false;
     return factorize_reference();
+}
+
+LinearStatus SuiteSparseSolver::factorize_shifted_taking(SparseMatrix& K, double mu)
+{
+    IGA_CHECK(K.rows() == K.cols(), "SuiteSparseSolver::factorize_shifted_taking: the matrix must be square");
+    take_reference(K, &K);
+    release(K);
+    return factorize_shifted(mu);
+}
+
+void SuiteSparseSolver::materialize()
+{
+    if (shift_ > 0)  // the pattern is the shift's: its diagonal positions still hold
+        for (Index i = 0; i < reference_.rows(); ++i)
+            reference_.valuePtr()[diagonal_position_[static_cast<std::size_t>(i)]] = base_diagonal_(i);
+    shift_ = 0;
+    if (updated_ && update_->size() > 0) {
+        const Index entries = reference_.nonZeros();
+        update_->add_difference(reference_);  // the union of both patterns
+        if (reference_.nonZeros() != entries)
+            analysed_ = analysed_lu_ = analysed_llt_ = false;
+    }
+    updated_ = false;
 }
 
 LinearStatistics SuiteSparseSolver::statistics() const
@@ -260,11 +290,17 @@ LinearStatus SuiteSparseSolver::factorize_matrix(const SparseMatrix& K, SparseMa
         return LinearStatus::ok;
     updated_ = false;
     // The same matrix again (a linear scene's next increment): keep the factorization.
-    if (factorized_ && K.isCompressed() && same_pattern(K) &&
+    if (factorized_ && shift_ == 0 && K.isCompressed() && same_pattern(K) &&
         std::equal(K.valuePtr(), K.valuePtr() + K.nonZeros(), reference_.valuePtr()))
         return LinearStatus::ok;
-    factorized_ = false;
+    take_reference(K, owned);
+    return factorize_reference();
+}
 
+void SuiteSparseSolver::take_reference(const SparseMatrix& K, SparseMatrix* owned)
+{
+    factorized_ = updated_ = shift_base_valid_ = false;
+    shift_ = 0;
     if (owned && K.isCompressed()) {
         if (!(analysed_ && same_pattern(K)))
             analysed_ = analysed_lu_ = analysed_llt_ = false;
@@ -279,7 +315,6 @@ LinearStatus SuiteSparseSolver::factorize_matrix(const SparseMatrix& K, SparseMa
     } else {
         copy_compressed(K, reference_);  // same pattern: the values in place, nothing reallocated
     }
-    return factorize_reference();
 }
 
 LinearStatus SuiteSparseSolver::factorize_reference()
@@ -327,7 +362,9 @@ bool SuiteSparseSolver::try_update(const SparseMatrix& K)
     const Index room = max_columns - update_->stored_columns();
     std::vector<int> dofs;
     Matrix D;
-    if (room <= 0 || !difference_support(K, reference_, max_columns, dofs, D) || !D.allFinite())
+    const Vector* unshifted_diagonal = shift_ > 0 ? &base_diagonal_ : nullptr;  // compare with K_u
+    if (room <= 0 || !difference_support(K, reference_, unshifted_diagonal, max_columns, dofs, D) ||
+        !D.allFinite())
         return false;  // (a non-finite entry of K differs from the reference: it is in D)
     // Time: the new columns and the dense capacitance against a factorization.
     const auto m = static_cast<double>(dofs.size());
@@ -336,13 +373,15 @@ bool SuiteSparseSolver::try_update(const SparseMatrix& K)
         static_cast<double>(missing) * column_flops_ * column_flop_cost + 2.0 / 3.0 * m * m * m;
     if (missing > room || update_flops >= factor_flops_)
         return false;
+    const bool same_as_base = dofs.empty();
     if (!update_->set_up(dofs, std::move(D), [this](const Matrix& B) { return solve_reference(B); }))
         return false;
-    if (dofs.empty()) {  // K is the reference itself
+    shift_base_valid_ = shift_base_valid_ && same_as_base;  // a shift must start from this K
+    if (same_as_base && shift_ == 0) {  // K is the reference itself
         updated_ = false;
         return true;
     }
-    updated_ = true;
+    updated_ = true;  // by Woodbury, or by refining away the reference's shift (solve())
     ++n_updates_;
     return true;
 }
@@ -350,8 +389,12 @@ bool SuiteSparseSolver::try_update(const SparseMatrix& K)
 Vector SuiteSparseSolver::apply(const Vector& x) const
 {
     Vector y = reference_ * x;
-    if (updated_)
-        update_->add_difference_product(x, y);
+    if (!updated_)
+        return y;
+    if (shift_ > 0)  // K_u x: the shift taken off as stored (the shifted diagonal minus K_u's)
+        for (Index i = 0; i < y.size(); ++i)
+            y(i) -= (reference_.valuePtr()[diagonal_position_[static_cast<std::size_t>(i)]] - base_diagonal_(i)) * x(i);
+    update_->add_difference_product(x, y);
     return y;
 }
 
@@ -430,14 +473,14 @@ LinearStatus SuiteSparseSolver::solve(const Vector& b, Vector& x)
         return y.allFinite();
     };
     if (!solve_once(b, x))
-        return LinearStatus::singular;
+        return updated_ ? refactorize_and_solve(b, x) : LinearStatus::singular;
     // Also catches Cholesky handed a non-symmetric K: it reads one triangle only,
     // the check multiplies by the whole matrix.
     Vector r = b - apply(x);
     double residual = r.norm();
     // An update's solution carries the rounding of K_ref^-1 b and of the
-    // correction, which cancel where penalty stiffness dominates: refine against
-    // K while that pays.
+    // correction, which cancel where penalty stiffness dominates, and with a shifted
+    // reference it solves K + mu D, not K: refine against K while that pays.
     for (int step = 0; updated_ && step < max_refinement_steps && residual > refinement_threshold * b.norm(); ++step) {
         Vector dx;
         if (!solve_once(r, dx))
@@ -451,8 +494,23 @@ LinearStatus SuiteSparseSolver::solve(const Vector& b, Vector& x)
         residual = r.norm();
     }
     if (!(residual <= backward_error_tolerance * b.norm()))
-        return LinearStatus::singular;
+        return updated_ ? refactorize_and_solve(b, x) : LinearStatus::singular;
     return LinearStatus::ok;
+}
+
+LinearStatus SuiteSparseSolver::refactorize_and_solve(const Vector& b, Vector& x)
+{
+    // The update does not serve this K (singular, or the shift too strong to refine
+    // away): factorize K itself, which becomes the reference; the call is then a
+    // factorization, not an update.
+    materialize();
+    --n_updates_;
+    shift_base_valid_ = false;
+    factorized_ = false;
+    const LinearStatus status = factorize_reference();
+    if (status != LinearStatus::ok)
+        return LinearStatus::singular;  // K singular: the caller's shift starts from it (materialized above)
+    return solve(b, x);
 }
 
 }  // namespace iga::solver

@@ -30,9 +30,17 @@
 // factorized, when that costs fewer flops than a factorization (the columns of
 // K_ref^-1 the update still needs against the factorization's own flop count,
 // both known from the backend's analysis), and its columns fit in the memory of
-// the factor. Anything else (a dense change, a singular capacitance, a solution
-// whose backward error stays above the bound after one refinement step) takes the
+// the factor. Anything else (a dense change, a singular capacitance) takes the
 // ordinary path, and the new factorization becomes the reference.
+//
+// A shifted reference (factorize_shifted: Newton's K_u + mu D for a singular K_u)
+// is kept as the reference of later updates: a later K is compared with the
+// unshifted K_u, so that a tangent which differs from it in the contact dofs only is
+// a Woodbury update of K_u + mu D, i.e. solves (K + mu D) x = b, and solve() then
+// refines x against K itself, x += (K + mu D)^-1 (b - K x) (the error contracts by
+// ~||(K + mu D)^-1 mu D|| per step: far below 1 once the contact holds what the
+// shift held). A solution that still misses the backward-error bound takes the
+// ordinary path: K is factorized and becomes the (unshifted) reference.
 
 #include "solver/linear.hpp"
 
@@ -69,6 +77,8 @@ public:
     /// added to K's pattern once if it lacks entries, so the symbolic analysis of
     /// the shifted pattern serves every mu.
     LinearStatus factorize_shifted(double mu) override;
+    /// K + mu D without factorizing K first; K's storage becomes the reference's.
+    LinearStatus factorize_shifted_taking(SparseMatrix& K, double mu) override;
 
     /// Solves K x = b with the last successful factorization. Returns `singular`
     /// when x is not finite or the backward error ||K x - b|| > 1e-6 ||b||
@@ -83,7 +93,8 @@ public:
     /// change in a few rows and columns between calls (contact under small
     /// kinematics). Off by default.
     void set_updates(bool on);
-    /// Whether the last factorize() was an update of the reference.
+    /// Whether the last factorize() was an update of the reference (Woodbury, or the
+    /// removal of the reference's shift by refinement, or both).
     bool updated() const override { return updated_; }
 
     /// Fill-reducing ordering of the symbolic analyses: approximate minimum degree
@@ -108,7 +119,9 @@ public:
     int n_cholesky_fallbacks() const { return n_fallbacks_; }  ///< matrices Cholesky refused so far
     int n_symbolic() const { return n_symbolic_; }  ///< symbolic analyses done so far
     int n_numeric() const { return n_numeric_; }    ///< numeric factorizations done so far
-    int n_updates() const { return n_updates_; }    ///< factorize() calls served by a Woodbury update
+    /// factorize() calls served by an update of the reference (Woodbury, or an unshift
+    /// by refinement); one whose solve fell back to a factorization is not counted.
+    int n_updates() const { return n_updates_; }
     Index size() const { return reference_.rows(); }
 
 private:
@@ -116,8 +129,12 @@ private:
 
     // factorize(); owned: K itself, handed over by factorize_taking() (swapped in, not copied)
     LinearStatus factorize_matrix(const SparseMatrix& K, SparseMatrix* owned);
+    void take_reference(const SparseMatrix& K, SparseMatrix* owned);  // reference_ := K, unfactorized
     LinearStatus factorize_reference();  // reference_ as it stands, Cholesky or LU by the policy above
-    Vector apply(const Vector& x) const;  // K x for the K of the last factorize() (an update's: K_ref + P^T D P)
+    // K x for the K of the last factorize*(): an update's K_u + P^T D P (K_u: reference_ unshifted)
+    Vector apply(const Vector& x) const;
+    void materialize();  // reference_ := the K of the last factorize() (unshifted, the update's difference added)
+    LinearStatus refactorize_and_solve(const Vector& b, Vector& x);  // an update missed the bound: the ordinary path
 
     bool same_pattern(const SparseMatrix& K) const;  // as reference_
     LinearStatus factorize_with(Kind kind);  // reference_ by one backend, after its analysis if needed
@@ -129,7 +146,7 @@ private:
     std::unique_ptr<Backend> backend_;
     SparseMatrix reference_;      // the factorized matrix (compressed), read by solve()
     std::unique_ptr<WoodburyUpdate> update_;  // set_updates(true)
-    bool updated_ = false;        // the last factorize() was an update: solve() corrects, and checks against K_ref + P^T D P
+    bool updated_ = false;        // the last factorize() was an update: solve() corrects, refines and checks against K_u + P^T D P
     double factor_flops_ = 0;     // of reference_'s factorization (backend's count)
     double column_flops_ = 0;     // of one solve with it
     double factor_entries_ = 0;   // nonzeros of its factors
@@ -145,10 +162,12 @@ private:
     int n_numeric_ = 0;
     int n_updates_ = 0;
     Ordering ordering_ = Ordering::minimum_degree;
-    // factorize_shifted(): reference_ holds K with its whole diagonal (made at the first
-    // shift after a factorize()); its unshifted diagonal values, D, and where they sit.
+    // factorize_shifted(): reference_ holds K_u with its whole diagonal (made at the first
+    // shift after a factorize()), shifted by shift_ D; K_u's diagonal values, D, and where
+    // they sit. shift_base_valid_: K_u is the K of the last factorize() (no update since).
     std::vector<int> diagonal_position_;
     Vector base_diagonal_, shift_scale_;
+    double shift_ = 0;            // mu of reference_'s shift, 0: reference_ is K_u itself
     bool shift_base_valid_ = false;
 };
 

@@ -42,6 +42,8 @@ public:
     Index missing_columns(const std::vector<int>& dofs) const;
     /// Columns of K_ref^-1 held (n doubles each).
     Index stored_columns() const { return static_cast<Index>(columns_.size()); }
+    /// m = |A| of the last set-up (0: K is K_ref).
+    Index size() const { return static_cast<Index>(dofs_.size()); }
 
     /// Prepares solves with K = K_ref + P^T D P for the dofs A (sorted, unique,
     /// each in 0..n-1) and D (m x m). false: I + G D is singular to working
@@ -54,6 +56,7 @@ public:
     /// y += P^T D P x: with y = K_ref x this is K x, so K itself need not be kept.
     void add_difference_product(const Vector& x, Vector& y) const;
     /// R += P^T D P (R = K_ref gives K; the pattern grows where K has entries R lacks).
+    /// In place when R's pattern holds every nonzero of D (no second copy of R).
     void add_difference(SparseMatrix& R) const;
 
 private:

@@ -83,6 +83,43 @@ TEST(FreeModes, DetectionFollowsConstraintsAndContactNormals)
     }
 }
 
+// Which scenes have a tangent that is singular for sure while no contact point
+// carries (singular_without_contact; Newton then shifts it at once, docs/solver.md
+// "The first touch"): a body held in some rigid motion by contact alone.
+TEST(FreeModes, OnlyContactHoldsABodyAtAFirstTouch)
+{
+    struct Row {
+        const char* name;
+        std::string deck;
+        std::vector<std::string> set;
+        bool expected;
+    };
+    const std::vector<Row> rows = {
+        {"Hertz: the cylinder is held vertically by the floor alone", source_path("inputs/hertz.yaml"), {}, true},
+        {"Hertz sphere octant (3D)", source_path("inputs/hertz_sphere_plane_3d.yaml"), {}, true},
+        {"disc on a plane, its top held in x only", source_path("inputs/disc_on_plane_2d.yaml"), {}, true},
+        {"block on a frictionless floor: x by the springs, y and the turn by the floor alone", block_deck(), {},
+         true},
+        {"Hertz under displacement control: the top is prescribed", source_path("inputs/hertz_displacement_2d.yaml"),
+         {}, false},
+        {"roller-top half cylinder: x by the springs, y and the turn by the roller",
+         source_path("inputs/roller_half_cylinder_2d.yaml"), {}, false},
+        {"rubber compression (finite strain), top prescribed", source_path("inputs/rubber_compression_2d.yaml"), {},
+         false},
+        {"contact patch test: both blocks constrained", source_path("inputs/contact_patch_test_2d.yaml"), {}, false},
+        {"3D box held in x and y at its bottom face: z by the floor alone",
+         source_path("tests/analysis/decks/block_frictionless_floor_3d.yaml"),
+         {"constraints=[{body: box, side: w0, fix: [x, y]}]"},
+         true},
+    };
+    for (const Row& row : rows) {
+        SCOPED_TRACE(row.name);
+        const io::Deck deck = io::read_deck(row.deck, row.set);
+        const analysis::Scene scene = analysis::build_scene(deck);
+        EXPECT_EQ(analysis::singular_without_contact(scene, analysis::find_free_modes(scene)), row.expected);
+    }
+}
+
 TEST(FreeModes, RollerTopHalfCylinderEqualsSymmetricModel)
 {
     const auto dir = scratch_dir("free_modes_roller");

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <vector>
 
@@ -382,6 +383,92 @@ TEST(Newton, FloatingBodyHeldOnlyByContactConverges)
     const double u2 = gap + f / kc;
     EXPECT_TRUE(test::near(u(1), u2, solution_tolerance));
     EXPECT_TRUE(test::near(u(0), u2 + f / kb, solution_tolerance));
+}
+
+// The calls Newton makes to its linear solver, recorded around a SuiteSparseSolver.
+class RecordingSolver final : public LinearSolver {
+public:
+    RecordingSolver() : inner_(SuiteSparseSolver::Kind::cholesky)
+    {
+        inner_.set_semidefinite(true);
+        inner_.set_updates(true);
+    }
+    LinearStatus factorize(const SparseMatrix& K) override
+    {
+        calls.push_back("factorize");
+        return inner_.factorize(K);
+    }
+    LinearStatus factorize_taking(SparseMatrix& K) override
+    {
+        calls.push_back("factorize");
+        return inner_.factorize_taking(K);
+    }
+    LinearStatus factorize_shifted(double mu) override
+    {
+        calls.push_back("shift " + text(mu));
+        return inner_.factorize_shifted(mu);
+    }
+    LinearStatus factorize_shifted_taking(SparseMatrix& K, double mu) override
+    {
+        calls.push_back("shift at once " + text(mu));
+        return inner_.factorize_shifted_taking(K, mu);
+    }
+    LinearStatus solve(const Vector& b, Vector& x) override { return inner_.solve(b, x); }
+    LinearStatistics statistics() const override { return inner_.statistics(); }
+    std::string describe() const override { return inner_.describe(); }
+    bool updated() const override { return inner_.updated(); }
+
+    std::vector<std::string> calls;
+
+private:
+    static std::string text(double mu)
+    {
+        char buffer[32];
+        std::snprintf(buffer, sizeof buffer, "%g", mu);
+        return buffer;
+    }
+    SuiteSparseSolver inner_;
+};
+
+// The floating body above, whose system knows that its tangent is singular until the
+// contact carries (Evaluation::singular_tangent, as analysis/system.hpp sets it at a
+// first touch): Newton shifts that tangent at once, from mu = 1e-8, and never has it
+// factorized; the shifted factorization then serves the later tangents by updates.
+TEST(Newton, AKnownSingularTangentIsShiftedAtOnce)
+{
+    const double kb = 1e3, kc = 1e4, gap = 0.1, f = 5.0;
+    for (bool known : {true, false}) {
+        SCOPED_TRACE(known ? "known singular" : "not told");
+        NonlinearSystem system;
+        system.max_step = 0.05;
+        system.evaluate = [&](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+            const double penetration = std::max(u(1) - gap, 0.0);
+            out.residual.resize(2);
+            out.residual << kb * (u(0) - u(1)) - lambda * f, kb * (u(1) - u(0)) + kc * penetration;
+            out.force_scale = lambda * f + kc * penetration;
+            if (need_tangent) {
+                Matrix K(2, 2);
+                K << kb, -kb, -kb, kb + (u(1) > gap ? kc : 0.0);
+                out.tangent = sparse(K);
+                out.singular_tangent = known && !(u(1) > gap);
+            }
+        };
+        RecordingSolver solver;
+        Vector u = Vector::Zero(2);
+        const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
+        ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
+        EXPECT_GE(report.regularized_iterations, 1);
+        const double u2 = gap + f / kc;
+        EXPECT_TRUE(test::near(u(1), u2, solution_tolerance));
+        EXPECT_TRUE(test::near(u(0), u2 + f / kb, solution_tolerance));
+        ASSERT_FALSE(solver.calls.empty());
+        if (known) {
+            EXPECT_EQ(solver.calls.front(), "shift at once 1e-08");
+            EXPECT_EQ(std::count(solver.calls.begin(), solver.calls.end(), "shift 1e-10"), 0);
+        } else {
+            EXPECT_EQ(solver.calls.front(), "factorize") << "without the hint Newton tries K first, as before";
+        }
+    }
 }
 
 // ---------------------------------------------------------------------------

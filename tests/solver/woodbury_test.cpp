@@ -357,3 +357,174 @@ TEST(SuiteSparseSolver, FactorizeTakingSolvesAsFactorizeAndLeavesKEmpty)
 }
 
 }  // namespace iga::solver
+
+namespace iga::solver {
+
+namespace {
+
+// A body that only contact holds (docs/solver.md "The first touch"): the 3D grid
+// Laplacian without its diagonal shift, the constant vector its null mode.
+SparseMatrix free_body(int q)
+{
+    SparseMatrix K = grid_matrix(q);
+    for (Index i = 0; i < K.rows(); ++i)
+        K.coeffRef(i, i) -= 0.01;
+    K.prune(0.0);
+    return K;
+}
+
+// K0 plus penalty springs k at the dofs of the contact zone.
+SparseMatrix held(const SparseMatrix& K0, const std::vector<int>& dofs, double k)
+{
+    SparseMatrix K = K0;
+    for (int a : dofs)
+        K.coeffRef(a, a) += k;
+    return K;
+}
+
+double backward_error(const SparseMatrix& K, const Vector& x, const Vector& b)
+{
+    return (K * x - b).norm() / b.norm();
+}
+
+// K + mu D, D = shift_scale(diag K): what factorize_shifted(mu) solves.
+SparseMatrix shifted(const SparseMatrix& K, double mu)
+{
+    SparseMatrix S = K;
+    const Vector D = shift_scale(Vector(K.diagonal()));
+    for (Index i = 0; i < S.rows(); ++i)
+        S.coeffRef(i, i) += mu * D(i);
+    return S;
+}
+
+constexpr double first_touch_mu = 1e-8;  // Newton's first shift of a tangent known singular
+
+}  // namespace
+
+TEST(SuiteSparseSolver, AShiftedReferenceServesTheNextTangentsByUpdates)
+{
+    // Newton at a first touch: the singular K0 is shifted (K0 + mu D), then the
+    // tangents K0 + contact differ from the UNSHIFTED reference in the contact dofs
+    // only. They are Woodbury updates of the shifted factorization, refined against K
+    // itself: no second factorization, and the solves are those of K.
+    const SparseMatrix K0 = free_body(8);
+    const Index n = K0.rows();
+    const std::vector<std::vector<int>> zones{{0, 1}, {0, 1, 8, 9}, {0, 1, 8, 9, 64}};
+    for (SuiteSparseSolver::Kind kind : {SuiteSparseSolver::Kind::cholesky, SuiteSparseSolver::Kind::lu}) {
+        SuiteSparseSolver solver(kind);
+        solver.set_updates(true);
+        solver.set_semidefinite(kind == SuiteSparseSolver::Kind::cholesky);
+        SparseMatrix handed = K0;
+        ASSERT_EQ(solver.factorize_shifted_taking(handed, first_touch_mu), LinearStatus::ok) << kind_name(kind);
+        EXPECT_EQ(handed.nonZeros(), 0) << "taken, not copied";
+        EXPECT_EQ(solver.n_numeric(), 1) << kind_name(kind) << ": K0 itself is not factorized";
+        Vector x;
+        ASSERT_EQ(solver.solve(random_vector(n, 3), x), LinearStatus::ok);
+        for (std::size_t k = 0; k < zones.size(); ++k) {
+            const SparseMatrix K = held(K0, zones[k], 1.0 + static_cast<double>(k));
+            ASSERT_EQ(solver.factorize(K), LinearStatus::ok) << kind_name(kind);
+            EXPECT_TRUE(solver.updated()) << kind_name(kind) << ", zone " << k;
+            const Vector b = random_vector(n, 30 + static_cast<unsigned>(k));
+            ASSERT_EQ(solver.solve(b, x), LinearStatus::ok) << kind_name(kind) << ", zone " << k;
+            Eigen::SimplicialLDLT<SparseMatrix> direct(K);
+            const Vector expected = direct.solve(b);
+            EXPECT_TRUE(test::at_most((x - expected).norm() / expected.norm(), agreement))
+                << kind_name(kind) << ", zone " << k;
+            EXPECT_TRUE(test::at_most(backward_error(K, x, b), 1e-12)) << kind_name(kind) << ", zone " << k;
+        }
+        EXPECT_EQ(solver.n_numeric(), 1) << kind_name(kind);
+        EXPECT_EQ(solver.n_updates(), 3) << kind_name(kind);
+    }
+}
+
+TEST(SuiteSparseSolver, AShiftThatCannotBeRefinedAwayFactorizesKAndSaysSoTruthfully)
+{
+    const SparseMatrix K0 = free_body(6);
+    const Index n = K0.rows();
+    const Vector b = random_vector(n, 41);  // with a component along the constant null mode
+    for (SuiteSparseSolver::Kind kind : {SuiteSparseSolver::Kind::cholesky, SuiteSparseSolver::Kind::lu}) {
+        SCOPED_TRACE(kind_name(kind));
+        const bool cholesky = kind == SuiteSparseSolver::Kind::cholesky;
+        {
+            // Still free (a spring inside the body, no contact): K is singular, the
+            // refinement cannot converge, and K's own factorization is tried and
+            // reported singular. Then the shift is of that K.
+            SparseMatrix K = K0;
+            for (int a : {3, 4})
+                for (int c : {3, 4})
+                    K.coeffRef(a, c) += a == c ? 2.0 : -2.0;
+            SuiteSparseSolver solver(kind);
+            solver.set_updates(true);
+            solver.set_semidefinite(cholesky);
+            SparseMatrix handed = K0;
+            ASSERT_EQ(solver.factorize_shifted_taking(handed, first_touch_mu), LinearStatus::ok);
+            ASSERT_EQ(solver.factorize(K), LinearStatus::ok);  // an update: its solve finds out
+            Vector x;
+            EXPECT_EQ(solver.solve(b, x), LinearStatus::singular);
+            EXPECT_FALSE(solver.updated());
+            EXPECT_EQ(solver.n_updates(), 0) << "a call whose solve fell back is a factorization";
+            EXPECT_EQ(solver.n_numeric(), 2);
+            constexpr double mu = 1e-6;
+            ASSERT_EQ(solver.factorize_shifted(mu), LinearStatus::ok);
+            ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+            EXPECT_TRUE(test::at_most(backward_error(shifted(K, mu), x, b), 1e-10));
+        }
+        {
+            // Held, but so weakly that a large shift dominates (a contraction ~1 per
+            // step): K is factorized, becomes the reference, and is solved exactly.
+            const SparseMatrix K = held(K0, {0}, 1e-4);
+            SuiteSparseSolver solver(kind);
+            solver.set_updates(true);
+            solver.set_semidefinite(cholesky);
+            SparseMatrix handed = K0;
+            ASSERT_EQ(solver.factorize_shifted_taking(handed, 1e-2), LinearStatus::ok);
+            ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+            Vector x;
+            ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+            EXPECT_TRUE(test::at_most(backward_error(K, x, b), 1e-10));
+            EXPECT_FALSE(solver.updated());
+            EXPECT_EQ(solver.n_updates(), 0);
+            EXPECT_EQ(solver.n_numeric(), 2);
+            // The factorized K is the reference now, unshifted: the next tangent is a plain update.
+            const SparseMatrix K2 = held(K, {1, 2}, 1.0);
+            ASSERT_EQ(solver.factorize(K2), LinearStatus::ok);
+            EXPECT_TRUE(solver.updated());
+            ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+            EXPECT_TRUE(test::at_most(backward_error(K2, x, b), 1e-10));
+            EXPECT_EQ(solver.n_numeric(), 2);
+        }
+    }
+}
+
+TEST(SuiteSparseSolver, AShiftAfterAnUpdateOfAShiftedReferenceShiftsTheUpdatedMatrix)
+{
+    // Newton regularizes a tangent served by an update of a shifted reference: the
+    // shift is of that tangent, K_u + P^T D P with its own D, not of the reference
+    // (shifted by another mu, with another contact block).
+    const SparseMatrix K0 = free_body(6);
+    const Index n = K0.rows();
+    const SparseMatrix K = held(K0, {0, 1, 6}, 30.0);
+    const Vector b = random_vector(n, 51);
+    constexpr double mu = 1e-2;  // large enough that shifting the wrong matrix shows
+    for (SuiteSparseSolver::Kind kind : {SuiteSparseSolver::Kind::cholesky, SuiteSparseSolver::Kind::lu}) {
+        SuiteSparseSolver solver(kind);
+        solver.set_updates(true);
+        SparseMatrix handed = K0;
+        ASSERT_EQ(solver.factorize_shifted_taking(handed, first_touch_mu), LinearStatus::ok);
+        ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+        ASSERT_TRUE(solver.updated()) << kind_name(kind);
+        ASSERT_EQ(solver.factorize_shifted(mu), LinearStatus::ok);
+        Vector x;
+        ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+        EXPECT_TRUE(test::at_most(backward_error(shifted(K, mu), x, b), agreement)) << kind_name(kind);
+        // And the plain K again: an update of that shifted reference, solved as K.
+        ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+        ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+        EXPECT_TRUE(test::at_most(backward_error(K, x, b), 1e-12)) << kind_name(kind);
+        // (An update, or, if mu = 1e-2 is too strong to refine off, a factorization:
+        // every factorize*() call counts once, as one or the other.)
+        EXPECT_EQ(solver.n_numeric() + solver.n_updates(), 4) << kind_name(kind);
+    }
+}
+
+}  // namespace iga::solver
