@@ -15,6 +15,7 @@
 #include "summary_json.hpp"
 
 #include "core/allocator.hpp"
+#include "core/blas_kernels.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "core/stop.hpp"
@@ -81,6 +82,7 @@ int run_main(int argc, char** argv, const iga::Communicator& comm)
 
 int main(int argc, char** argv)
 {
+    iga::use_cpu_blas_kernels(argv);     // may start the program again, with OPENBLAS_CORETYPE set
     iga::restore_allocator_defaults();  // before any large allocation (core/allocator.hpp)
     // Under mpirun (or srun) MPI first: every rank then builds the same scene and
     // works on its part (core/parallel.hpp). A plain run starts no MPI.

@@ -12,6 +12,7 @@
 #include "analysis/uzawa.hpp"
 #include "analysis/warnings.hpp"
 #include "assembly/threads.hpp"
+#include "core/blas_kernels.hpp"
 #include "io/locate.hpp"
 #include "io/output_paths.hpp"
 #include "io/results_writer.hpp"
@@ -24,6 +25,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <limits>
 #include <optional>
 
@@ -156,6 +158,11 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
     const std::unique_ptr<solver::LinearSolver> linear =
         solver::make_linear_solver(linear_solver_policy(deck, scene, nonlinear, comm), comm);
     context.log(Verbosity::verbose, "  linear solver: " + linear->describe());
+    if (const std::string kernels = blas_kernels(); !kernels.empty()) {
+        const char* forced = std::getenv("OPENBLAS_CORETYPE");
+        context.log(Verbosity::verbose, "  BLAS: OpenBLAS, " + kernels + " kernels" +
+                                            (forced ? std::string(" (OPENBLAS_CORETYPE=") + forced + ")" : ""));
+    }
 
     std::optional<io::ResultsWriter> writer;  // rank 0's
     std::string open_error;

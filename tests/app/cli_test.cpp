@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -90,6 +91,37 @@ TEST(Cli, HelpExitsZeroAndShowsUsage)
     EXPECT_NE(r.out.find("igacontact"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("--set"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("compare"), std::string::npos) << "the footer lists the other commands:\n" << r.out;
+}
+
+/// The "BLAS: OpenBLAS, <name> kernels ..." line of a -v run, or empty.
+std::string blas_line(const fs::path& dir)
+{
+    const CliResult r = run_cli(shell_quote(lame_deck()) + " -v -o " + shell_quote((dir / "blas.h5").string()), dir);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::smatch m;
+    const std::string text = r.out + r.err;
+    return std::regex_search(text, m, std::regex("BLAS: OpenBLAS, [^\n]*")) ? m.str() : std::string();
+}
+
+// OpenBLAS's fallback for a CPU model it does not know (Prescott, SSE3) is replaced by
+// the kernels the CPU's features allow (core/blas_kernels.hpp); a user's choice is kept.
+TEST(Cli, BlasKernelsAreThoseTheCpuAllowsUnlessTheUserChose)
+{
+    const fs::path dir = scratch_dir("cli_blas");
+    unsetenv("OPENBLAS_CORETYPE");
+    const std::string chosen = blas_line(dir);
+    if (chosen.empty())
+        GTEST_SKIP() << "the BLAS is not OpenBLAS";
+#if defined(__x86_64__)
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) {
+        EXPECT_EQ(chosen.find("Prescott"), std::string::npos) << chosen;
+    }
+#endif
+    setenv("OPENBLAS_CORETYPE", "Prescott", 1);
+    const std::string forced = blas_line(dir);
+    unsetenv("OPENBLAS_CORETYPE");
+    EXPECT_NE(forced.find("Prescott kernels (OPENBLAS_CORETYPE=Prescott)"), std::string::npos) << forced;
 }
 
 TEST(Cli, VersionPrintsTheProgramVersion)
