@@ -111,7 +111,7 @@ SceneSystem::SceneSystem(Scene& scene, RunContext& context, int requested_thread
         }
     IGA_CHECK(static_cast<int>(owner_.size()) == scene.n_element_blocks, "element blocks do not match the bodies");
     // The factorization's BLAS scales with the same work measure (the tangent's size);
-    // small kinematics only multiplies cached element stiffnesses: assembly serial.
+    // small kinematics assembles K0 once on these threads, then only multiplies it.
     library_threads_ = assembly::choose_threads(requested_threads, work, assembly::hardware_threads(),
                                                 requested_threads >= 1 ? 0.0 : assembly::system_load());
     if (scene.kinematics == mechanics::Kinematics::finite && library_threads_ > 1)
@@ -124,9 +124,13 @@ SceneSystem::SceneSystem(Scene& scene, RunContext& context, int requested_thread
                 first_block_of_dof_[static_cast<std::size_t>(dof)] = block;
         }
     }
-    context_.log(Verbosity::verbose, fmt::format("  element assembly: {} thread(s) ({} element-tangent entries{})",
-                                                 n_threads(), work,
-                                                 requested_threads >= 1 ? ", --threads" : ", automatic"));
+    // Small kinematics: the threads assemble K0 once; each evaluation is then K0 u.
+    const bool small = scene.kinematics == mechanics::Kinematics::small;
+    context_.log(Verbosity::verbose,
+                 fmt::format("  element {}: {} thread(s) ({} element-tangent entries{})",
+                             small ? "stiffness (once, small kinematics)" : "assembly",
+                             small ? library_threads_ : n_threads(), work,
+                             requested_threads >= 1 ? ", --threads" : ", automatic"));
 }
 
 solver::NonlinearSystem SceneSystem::nonlinear_system()

@@ -1,7 +1,7 @@
 #include "core/blas_kernels.hpp"
 
+#include <cstddef>
 #include <cstdlib>
-#include <cstring>
 
 #include <unistd.h>
 
@@ -42,10 +42,17 @@ void use_cpu_blas_kernels(char** argv)
     const char* kernels = kernels_for_this_cpu();
     if (kernels == nullptr)
         return;
+    // The program's own file, not /proc/self/exe: the process is named after the file
+    // it runs (ps, top, pkill igacontact).
+    char path[4096];
+    const ssize_t length = readlink("/proc/self/exe", path, sizeof(path) - 1);
+    if (length <= 0 || static_cast<std::size_t>(length) >= sizeof(path) - 1)
+        return;
+    path[length] = '\0';
     // The variable stays set if the restart fails: then this process runs on as it is.
     if (setenv("OPENBLAS_CORETYPE", kernels, 1) != 0)
         return;
-    execv("/proc/self/exe", argv);
+    execv(path, argv);
 }
 
 }  // namespace iga

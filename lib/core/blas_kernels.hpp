@@ -11,7 +11,7 @@
 //
 // OpenBLAS's documented remedy is the environment variable OPENBLAS_CORETYPE, read
 // when the library loads, so before main(). use_cpu_blas_kernels() therefore starts
-// the program again (execv of /proc/self/exe, same arguments, same process) with
+// the program again (execv of its own file, same arguments, same process) with
 // OPENBLAS_CORETYPE set to the kernels the CPU's features allow: SkylakeX for
 // AVX-512 (F, BW, DQ, VL), Haswell for AVX2 with FMA. It does nothing when the
 // user set OPENBLAS_CORETYPE (also to keep OpenBLAS's choice: any value), when the
