@@ -147,6 +147,13 @@ std::string linear_failure_text(LinearStatus status, const LinearSolver& solver)
 
 }  // namespace
 
+const char* outcome_name(const NewtonReport& report)
+{
+    if (report.status == NewtonStatus::singular && report.linear_status == LinearStatus::not_converged)
+        return "linear_solver_not_converged";
+    return status_name(report.status);
+}
+
 const char* status_name(NewtonStatus status)
 {
     switch (status) {

@@ -175,6 +175,10 @@ struct NewtonReport {
     std::string message;             ///< why it stopped, human readable
 };
 
+/// The status's name, except that a `singular` stop where an iterative linear solver only
+/// stopped short says so ("linear_solver_not_converged"): the tangent may not be singular.
+const char* outcome_name(const NewtonReport& report);
+
 /// Solves r(u; load_factor) = 0 starting from u. On success u holds the solution;
 /// on failure u is restored to its input value. Which factorization or method
 /// solves the steps (Cholesky for a symmetric system, LU otherwise, ...) is the
