@@ -192,13 +192,9 @@ std::string PetscSolver::describe_method() const
 
 std::string PetscSolver::describe() const
 {
-    KSPType ksp_type = nullptr;
-    PCType pc_type = nullptr;
+    std::string text = "PETSc " + describe_method();
     PC pc = nullptr;
-    KSPGetType(state_->ksp, &ksp_type);
     KSPGetPC(state_->ksp, &pc);
-    PCGetType(pc, &pc_type);
-    std::string text = std::string("PETSc ") + (ksp_type ? ksp_type : "?") + " + " + (pc_type ? pc_type : "?");
     MatSolverType factor = nullptr;
     if (pc && PCFactorGetMatSolverType(pc, &factor) == 0 && factor)
         text += std::string(" (") + factor + ")";
