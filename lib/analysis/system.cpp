@@ -71,28 +71,59 @@ std::string inadmissible_message(const std::string& body, const mechanics::Eleme
                        point_text(x));
 }
 
-/// K += the free x free block of A (over all dofs), K in a pattern that holds it.
-/// Free indices grow with full ones, so each column is one merge of sorted rows.
-void add_free_block(const SparseMatrix& A, const assembly::DofMap& map, SparseMatrix& K)
+/// K += the free x free block of A (over all dofs), A symmetric and stored by its
+/// upper triangle, K in a full pattern that holds it. Free indices grow with full
+/// ones, so each column of A is one merge of sorted rows for its entries (i <= j),
+/// and the mirrored entries (j, i) reach each column of K in increasing rows: one
+/// cursor per column, O(nnz).
+void add_free_block(const SparseMatrix& A_upper, const assembly::DofMap& map, SparseMatrix& K)
 {
     const int* outer = K.outerIndexPtr();
     const int* inner = K.innerIndexPtr();
     double* values = K.valuePtr();
-    for (Index j = 0; j < A.outerSize(); ++j) {
+    std::vector<int> mirror(outer, outer + K.outerSize());  // next position to look at, per column
+    auto find = [&](int& p, int column, int row) {
+        while (p < outer[column + 1] && inner[p] < row)
+            ++p;
+        IGA_CHECK(p < outer[column + 1] && inner[p] == row,
+                  "SceneSystem: the elastic stiffness lies outside the sparsity pattern");
+        return p;
+    };
+    for (Index j = 0; j < A_upper.outerSize(); ++j) {
         const int fj = map.free_index(static_cast<int>(j));
         if (fj < 0)
             continue;
         int p = outer[fj];
-        for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
+        for (SparseMatrix::InnerIterator it(A_upper, j); it; ++it) {
             const int fi = map.free_index(static_cast<int>(it.row()));
             if (fi < 0)
                 continue;
-            while (p < outer[fj + 1] && inner[p] < fi)
-                ++p;
-            IGA_CHECK(p < outer[fj + 1] && inner[p] == fi,
-                      "SceneSystem: the elastic stiffness lies outside the sparsity pattern");
-            values[p] += it.value();
+            values[find(p, fj, fi)] += it.value();
+            if (fi != fj)
+                values[find(mirror[static_cast<std::size_t>(fi)], fi, fj)] += it.value();
         }
+    }
+}
+
+/// r += A u and m += |A| |u| (entry by entry: the round-off scale of the sum), A
+/// symmetric and stored by its upper triangle: one pass over it.
+void add_symmetric_product(const SparseMatrix& A_upper, const Vector& u, Vector& r, Vector& m)
+{
+    for (Index j = 0; j < A_upper.outerSize(); ++j) {
+        const double uj = u(j);
+        double rj = 0, mj = 0;  // the mirrored entries' contributions to row j
+        for (SparseMatrix::InnerIterator it(A_upper, j); it; ++it) {
+            const Index i = it.row();
+            const double a = it.value();
+            r(i) += a * uj;
+            m(i) += std::abs(a * uj);
+            if (i != j) {
+                rj += a * u(i);
+                mj += std::abs(a * u(i));
+            }
+        }
+        r(j) += rj;
+        m(j) += mj;
     }
 }
 
@@ -244,7 +275,8 @@ void SceneSystem::assemble_constant_stiffness(const StopRequest& stop)
                              K0);
         },
         assembly::Execution{team.get()});
-    full_stiffness_.emplace().swap(K0);  // swapped, not moved: Eigen 3.4 copies a "moved" sparse matrix
+    // Symmetric: its upper triangle is kept, half the memory and half the traffic of each K0 u.
+    full_stiffness_.emplace(K0.triangularView<Eigen::Upper>());
 }
 
 void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vector& r_full, SparseMatrix& K,
@@ -265,11 +297,8 @@ void SceneSystem::assemble_elements(const Vector& u_full, bool need_tangent, Vec
     if (small && !full_stiffness_)
         assemble_constant_stiffness(stop);
     if (small) {
-        r_full += *full_stiffness_ * u_full;
-        // |K0| |u|: a rigid motion makes K0 u cancel to zero, but not its round-off.
-        for (Index j = 0; j < full_stiffness_->outerSize(); ++j)
-            for (SparseMatrix::InnerIterator it(*full_stiffness_, j); it; ++it)
-                magnitude(it.row()) += std::abs(it.value() * u_full(j));
+        // |K0| |u| too: a rigid motion makes K0 u cancel to zero, but not its round-off.
+        add_symmetric_product(*full_stiffness_, u_full, r_full, magnitude);
         if (need_tangent)
             add_free_block(*full_stiffness_, *scene_.dofs, K);
     } else {

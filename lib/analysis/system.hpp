@@ -152,7 +152,7 @@ private:
         int element;
     };
     std::vector<BlockOwner> owner_;                // element block -> (body, element), blocks come first
-    std::optional<SparseMatrix> full_stiffness_;   // small kinematics: elastic K over all (full) dofs
+    std::optional<SparseMatrix> full_stiffness_;   // small kinematics: elastic K over all (full) dofs, upper triangle
     std::vector<Vector> element_force_;            // finite kinematics: f_int per block (reused storage)
     int last_active_ = 0;
     std::vector<NodeSpring> springs_;

@@ -277,8 +277,11 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
     bool have_tangent = true;
 
     if (system.linear) {
+        // An affine system: r(u + du) = r(u) + K du, so the refinement below needs the
+        // system's residuals, not K; the tangent is handed to the solver (a copying
+        // backend would otherwise hold it twice while it factorizes).
         Vector du;
-        const StepResult step = newton_step(current.tangent, current.residual, solver, context, du, false, false);
+        const StepResult step = newton_step(current.tangent, current.residual, solver, context, du, true, false);
         if (step.status != LinearStatus::ok) {
             report.linear_status = step.status;
             return finish(NewtonStatus::singular, "linear solve failed (" + linear_failure_text(step.status, solver) +
@@ -286,43 +289,33 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
                                                       format_g(largest_mu()));
         }
         report.regularized_iterations = step.regularized ? 1 : 0;
-        // Algebraic residual of the affine system; refine with the same factorization.
-        // (On several ranks the tangent is this rank's summand: its products are summed.)
-        auto tangent_times = [&](const Vector& x) {
-            Vector y = current.tangent * x;
-            if (system.sum_over_ranks)
-                system.sum_over_ranks(y);
-            return y;
+        auto residual_at = [&](const Vector& state) {
+            evaluate(system, state, load_factor, false, trial, context);
+            return trial.ok ? relative(trial.residual.norm(), trial.force_scale) : NAN;
         };
-        Vector algebraic = current.residual + tangent_times(du);
-        rel = relative(algebraic.norm(), current.force_scale);
-        for (int k = 0; k < max_refinements && !(rel <= settings.tolerance); ++k) {
-            Vector correction;
-            ScopedTimer timer(context, "linear_solve");
-            if (solver.solve(-algebraic, correction) != LinearStatus::ok)
-                break;
-            du += correction;
-            algebraic = current.residual + tangent_times(du);
-            rel = relative(algebraic.norm(), current.force_scale);
-        }
         u += du;
+        rel = residual_at(u);
+        for (int k = 0; k < max_refinements && trial.ok && !(rel <= settings.tolerance); ++k) {
+            Vector correction;
+            {
+                ScopedTimer timer(context, "linear_solve");
+                if (solver.solve(-trial.residual, correction) != LinearStatus::ok)
+                    break;
+            }
+            u += correction;
+            rel = residual_at(u);
+        }
+        if (!trial.ok)
+            return finish(NewtonStatus::evaluation_failed, "evaluation failed after the linear solve: " + trial.message);
         report.iterations = 1;
         if (context)
             context->add_count("newton_iterations", 1);
         report.residual_history.push_back(rel);
+        report.floor_history.push_back(relative(trial.residual_floor, trial.force_scale));
         report.residual_norm = rel;
         if (rel <= settings.tolerance)
             return finish(NewtonStatus::converged, "linear solve, relative residual " + format_g(rel));
-        // The round-off of r + K du: that of r plus eps_mach |K| |du|.
-        Vector magnitude = Vector::Zero(du.size());
-        for (Index j = 0; j < current.tangent.outerSize(); ++j)
-            for (SparseMatrix::InnerIterator it(current.tangent, j); it; ++it)
-                magnitude(it.row()) += std::abs(it.value() * du(j));
-        if (system.sum_over_ranks)
-            system.sum_over_ranks(magnitude);
-        const double floor = current.residual_floor + DBL_EPSILON * magnitude.norm();
-        report.floor_history.push_back(relative(floor, current.force_scale));
-        if (current.residual_floor > 0 && algebraic.norm() <= round_off_margin * floor)
+        if (trial.residual_floor > 0 && trial.residual.norm() <= round_off_margin * trial.residual_floor)
             return finish(NewtonStatus::converged, "linear solve, relative residual " + format_g(rel) +
                                                        " at its round-off floor " +
                                                        format_g(report.floor_history.back()) + tolerance_text());

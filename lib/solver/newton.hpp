@@ -121,7 +121,7 @@ struct NonlinearSystem {
     /// and load factor lambda. Newton resets out.ok = true, out.singular_tangent = false
     /// and out.message before each call; out.tangent keeps its previous storage, so it may be refilled in place.
     std::function<void(const Vector& u, double load_factor, bool need_tangent, Evaluation& out)> evaluate;
-    bool linear = false;     ///< r is affine in u: one solve per increment
+    bool linear = false;     ///< r is affine in u: one solve per increment, refined with residuals r(u + du)
     bool symmetric = true;   ///< K symmetric: Cholesky may be used, else LU is forced
     double max_step = 0;     ///< > 0: cap on ||du||_inf (trust radius); 0: no cap
     /// The load factor moves constrained dofs (prescribed displacements): the load

@@ -368,13 +368,17 @@ TEST(Friction, TheParaViewIndexShowsTheFrictionState)
 }
 
 // Friction across a patch interface (tests/analysis/decks/roller_across_patches_friction_2d.yaml):
-// a roller dragged over a two-patch block keeps sliding with mu times its normal force
-// while its contact zone crosses from the left patch onto the right one, and the
-// accumulated slip grows at every step. The bound below mu: a Gauss point that first
-// touches during an increment sticks without traction in it (gpts_friction.hpp), so the
-// leading edge lags by one increment: measured down to 0.933 mu; 0.9 mu allows for it.
+// a roller dragged over a two-patch block keeps sliding while its contact zone crosses
+// from the left patch onto the right one, and the accumulated slip grows at every step.
+// Keeps sliding: a point sticks only in the increment in which it first touches (it
+// sticks without traction in it, gpts_friction.hpp); a stall at the interface would
+// make points already in contact stick. So the force ratio lies between mu times the share of the normal force on
+// slipping points and mu: the leading edge's lag depends on the increment the
+// adaptive stepping chose (measured 0.84-1.0 mu), the bound on it does not. The
+// tractions follow the roller's tangent, which turns by +-a/R over the contact arc
+// (half-width a < 0.05, R = 0.5): |sum t W| >= cos(0.1) sum |t| W (measured 0.9994).
 // Above: |sum t W| <= sum |t| W = mu sum p W, to round-off.
-constexpr double leading_edge_share = 0.9;
+const double arc_alignment = std::cos(0.1);
 
 TEST(FrictionBetweenBodies, ARollerKeepsSlidingAcrossAPatchInterface)
 {
@@ -386,21 +390,37 @@ TEST(FrictionBetweenBodies, ARollerKeepsSlidingAcrossAPatchInterface)
     const Results results(file);
     double last_slip = 0.0, first_lo = 0.0, last_lo = 0.0;
     int sliding_steps = 0;
+    std::vector<double> previous_status;
     for (const std::string& step : results.steps()) {
         const double t = results.number("steps/" + step, "load_factor");
+        const std::string side = "steps/" + step + "/contact/rub/roller.v0";
+        const std::vector<double> status = results.reals(side + "/gauss_points/status");
+        const std::vector<double> before = previous_status;
+        previous_status = status;
         if (t < 1.1)  // pressing, and the first increment of the drag
             continue;
-        const std::string side = "steps/" + step + "/contact/rub/roller.v0";
         const io::h5::Handle object = io::h5::open_object(results.id(), side);
         const std::vector<double> force = io::h5::read_attribute(object.id(), "friction_force").reals;
         const double N = results.number(side, "normal_force");
         const double ratio = std::hypot(force.at(0), force.at(1)) / N;
+        const Vector p = results.matrix(side + "/gauss_points/pressure").col(0);
+        const Vector W = results.matrix(side + "/gauss_points/weight").col(0);
+        double slipping_share = 0.0;
+        ASSERT_EQ(status.size(), static_cast<std::size_t>(p.size()));
+        ASSERT_EQ(before.size(), status.size());
+        for (std::size_t g = 0; g < status.size(); ++g) {
+            const auto k = static_cast<Index>(g);
+            if (status[g] == 2) {
+                slipping_share += p(k) * W(k) / N;
+            } else if (status[g] == 1) {
+                EXPECT_EQ(before[g], 0.0) << "t = " << t << ": point " << g << " was in contact and sticks";
+            }
+        }
         EXPECT_LE(ratio, mu * (1.0 + 1e-9)) << "t = " << t;
-        EXPECT_GE(ratio, leading_edge_share * mu) << "t = " << t;
+        EXPECT_GE(ratio, mu * slipping_share * arc_alignment) << "t = " << t;
         const Vector slip = results.matrix(side + "/gauss_points/slip").col(0);
         EXPECT_GT(slip.maxCoeff(), last_slip) << "t = " << t;
         last_slip = slip.maxCoeff();
-        const Vector p = results.matrix(side + "/gauss_points/pressure").col(0);
         const RowMatrix x = results.matrix(side + "/gauss_points/coordinates");
         double lo = 1e300;
         for (Index g = 0; g < p.size(); ++g)
