@@ -35,7 +35,8 @@ bool linearized_step(const NonlinearSystem& system, const Vector& u_n, double la
     const Vector rhs = -(at_n.residual + (increment / delta) * (perturbed.residual - at_n.residual));
 
     ScopedTimer timer(context, "linear_solve");
-    LinearStatus status = solver.factorize(at_n.tangent);  // Cholesky falls back to LU itself
+    // Handed over (at_n needs it no more): a copying solver would hold it twice.
+    LinearStatus status = solver.factorize_taking(at_n.tangent);  // Cholesky falls back to LU itself
     if (status == LinearStatus::ok)
         status = solver.solve(rhs, du);
     if (status != LinearStatus::ok || !du.allFinite()) {

@@ -41,6 +41,11 @@ constexpr int umfpack_refinement_steps = 2;  // UMFPACK's default, for solves wi
 // updates on 136 columns), so the flops alone are the price. The columns may hold
 // at most this many doubles per entry of the factors.
 constexpr double column_flop_cost = 1.0;
+
+// Kind::cholesky keeps one triangle of K when K is symmetric to this relative
+// tolerance (assembled tangents are, to round-off); otherwise the whole K, so
+// that solve()'s backward-error check still sees what CHOLMOD ignored.
+constexpr double symmetry_tolerance = 1e-12;
 constexpr double column_memory_per_factor_entry = 1.0;
 
 bool all_finite(const SparseMatrix& K)
@@ -59,6 +64,71 @@ bool same_sparsity(const SparseMatrix& a, const SparseMatrix& b)
            std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(), b.innerIndexPtr());
 }
 
+// K (any storage) has R's compressed pattern, and with `values` R's values too;
+// upper: R holds an upper triangle, compared with K's.
+bool same_entries(const SparseMatrix& K, const SparseMatrix& R, bool upper, bool values)
+{
+    if (K.rows() != R.rows() || K.cols() != R.cols())
+        return false;
+    const int* R_inner = R.innerIndexPtr();
+    const double* R_values = R.valuePtr();
+    for (Index j = 0; j < K.outerSize(); ++j) {
+        Index p = R.outerIndexPtr()[j];
+        const Index end = R.outerIndexPtr()[j + 1];
+        for (SparseMatrix::InnerIterator it(K, j); it && !(upper && it.row() > j); ++it, ++p)
+            if (p == end || R_inner[p] != it.row() || (values && R_values[p] != it.value()))
+                return false;
+        if (p != end)
+            return false;
+    }
+    return true;
+}
+
+// Whether K (compressed, square) equals its transpose: entries (i, j) and (j, i)
+// agree to symmetry_tolerance of their size, and an entry whose mirror is not
+// stored is zero. One pass: the mirrors of column j's upper entries are met in
+// increasing rows of the earlier columns, so one cursor per column finds them.
+bool symmetric(const SparseMatrix& K)
+{
+    const int* outer = K.outerIndexPtr();
+    const int* inner = K.innerIndexPtr();
+    const double* v = K.valuePtr();
+    const Index n = K.outerSize();
+    std::vector<int> next(static_cast<std::size_t>(n));  // per column: its first unmatched entry below the diagonal
+    for (Index c = 0; c < n; ++c)
+        next[static_cast<std::size_t>(c)] =
+            static_cast<int>(std::upper_bound(inner + outer[c], inner + outer[c + 1], static_cast<int>(c)) - inner);
+    for (Index j = 0; j < n; ++j)
+        for (int p = outer[j]; p < outer[j + 1] && inner[p] < j; ++p) {  // (i, j) above the diagonal
+            const int i = inner[p];
+            int& q = next[static_cast<std::size_t>(i)];
+            for (; q < outer[i + 1] && inner[q] < j; ++q)  // (r, i) below it, r < j: no (i, r) was stored
+                if (v[q] != 0.0)
+                    return false;
+            if (q < outer[i + 1] && inner[q] == j) {
+                if (std::abs(v[p] - v[q]) > symmetry_tolerance * (std::abs(v[p]) + std::abs(v[q])))
+                    return false;
+                ++q;
+            } else if (v[p] != 0.0) {
+                return false;
+            }
+        }
+    for (Index c = 0; c < n; ++c)  // below the diagonal, past every mirror met
+        for (int q = next[static_cast<std::size_t>(c)]; q < outer[c + 1]; ++q)
+            if (v[q] != 0.0)
+                return false;
+    return true;
+}
+
+// K := its upper triangle, compressed, its storage shrunk to fit (K symmetric: the
+// lower triangle repeats it).
+void keep_upper(SparseMatrix& K)
+{
+    K.prune([](Index row, Index col, double) { return row <= col; });
+    K.makeCompressed();
+    K.data().squeeze();
+}
+
 // Copies K into `into` (compressed), in place when the pattern is the same.
 void copy_compressed(const SparseMatrix& K, SparseMatrix& into)
 {
@@ -74,8 +144,10 @@ void copy_compressed(const SparseMatrix& K, SparseMatrix& into)
 // sorted dofs A of their rows and columns. false when A would exceed max_dofs.
 // R_diagonal, when given, holds R's diagonal instead of R's own entries (a shifted
 // reference compared as the unshifted one, bit for bit: no rounding of R_jj - shift).
-bool difference_support(const SparseMatrix& K, const SparseMatrix& R, const Vector* R_diagonal, Index max_dofs,
-                        std::vector<int>& dofs, Matrix& D)
+// upper: R holds the upper triangle of a symmetric matrix; K's upper triangle is
+// compared with it, and each difference off the diagonal is mirrored into D.
+bool difference_support(const SparseMatrix& K, const SparseMatrix& R, const Vector* R_diagonal, bool upper,
+                        Index max_dofs, std::vector<int>& dofs, Matrix& D)
 {
     auto reference_value = [R_diagonal](const SparseMatrix::InnerIterator& b, Index j) {
         return R_diagonal && b.row() == j ? (*R_diagonal)(j) : b.value();
@@ -93,13 +165,14 @@ bool difference_support(const SparseMatrix& K, const SparseMatrix& R, const Vect
     for (Index j = 0; j < n; ++j) {
         // Merge the two sorted columns; a row present in one only differs by its value.
         SparseMatrix::InnerIterator a(K, j), b(R, j);
-        while (a || b) {
+        auto a_left = [&] { return a && !(upper && a.row() > j); };
+        while (a_left() || b) {
             double delta = 0;
             Index i = 0;
-            if (a && (!b || a.row() < b.row())) {
+            if (a_left() && (!b || a.row() < b.row())) {
                 i = a.row(), delta = a.value();
                 ++a;
-            } else if (b && (!a || b.row() < a.row())) {
+            } else if (b && (!a_left() || b.row() < a.row())) {
                 i = b.row(), delta = -reference_value(b, j);
                 ++b;
             } else {
@@ -108,6 +181,8 @@ bool difference_support(const SparseMatrix& K, const SparseMatrix& R, const Vect
             }
             if (delta != 0) {
                 entries.emplace_back(static_cast<int>(i), static_cast<int>(j), delta);
+                if (upper && i != j)
+                    entries.emplace_back(static_cast<int>(j), static_cast<int>(i), delta);
                 mark(i);
                 mark(j);
                 if (n_dofs > max_dofs)
@@ -199,7 +274,7 @@ void SuiteSparseSolver::set_kind(Kind kind)
 
 bool SuiteSparseSolver::same_pattern(const SparseMatrix& K) const
 {
-    return same_sparsity(K, reference_);
+    return same_entries(K, reference_, upper_, false);
 }
 
 LinearStatus SuiteSparseSolver::factorize(const SparseMatrix& K)
@@ -256,7 +331,7 @@ void SuiteSparseSolver::materialize()
     shift_ = 0;
     if (updated_ && update_->size() > 0) {
         const Index entries = reference_.nonZeros();
-        update_->add_difference(reference_);  // the union of both patterns
+        update_->add_difference(reference_, upper_);  // the union of both patterns
         if (reference_.nonZeros() != entries)
             analysed_ = analysed_lu_ = analysed_llt_ = false;
     }
@@ -290,8 +365,7 @@ LinearStatus SuiteSparseSolver::factorize_matrix(const SparseMatrix& K, SparseMa
         return LinearStatus::ok;
     updated_ = false;
     // The same matrix again (a linear scene's next increment): keep the factorization.
-    if (factorized_ && shift_ == 0 && K.isCompressed() && same_pattern(K) &&
-        std::equal(K.valuePtr(), K.valuePtr() + K.nonZeros(), reference_.valuePtr()))
+    if (factorized_ && shift_ == 0 && same_entries(K, reference_, upper_, true))
         return LinearStatus::ok;
     take_reference(K, owned);
     return factorize_reference();
@@ -301,20 +375,26 @@ void SuiteSparseSolver::take_reference(const SparseMatrix& K, SparseMatrix* owne
 {
     factorized_ = updated_ = shift_base_valid_ = false;
     shift_ = 0;
+    release(lu_matrix_);
+    const bool was_upper = upper_;
+    // The analyses stand when K has the old reference's pattern.
+    const bool same = analysed_ && same_pattern(K);
     if (owned && K.isCompressed()) {
-        if (!(analysed_ && same_pattern(K)))
-            analysed_ = analysed_lu_ = analysed_llt_ = false;
         reference_.swap(*owned);  // the caller handed K over (factorize_taking): no copy
         release(*owned);          // the old reference, now the caller's: freed before the factor is
-    } else if (!(analysed_ && K.isCompressed() && same_pattern(K))) {
+    } else if (!same || upper_) {
         SparseMatrix copy = K;
         copy.makeCompressed();
-        if (!(analysed_ && same_sparsity(copy, reference_)))
-            analysed_ = analysed_lu_ = analysed_llt_ = false;
         reference_.swap(copy);  // swapped: Eigen 3.4 copies a "moved" sparse matrix
     } else {
         copy_compressed(K, reference_);  // same pattern: the values in place, nothing reallocated
     }
+    // Symmetric, for Cholesky: one triangle is the whole matrix.
+    upper_ = kind_ == Kind::cholesky && symmetric(reference_);
+    if (upper_)
+        keep_upper(reference_);
+    if (!same || upper_ != was_upper)
+        analysed_ = analysed_lu_ = analysed_llt_ = false;
 }
 
 LinearStatus SuiteSparseSolver::factorize_reference()
@@ -363,7 +443,7 @@ bool SuiteSparseSolver::try_update(const SparseMatrix& K)
     std::vector<int> dofs;
     Matrix D;
     const Vector* unshifted_diagonal = shift_ > 0 ? &base_diagonal_ : nullptr;  // compare with K_u
-    if (room <= 0 || !difference_support(K, reference_, unshifted_diagonal, max_columns, dofs, D) ||
+    if (room <= 0 || !difference_support(K, reference_, unshifted_diagonal, upper_, max_columns, dofs, D) ||
         !D.allFinite())
         return false;  // (a non-finite entry of K differs from the reference: it is in D)
     // Time: the new columns and the dense capacitance against a factorization.
@@ -388,7 +468,7 @@ bool SuiteSparseSolver::try_update(const SparseMatrix& K)
 
 Vector SuiteSparseSolver::apply(const Vector& x) const
 {
-    Vector y = reference_ * x;
+    Vector y = upper_ ? Vector(reference_.selfadjointView<Eigen::Upper>() * x) : Vector(reference_ * x);
     if (!updated_)
         return y;
     if (shift_ > 0)  // K_u x: the shift taken off as stored (the shifted diagonal minus K_u's)
@@ -407,14 +487,28 @@ Matrix SuiteSparseSolver::solve_reference(const Matrix& B) const
     return backend_->llt.solve(B);
 }
 
+const SparseMatrix& SuiteSparseSolver::lu_source()
+{
+    if (!upper_)
+        return reference_;
+    // UMFPACK factorizes (and refines with) the whole matrix: made from the triangle
+    // when Cholesky refused it, and kept while the LU is in use.
+    release(lu_matrix_);
+    SparseMatrix whole = reference_.selfadjointView<Eigen::Upper>();
+    whole.makeCompressed();
+    lu_matrix_.swap(whole);
+    return lu_matrix_;
+}
+
 LinearStatus SuiteSparseSolver::factorize_with(Kind kind)
 {
     Backend& b = *backend_;
     bool& analysed = kind == Kind::lu ? analysed_lu_ : analysed_llt_;
+    const SparseMatrix& A = kind == Kind::lu ? lu_source() : reference_;
     if (!analysed) {
         ++n_symbolic_;
         if (kind == Kind::lu) {
-            b.lu.analyzePattern(reference_);
+            b.lu.analyzePattern(A);
             if (b.lu.info() != Eigen::Success)
                 return LinearStatus::failed;
         } else {
@@ -429,7 +523,7 @@ LinearStatus SuiteSparseSolver::factorize_with(Kind kind)
 
     ++n_numeric_;
     if (kind == Kind::lu) {
-        b.lu.factorize(reference_);
+        b.lu.factorize(A);
         if (b.lu.info() != Eigen::Success)
             return LinearStatus::singular;
         factor_flops_ = b.lu.statistic(UMFPACK_FLOPS);
@@ -438,6 +532,7 @@ LinearStatus SuiteSparseSolver::factorize_with(Kind kind)
         b.llt.factorize(reference_);
         if (b.llt.info() != Eigen::Success)
             return LinearStatus::failed;
+        release(lu_matrix_);  // an earlier LU's whole matrix is needed no more
         factor_flops_ = b.llt.cholmod().fl;  // of the last analysis, which is this pattern's
         factor_entries_ = 2 * b.llt.cholmod().lnz;  // L and L^T are both streamed by a solve
     }

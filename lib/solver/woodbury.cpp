@@ -107,16 +107,20 @@ void WoodburyUpdate::add_difference_product(const Vector& x, Vector& y) const
         y(dofs_[static_cast<std::size_t>(a)]) += DPx(a);
 }
 
-void WoodburyUpdate::add_difference(SparseMatrix& R) const
+void WoodburyUpdate::add_difference(SparseMatrix& R, bool upper_only) const
 {
     R.makeCompressed();
+    auto stored = [&](Index i, Index j) {
+        return D_(i, j) != 0.0 &&
+               !(upper_only && dofs_[static_cast<std::size_t>(i)] > dofs_[static_cast<std::size_t>(j)]);
+    };
     // Where R already stores every entry of the difference (the contact couplings are
     // in the tangent's pattern from the start), add in place: R is ~100 MB in 3D.
     std::vector<int> position;
     bool in_pattern = true;
     for (Index j = 0; j < D_.cols() && in_pattern; ++j)
         for (Index i = 0; i < D_.rows() && in_pattern; ++i) {
-            if (D_(i, j) == 0.0)
+            if (!stored(i, j))
                 continue;
             const int col = dofs_[static_cast<std::size_t>(j)];
             const int* first = R.innerIndexPtr() + R.outerIndexPtr()[col];
@@ -129,14 +133,14 @@ void WoodburyUpdate::add_difference(SparseMatrix& R) const
         std::size_t k = 0;
         for (Index j = 0; j < D_.cols(); ++j)
             for (Index i = 0; i < D_.rows(); ++i)
-                if (D_(i, j) != 0.0)
+                if (stored(i, j))
                     R.valuePtr()[position[k++]] += D_(i, j);
         return;
     }
     std::vector<Triplet> entries;
     for (Index j = 0; j < D_.cols(); ++j)
         for (Index i = 0; i < D_.rows(); ++i)
-            if (D_(i, j) != 0.0)
+            if (stored(i, j))
                 entries.emplace_back(dofs_[static_cast<std::size_t>(i)], dofs_[static_cast<std::size_t>(j)], D_(i, j));
     SparseMatrix difference(R.rows(), R.cols());
     difference.setFromTriplets(entries.begin(), entries.end());

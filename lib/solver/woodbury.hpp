@@ -57,7 +57,9 @@ public:
     void add_difference_product(const Vector& x, Vector& y) const;
     /// R += P^T D P (R = K_ref gives K; the pattern grows where K has entries R lacks).
     /// In place when R's pattern holds every nonzero of D (no second copy of R).
-    void add_difference(SparseMatrix& R) const;
+    /// upper_only: R holds the upper triangle of a symmetric K_ref (D symmetric), and
+    /// only D's upper triangle is added.
+    void add_difference(SparseMatrix& R, bool upper_only = false) const;
 
 private:
     const Vector& column(int dof) const

@@ -163,13 +163,56 @@ TEST(SuiteSparseSolver, NonFiniteInputIsNeverOk)
 
 TEST(SuiteSparseSolver, CholeskyOnNonSymmetricMatrixFailsTheBackwardErrorCheck)
 {
-    // CHOLMOD reads the lower triangle only; the backward-error check uses all of K.
+    // CHOLMOD reads the upper triangle only; the backward-error check uses all of K
+    // (a K that is not symmetric is kept whole).
     Matrix dense(2, 2);
-    dense << 4, 3, 0, 4;  // lower triangle is SPD diag(4, 4)
+    dense << 4, 3, 0, 4;  // read as symmetric from its upper triangle: [[4, 3], [3, 4]], SPD
     SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
     ASSERT_EQ(solver.factorize(dense.sparseView()), LinearStatus::ok);
     Vector x;
     EXPECT_EQ(solver.solve(Vector::Ones(2), x), LinearStatus::singular);
+}
+
+// Kind::cholesky keeps one triangle of a symmetric K (the memory of the reference),
+// and solves with it as with the whole K: directly, and through an LU where CHOLMOD
+// refuses an indefinite K (Woodbury updates of the triangle: woodbury_test.cpp). LU,
+// and a K that is not symmetric, are kept whole.
+TEST(SuiteSparseSolver, CholeskyKeepsOneTriangleOfASymmetricMatrix)
+{
+    std::mt19937 rng(seed + 7);
+    const Index n = 30;
+    SparseMatrix K = dominant_matrix(n, true, rng);
+    K = SparseMatrix(0.5 * (K + SparseMatrix(K.transpose())));
+    K.makeCompressed();
+    const Index upper_entries = (K.nonZeros() + n) / 2;  // the diagonal is stored
+    const Vector b = random_vector(n, rng);
+    Vector x;
+
+    SuiteSparseSolver cholesky(SuiteSparseSolver::Kind::cholesky);
+    ASSERT_EQ(cholesky.factorize(K), LinearStatus::ok);
+    EXPECT_EQ(cholesky.stored_entries(), upper_entries);
+    ASSERT_EQ(cholesky.solve(b, x), LinearStatus::ok);
+    EXPECT_TRUE(test::at_most(relative_error(x, Matrix(K).ldlt().solve(b)), solve_tolerance));
+
+    // Indefinite: CHOLMOD refuses, UMFPACK factorizes the whole matrix made from the triangle.
+    SparseMatrix indefinite = K;
+    indefinite.coeffRef(5, 5) = -indefinite.coeffRef(5, 5);
+    SuiteSparseSolver fallback(SuiteSparseSolver::Kind::cholesky);
+    ASSERT_EQ(fallback.factorize(indefinite), LinearStatus::ok);
+    EXPECT_EQ(fallback.factorized_kind(), SuiteSparseSolver::Kind::lu);
+    EXPECT_EQ(fallback.stored_entries(), upper_entries);
+    ASSERT_EQ(fallback.solve(b, x), LinearStatus::ok);
+    EXPECT_TRUE(test::at_most(relative_error(x, Matrix(indefinite).lu().solve(b)), solve_tolerance));
+
+    SuiteSparseSolver lu(SuiteSparseSolver::Kind::lu);
+    ASSERT_EQ(lu.factorize(K), LinearStatus::ok);
+    EXPECT_EQ(lu.stored_entries(), K.nonZeros());
+    SparseMatrix skew = K;
+    skew.coeffRef(2, 9) += 1e-6 * std::abs(skew.coeffRef(2, 2));
+    skew.makeCompressed();
+    SuiteSparseSolver not_symmetric(SuiteSparseSolver::Kind::cholesky);
+    ASSERT_EQ(not_symmetric.factorize(skew), LinearStatus::ok);
+    EXPECT_EQ(not_symmetric.stored_entries(), skew.nonZeros());
 }
 
 TEST(SuiteSparseSolver, SymbolicAnalysisIsReusedWhileThePatternIsUnchanged)
@@ -193,11 +236,16 @@ TEST(SuiteSparseSolver, SymbolicAnalysisIsReusedWhileThePatternIsUnchanged)
         EXPECT_EQ(solver.n_symbolic(), 1);
         EXPECT_EQ(solver.n_numeric(), 2);
 
-        // An uncompressed copy with the same pattern is still the same pattern.
+        // An uncompressed copy is the same matrix: the factorization is kept.
         SparseMatrix uncompressed = K_symmetric;
         uncompressed.uncompress();
         ASSERT_EQ(solver.factorize(uncompressed), LinearStatus::ok);
+        EXPECT_EQ(solver.n_numeric(), 2);
+        // With new values it is still the same pattern: numeric only.
+        uncompressed *= 2.0;
+        ASSERT_EQ(solver.factorize(uncompressed), LinearStatus::ok);
         EXPECT_EQ(solver.n_symbolic(), 1);
+        EXPECT_EQ(solver.n_numeric(), 3);
 
         // A new entry changes the pattern: a new analysis.
         const Matrix dense = Matrix(K_symmetric);
