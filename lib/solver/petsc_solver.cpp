@@ -203,6 +203,37 @@ std::string PetscSolver::describe() const
 
 LinearStatus PetscSolver::factorize(const SparseMatrix& K)
 {
+    const LinearStatus loaded = load(K);
+    if (loaded != LinearStatus::ok)
+        return loaded;
+    State& s = *state_;
+    // An iterative method keeps its preconditioner while it serves (see the header).
+    const bool reuse = policy_.method == Method::iterative && s.set_up && s.last_converged &&
+                       s.setup_iterations >= 0 &&
+                       static_cast<double>(s.last_iterations) <=
+                           reuse_iteration_growth * static_cast<double>(std::max<PetscInt>(s.setup_iterations, 1));
+    check(KSPSetOperators(s.ksp, s.A, s.A), "KSPSetOperators");
+    if (reuse) {
+        check(KSPSetReusePreconditioner(s.ksp, PETSC_TRUE), "KSPSetReusePreconditioner");
+        s.reused = true;
+        return LinearStatus::ok;
+    }
+    return set_up_preconditioner();
+}
+
+LinearStatus PetscSolver::factorize_shifted_taking(SparseMatrix& K, double mu)
+{
+    // K is known to be singular (solver/linear.hpp): its values are loaded, and only
+    // the shifted matrix gets a factorization or a preconditioner.
+    const LinearStatus loaded = load(K);
+    release(K);
+    if (loaded != LinearStatus::ok)
+        return loaded;
+    return factorize_shifted(mu);
+}
+
+LinearStatus PetscSolver::load(const SparseMatrix& K)
+{
     IGA_CHECK(K.rows() == K.cols(), "PetscSolver::factorize: the matrix must be square");
     State& s = *state_;
     SparseMatrix compressed;
@@ -286,19 +317,7 @@ LinearStatus PetscSolver::factorize(const SparseMatrix& K)
     }
     std::copy(M->valuePtr(), M->valuePtr() + nnz, s.values.begin());
     check(MatSetValuesCOO(s.A, s.values.data(), INSERT_VALUES), "MatSetValuesCOO");
-
-    // An iterative method keeps its preconditioner while it serves (see the header).
-    const bool reuse = policy_.method == Method::iterative && s.set_up && s.last_converged &&
-                       s.setup_iterations >= 0 &&
-                       static_cast<double>(s.last_iterations) <=
-                           reuse_iteration_growth * static_cast<double>(std::max<PetscInt>(s.setup_iterations, 1));
-    check(KSPSetOperators(s.ksp, s.A, s.A), "KSPSetOperators");
-    if (reuse) {
-        check(KSPSetReusePreconditioner(s.ksp, PETSC_TRUE), "KSPSetReusePreconditioner");
-        s.reused = true;
-        return LinearStatus::ok;
-    }
-    return set_up_preconditioner();
+    return LinearStatus::ok;
 }
 
 LinearStatus PetscSolver::set_up_preconditioner()

@@ -46,6 +46,9 @@ public:
 
     LinearStatus factorize(const SparseMatrix& K) override;
     LinearStatus factorize_shifted(double mu) override;
+    /// K's values into the matrix, then factorize_shifted(mu): no factorization (or
+    /// preconditioner) of a K known to be singular. K is left empty.
+    LinearStatus factorize_shifted_taking(SparseMatrix& K, double mu) override;
     LinearStatus solve(const Vector& b, Vector& x) override;
     LinearStatistics statistics() const override { return statistics_; }
     std::string describe() const override;
@@ -56,6 +59,7 @@ public:
 private:
     struct State;  // the PETSc objects, kept out of this header
 
+    LinearStatus load(const SparseMatrix& K);  // K's values into the matrix (its pattern made when new); failed: not finite
     LinearStatus set_up_preconditioner();
 
     LinearSolverPolicy policy_;

@@ -1,6 +1,7 @@
 // Tests for solver/petsc_solver.hpp on one rank (the MPI runs are verification/mpi):
 // MUMPS and the Krylov methods against dense Eigen, statuses on singular and
-// non-finite input, the Levenberg-Marquardt shift against the SuiteSparse backend's,
+// non-finite input, the Levenberg-Marquardt shift against the SuiteSparse backend's
+// (also of a K known to be singular, without its own factorization),
 // a pattern that grows between factorizations, and preconditioner reuse.
 
 #include "core/parallel.hpp"
@@ -145,6 +146,30 @@ TEST(PetscSolver, ShiftedFactorizationEqualsTheSuiteSparseShift)
     ASSERT_EQ(reference.factorize_shifted(10 * mu), LinearStatus::ok);
     ASSERT_EQ(reference.solve(b, x_reference), LinearStatus::ok);
     ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+    EXPECT_TRUE(test::at_most(relative_error(x, x_reference), direct_tolerance));
+}
+
+// A K known to be singular (Newton at a first touch) is shifted without being
+// factorized first: one factorization, of K + mu D, the same solution as
+// factorize() followed by factorize_shifted(), and K is left empty.
+TEST(PetscSolver, AKnownSingularMatrixIsShiftedWithoutItsOwnFactorization)
+{
+    Matrix dense(3, 3);
+    dense << 1, -1, 0, -1, 2, -1, 0, -1, 1;
+    const Vector b = (Vector(3) << 1, 0, -1).finished();
+    const double mu = 1e-2;
+    PetscSolver two_steps(petsc_policy(Method::direct, true), Communicator());
+    two_steps.factorize(dense.sparseView());
+    ASSERT_EQ(two_steps.factorize_shifted(mu), LinearStatus::ok);
+    EXPECT_EQ(two_steps.statistics().numeric, 2);
+    PetscSolver at_once(petsc_policy(Method::direct, true), Communicator());
+    SparseMatrix K = dense.sparseView();
+    ASSERT_EQ(at_once.factorize_shifted_taking(K, mu), LinearStatus::ok);
+    EXPECT_EQ(at_once.statistics().numeric, 1);
+    EXPECT_EQ(K.nonZeros(), 0);
+    Vector x_reference, x;
+    ASSERT_EQ(two_steps.solve(b, x_reference), LinearStatus::ok);
+    ASSERT_EQ(at_once.solve(b, x), LinearStatus::ok);
     EXPECT_TRUE(test::at_most(relative_error(x, x_reference), direct_tolerance));
 }
 
