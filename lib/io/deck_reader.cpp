@@ -448,6 +448,10 @@ Solver read_solver(const Cursor& root)
     s.backend = c.read_or("backend", s.backend);
     s.type = c.read_or("type", s.type);
     s.options = c.read_or("options", s.options);
+    // Only PETSc has iterative methods and options: without a backend they choose it
+    // (as mpirun -np N > 1 does); a suitesparse backend said outright contradicts them.
+    if (!c.child("backend").exists() && (s.type == SolverType::iterative || !s.options.empty()))
+        s.backend = SolverBackend::petsc;
     if (s.type == SolverType::iterative && s.backend == SolverBackend::suitesparse)
         c.child("type").fail("type iterative needs backend petsc (the suitesparse backend is direct only)");
     if (!s.options.empty() && s.backend != SolverBackend::petsc)

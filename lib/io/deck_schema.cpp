@@ -230,17 +230,18 @@ constexpr Row deck_rows[] = {
      "residual, with backtracking on ‖r‖ as a fallback). `false` takes full steps, still capped by the trust "
      "radius when there is contact"},
 
-    {"solver.backend", choice<SolverBackend>(), fallback("`suitesparse`"),
+    {"solver.backend", choice<SolverBackend>(), fallback("`suitesparse`; `petsc` when `type: iterative` or `options` is given"),
      "`suitesparse`: CHOLMOD (symmetric tangents) or UMFPACK (two-half-pass pairs, follower loads), one process. "
      "`petsc`: a distributed matrix on the MPI ranks of the run (one without `mpirun`); needs a build with PETSc "
      "(`scripts/setup.sh` installs it). Under `mpirun -np N` with N > 1 the backend is `petsc` whatever the deck "
      "says"},
     {"solver.type", choice<SolverType>(), fallback("`direct`"),
-     "`petsc` only for `iterative`. `direct`: MUMPS (Cholesky/LDLᵀ for symmetric tangents, LU otherwise). "
-     "`iterative`: CG (symmetric) or GMRES(100) (otherwise) with hypre BoomerAMG, to a relative true residual of "
-     "1e-8"},
+     "`petsc` only for `iterative` (without a `backend`, `iterative` chooses `petsc`). `direct`: MUMPS "
+     "(Cholesky/LDLᵀ for symmetric tangents, LU otherwise). `iterative`: CG (symmetric) or GMRES(100) (otherwise) "
+     "with an algebraic multigrid (GAMG, or hypre BoomerAMG where a penalty is stiff; [parallel.md](parallel.md)), "
+     "to a relative true residual of 1e-8"},
     {"solver.options", text(), fallback("none"),
-     "`petsc` only: PETSc options, applied after igacontact's defaults, so they win (e.g. `-pc_type gamg`, "
+     "`petsc` only (without a `backend`, `options` choose `petsc`): PETSc options, applied after igacontact's defaults, so they win (e.g. `-pc_type gamg`, "
      "`-ksp_rtol 1e-10`, `-ksp_monitor`); the `PETSC_OPTIONS` environment variable is read after them and wins "
      "over both"},
 

@@ -209,6 +209,23 @@ TEST(DeckReader, OmittedOptionalSectionsTakeTheDocumentedDefaults)
     EXPECT_EQ(e, d);
 }
 
+// deck.md, solver: suitesparse direct by default; only PETSc has iterative methods and
+// options, so without a backend they choose petsc (as mpirun -np N > 1 does), and with
+// backend suitesparse said outright they are an error (verification/bad_input).
+TEST(DeckReader, AnIterativeMethodOrPetscOptionsChooseThePetscBackend)
+{
+    const Deck d = read(minimal_deck);
+    EXPECT_EQ(d.solver.backend, SolverBackend::suitesparse);
+    EXPECT_EQ(d.solver.type, SolverType::direct);
+    const Deck iterative = read(minimal_deck, {"solver.type=iterative"});
+    EXPECT_EQ(iterative.solver.backend, SolverBackend::petsc);
+    EXPECT_EQ(iterative.solver.type, SolverType::iterative);
+    const Deck options = read(minimal_deck + "solver: {options: \"-ksp_monitor\"}\n");
+    EXPECT_EQ(options.solver.backend, SolverBackend::petsc);
+    EXPECT_EQ(options.solver.type, SolverType::direct);
+    EXPECT_THROW(read(minimal_deck, {"solver.backend=suitesparse", "solver.type=iterative"}), DeckError);
+}
+
 TEST(DeckReader, ReadsEnforcementAndAutoPenalty)
 {
     const Deck d = read(minimal_deck);
