@@ -41,12 +41,12 @@ constexpr int umfpack_refinement_steps = 2;  // UMFPACK's default, for solves wi
 // updates on 136 columns), so the flops alone are the price. The columns may hold
 // at most this many doubles per entry of the factors.
 constexpr double column_flop_cost = 1.0;
+constexpr double column_memory_per_factor_entry = 1.0;
 
 // Kind::cholesky keeps one triangle of K when K is symmetric to this relative
 // tolerance (assembled tangents are, to round-off); otherwise the whole K, so
 // that solve()'s backward-error check still sees what CHOLMOD ignored.
 constexpr double symmetry_tolerance = 1e-12;
-constexpr double column_memory_per_factor_entry = 1.0;
 
 bool all_finite(const SparseMatrix& K)
 {
