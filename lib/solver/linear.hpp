@@ -84,6 +84,15 @@ public:
     /// Solves with what the last factorize*() prepared. `singular` when x is not
     /// finite or ||K x - b|| > 1e-6 ||b||; x is then unspecified.
     virtual LinearStatus solve(const Vector& b, Vector& x) = 0;
+    /// solve() for a caller that needs no more than ||K x - b|| <= accuracy ||b||
+    /// (Newton's linear path knows what its tolerance asks of the step): an iterative
+    /// backend may stop there instead of at its own tolerance, and its backward-error
+    /// bound becomes max(1e-6, accuracy). A direct backend solves to round-off anyway.
+    virtual LinearStatus solve_to(const Vector& b, Vector& x, double accuracy)
+    {
+        (void)accuracy;
+        return solve(b, x);
+    }
 
     virtual LinearStatistics statistics() const = 0;
     /// One line for the log: the backend and method, e.g. "CHOLMOD Cholesky, METIS".

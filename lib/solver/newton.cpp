@@ -51,6 +51,15 @@ constexpr int first_singular_attempt = 1;  // mu = first_mu * mu_growth
 // Linear systems: extra solves with the same factorization (iterative refinement)
 // while the algebraic residual is above the tolerance.
 constexpr int max_refinements = 2;
+// The share of the tolerance a linear solve is asked for (LinearSolver::solve_to):
+// the rest is left to the nonlinearity, and the residual is measured after the step.
+constexpr double linear_accuracy_margin = 0.5;
+// Newton's steps are solved to a relative residual of 1e-8, which keeps the
+// convergence quadratic down to the tolerances in use (1e-10 after two or three
+// steps), or to what the tolerance needs of the step where that asks for less (the
+// last step of a solve); an iterative solver stops there (a direct one solves to
+// round-off anyway).
+constexpr double newton_linear_accuracy = 1e-8;
 
 std::string format_g(double value)
 {
@@ -62,6 +71,13 @@ std::string format_g(double value)
 double relative(double norm, double force_scale)
 {
     return norm / std::max(force_scale, DBL_MIN);
+}
+
+/// The relative residual of K du = -r that brings ||r(u + du)|| within the tolerance,
+/// with linear_accuracy_margin (r the residual at u, in force_scale units).
+double accuracy_needed(double tolerance, double residual_norm, double force_scale)
+{
+    return std::max(linear_accuracy_margin * tolerance * force_scale / residual_norm, DBL_MIN);
 }
 
 double finite_norm_or_inf(const Evaluation& e)
@@ -101,12 +117,14 @@ struct StepResult {
 // Solves K du = -r; on a singular K retries with K + mu D (see the header). With
 // `consume` the solver may take K's storage and K is left empty (the caller needs it no more).
 // known_singular (Evaluation::singular_tangent): K is not factorized, and the shifts
-// start at first_singular_attempt.
+// start at first_singular_attempt. accuracy > 0: the relative residual of K du = -r
+// that suffices (LinearSolver::solve_to), else the solver's own.
 StepResult newton_step(SparseMatrix& K, const Vector& r, LinearSolver& solver, RunContext* context, Vector& du,
-                       bool consume, bool known_singular)
+                       bool consume, bool known_singular, double accuracy = 0)
 {
     ScopedTimer timer(context, "linear_solve");
     const Vector rhs = -r;
+    auto solve = [&] { return accuracy > 0 ? solver.solve_to(rhs, du, accuracy) : solver.solve(rhs, du); };
     StepResult result;
     const bool shift_at_once = known_singular && consume;
     if (!shift_at_once) {
@@ -115,7 +133,7 @@ StepResult newton_step(SparseMatrix& K, const Vector& r, LinearSolver& solver, R
         if (context && solver.statistics().cholesky_fallbacks > refusals)
             context->log(Verbosity::verbose, "  tangent not positive definite: factorized by LU");
         if (result.status == LinearStatus::ok)
-            result.status = solver.solve(rhs, du);
+            result.status = solve();
         // An iterative method that stopped short may have met a singular K (the first
         // touch) as well as a hard one: the shift helps either.
         if (result.status != LinearStatus::singular && result.status != LinearStatus::not_converged)
@@ -128,7 +146,7 @@ StepResult newton_step(SparseMatrix& K, const Vector& r, LinearSolver& solver, R
         result.status = shift_at_once && attempt == first_attempt ? solver.factorize_shifted_taking(K, mu)
                                                                   : solver.factorize_shifted(mu);
         if (result.status == LinearStatus::ok)
-            result.status = solver.solve(rhs, du);
+            result.status = solve();
         if (result.status == LinearStatus::ok) {
             result.regularized = true;
             result.mu = mu;
@@ -280,8 +298,11 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         // An affine system: r(u + du) = r(u) + K du, so the refinement below needs the
         // system's residuals, not K; the tangent is handed to the solver (a copying
         // backend would otherwise hold it twice while it factorizes).
+        // An iterative solver is asked for what the tolerance needs in one solve, not
+        // for its own 1e-8 and a refinement solve, which would restart its Krylov method.
         Vector du;
-        const StepResult step = newton_step(current.tangent, current.residual, solver, context, du, true, false);
+        const StepResult step = newton_step(current.tangent, current.residual, solver, context, du, true, false,
+                                            accuracy_needed(settings.tolerance, r_norm, current.force_scale));
         if (step.status != LinearStatus::ok) {
             report.linear_status = step.status;
             return finish(NewtonStatus::singular, "linear solve failed (" + linear_failure_text(step.status, solver) +
@@ -299,7 +320,9 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
             Vector correction;
             {
                 ScopedTimer timer(context, "linear_solve");
-                if (solver.solve(-trial.residual, correction) != LinearStatus::ok)
+                if (solver.solve_to(-trial.residual, correction,
+                                    accuracy_needed(settings.tolerance, trial.residual.norm(), trial.force_scale)) !=
+                    LinearStatus::ok)
                     break;
             }
             u += correction;
@@ -337,8 +360,10 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         Vector du;
         // The tangent is handed to the solver: neither Newton nor the trial below needs it,
         // and a copying solver would hold it twice while it factorizes.
-        const StepResult step =
-            newton_step(current.tangent, current.residual, solver, context, du, true, current.singular_tangent);
+        const double accuracy =
+            std::max(newton_linear_accuracy, accuracy_needed(settings.tolerance, r_norm, current.force_scale));
+        const StepResult step = newton_step(current.tangent, current.residual, solver, context, du, true,
+                                            current.singular_tangent, accuracy);
         if (step.status != LinearStatus::ok) {
             report.linear_status = step.status;
             return finish(NewtonStatus::singular,

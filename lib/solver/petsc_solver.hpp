@@ -9,13 +9,16 @@
 // preallocation, extended when a contact coupling extends the pattern — then
 // MatSetValuesCOO per factorization, which sums the ranks' entries). Every owned
 // diagonal entry is in the pattern, so the Levenberg-Marquardt shift needs no new one.
+// CG's products use a second matrix, the upper triangle in symmetric blocks (SBAIJ):
+// half the memory traffic of AIJ, which the multigrid set-up still needs.
 //
 // Methods (policy.method), defaults chosen for penalty and augmented-Lagrangian
 // contact (docs/parallel.md):
 //   direct:    MUMPS; Cholesky (LDL^T, so also indefinite) for symmetric tangents,
 //              else LU.
 //   iterative: CG for symmetric tangents, else GMRES(100) with right
-//              preconditioning, both on the true residual, rtol 1e-8; smoothed
+//              preconditioning, both on the true residual, rtol 1e-8 (or what
+//              solve_to asks, down to 1e-10); smoothed
 //              aggregation (GAMG) with the rigid-body modes as near-null space, or,
 //              when a contact penalty is stiff against its elements (eps h / E' >
 //              1e2, where aggregation fails), hypre BoomerAMG. The
@@ -45,11 +48,15 @@ public:
     PetscSolver& operator=(const PetscSolver&) = delete;
 
     LinearStatus factorize(const SparseMatrix& K) override;
+    LinearStatus factorize_taking(SparseMatrix& K) override;
     LinearStatus factorize_shifted(double mu) override;
     /// K's values into the matrix, then factorize_shifted(mu): no factorization (or
     /// preconditioner) of a K known to be singular. K is left empty.
     LinearStatus factorize_shifted_taking(SparseMatrix& K, double mu) override;
     LinearStatus solve(const Vector& b, Vector& x) override;
+    /// A Krylov method stops at max(accuracy, 1e-10) relative residual, unless the
+    /// options database sets -ksp_rtol.
+    LinearStatus solve_to(const Vector& b, Vector& x, double accuracy) override;
     LinearStatistics statistics() const override { return statistics_; }
     std::string describe() const override;
     std::string failure_detail() const override { return failure_detail_; }
@@ -60,7 +67,9 @@ private:
     struct State;  // the PETSc objects, kept out of this header
 
     LinearStatus load(const SparseMatrix& K);  // K's values into the matrix (its pattern made when new); failed: not finite
+    LinearStatus prepare();  // after load(): the preconditioner kept, or set up anew
     LinearStatus set_up_preconditioner();
+    LinearStatus solve_with(const Vector& b, Vector& x, double rtol);  // rtol <= 0: the KSP's own
 
     LinearSolverPolicy policy_;
     Communicator comm_;

@@ -497,6 +497,59 @@ TEST(Newton, LinearSystemIsOneSolve)
     EXPECT_TRUE(test::at_most((u - reference).norm(), solution_tolerance));
 }
 
+// A solver that solves only as far as it is asked: its solution leaves exactly the
+// relative residual `accuracy` (an iterative backend's stopping test, at its limit).
+class InexactSolver final : public LinearSolver {
+public:
+    LinearStatus factorize(const SparseMatrix& K) override
+    {
+        K_ = Matrix(K);
+        return LinearStatus::ok;
+    }
+    LinearStatus factorize_shifted(double) override { return LinearStatus::failed; }
+    LinearStatus solve(const Vector& b, Vector& x) override { return solve_to(b, x, 1e-8); }
+    LinearStatus solve_to(const Vector& b, Vector& x, double accuracy) override
+    {
+        accuracies.push_back(accuracy);
+        const Vector e = Vector::LinSpaced(b.size(), 1.0, 2.0);
+        x = K_.ldlt().solve(b + accuracy * b.norm() / e.norm() * e);  // K x - b = accuracy ||b|| e / ||e||
+        return LinearStatus::ok;
+    }
+    LinearStatistics statistics() const override { return {}; }
+    std::string describe() const override { return "inexact"; }
+
+    std::vector<double> accuracies;
+
+private:
+    Matrix K_;
+};
+
+// The linear path asks its solver for the residual its tolerance needs (half of it),
+// in one solve; asked for less, a Krylov method would stop at its own 1e-8 and need a
+// refinement solve, which restarts it.
+TEST(Newton, ALinearSystemAsksItsSolverForWhatTheToleranceNeeds)
+{
+    CubicSystem cubic;
+    NonlinearSystem system;
+    system.linear = true;
+    system.evaluate = [&](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+        out.residual = cubic.A * u - lambda * cubic.f;
+        out.force_scale = 2.0 * lambda * cubic.f.norm();
+        if (need_tangent)
+            out.tangent = sparse(cubic.A);
+    };
+    InexactSolver solver;
+    Vector u = Vector::Zero(4);
+    const NewtonSettings settings;
+    const NewtonReport report = solve_newton(system, 0.5, u, settings, solver, nullptr);
+    ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
+    // ||r(0)|| = 0.5 ||f|| = force_scale / 2, so the relative residual asked for is
+    // 0.5 * tolerance * force_scale / ||r(0)|| = tolerance.
+    ASSERT_EQ(solver.accuracies.size(), 1u) << "one solve, no refinement";
+    EXPECT_TRUE(test::near_rel(solver.accuracies[0], settings.tolerance, 1e-12));
+    EXPECT_TRUE(test::at_most(report.residual_norm, 0.5 * settings.tolerance * (1 + 1e-6)));
+}
+
 TEST(Newton, InconsistentSingularLinearSystemFails)
 {
     // Floating spring pushed along its rigid mode: no solution exists.

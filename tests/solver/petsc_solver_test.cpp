@@ -2,7 +2,8 @@
 // MUMPS and the Krylov methods against dense Eigen, statuses on singular and
 // non-finite input, the Levenberg-Marquardt shift against the SuiteSparse backend's
 // (also of a K known to be singular, without its own factorization),
-// a pattern that grows between factorizations, and preconditioner reuse.
+// a pattern that grows between factorizations, preconditioner reuse, and Krylov
+// solves to the accuracy a caller asks for.
 
 #include "core/parallel.hpp"
 #include "solver/petsc_solver.hpp"
@@ -214,6 +215,58 @@ TEST(PetscSolver, APreconditionerIsReusedWhileItServes)
     ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
     EXPECT_EQ(solver.statistics().numeric, 1) << "the second tangent reuses the first preconditioner";
     EXPECT_TRUE(test::at_most(relative_error(x, Matrix(K2).partialPivLu().solve(b)), krylov_tolerance));
+}
+
+// solve_to(): a Krylov method stops at the relative residual the caller asks for
+// (Newton's linear path), down to 1e-10; a direct method solves to round-off.
+TEST(PetscSolver, AKrylovSolveStopsWhereTheCallerAsks)
+{
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.name);
+        std::mt19937 rng(seed);
+        const SparseMatrix K = dominant_matrix(300, c.symmetric, rng);
+        const Vector b = random_vector(300, rng);
+        PetscSolver solver(petsc_policy(c.method, c.symmetric), Communicator());
+        ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+        auto residual = [&](const Vector& x) { return (K * x - b).norm() / b.norm(); };
+        Vector x;
+        long long before = solver.statistics().iterations;
+        ASSERT_EQ(solver.solve_to(b, x, 1e-3), LinearStatus::ok);
+        const long long loose = solver.statistics().iterations - before;
+        EXPECT_TRUE(test::at_most(residual(x), c.method == Method::direct ? direct_tolerance : 1e-3));
+        before = solver.statistics().iterations;
+        ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+        const long long own = solver.statistics().iterations - before;
+        EXPECT_TRUE(test::at_most(residual(x), c.method == Method::direct ? direct_tolerance : 1e-8));
+        ASSERT_EQ(solver.solve_to(b, x, 1e-14), LinearStatus::ok);
+        EXPECT_TRUE(test::at_most(residual(x), c.method == Method::direct ? direct_tolerance : 1e-10))
+            << "the floor";
+        if (c.method == Method::iterative) {
+            EXPECT_LT(loose, own) << "1e-3 takes fewer iterations than the solver's own 1e-8";
+        }
+    }
+}
+
+// CG runs on the upper triangle in symmetric blocks while the preconditioner is built
+// from the whole matrix: a shift must reach both, or CG would solve the unshifted,
+// singular K.
+TEST(PetscSolver, AShiftReachesTheKrylovOperator)
+{
+    Matrix dense(3, 3);
+    dense << 1, -1, 0, -1, 2, -1, 0, -1, 1;
+    const SparseMatrix K = dense.sparseView();
+    const Vector b = (Vector(3) << 1, 0, -1).finished();
+    const double mu = 1e-2;
+    SuiteSparseSolver reference(SuiteSparseSolver::Kind::lu);
+    PetscSolver solver(petsc_policy(Method::iterative, true), Communicator());
+    reference.factorize(K);
+    solver.factorize(K);
+    ASSERT_EQ(reference.factorize_shifted(mu), LinearStatus::ok);
+    ASSERT_EQ(solver.factorize_shifted(mu), LinearStatus::ok);
+    Vector x_reference, x;
+    ASSERT_EQ(reference.solve(b, x_reference), LinearStatus::ok);
+    ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+    EXPECT_TRUE(test::at_most(relative_error(x, x_reference), krylov_tolerance));
 }
 
 // PETSc and MPI are finalized once, after the last test.

@@ -256,10 +256,10 @@ def check_stop_request(exe, work):
     out = os.path.join(work, "stopped.h5")
     if os.path.exists(out):
         os.remove(out)
-    p = subprocess.Popen(mpirun(2) + [exe, deck, "-q", "-o", out, "--set", "steps.count=40"],
+    p = subprocess.Popen(mpirun(2) + [exe, deck, "-q", "-o", out, "--set", "steps.count=400"],
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=environment(),
                          start_new_session=True)
-    time.sleep(6.0)  # set-up done, inside the increments
+    time.sleep(6.0)  # set-up done, inside the increments (400 take ~60 s: never over by then)
     p.send_signal(signal.SIGTERM)
     problems = []
     try:
