@@ -45,9 +45,8 @@ FailureCause failure_cause(const NewtonReport& report)
     const std::vector<double>& r = report.residual_history;
     switch (report.status) {
     case NewtonStatus::converged: return FailureCause::none;
-    case NewtonStatus::singular:
-        return report.linear_status == LinearStatus::not_converged ? FailureCause::linear_solver
-                                                                   : FailureCause::free_mode;
+    case NewtonStatus::singular: return FailureCause::free_mode;
+    case NewtonStatus::linear_solver_not_converged: return FailureCause::linear_solver;
     case NewtonStatus::evaluation_failed: return FailureCause::inadmissible;
     case NewtonStatus::diverged: return FailureCause::growth;
     case NewtonStatus::max_iterations: break;

@@ -146,10 +146,10 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
             if (callbacks.rollback)
                 callbacks.rollback();
             const std::string why = rejected ? ": " + decision.message
-                                             : std::string(" (") + outcome_name(report) + "): " + report.message;
+                                             : std::string(" (") + status_name(report.status) + "): " + report.message;
             const std::string what = rejected ? "the outer loop rejected the solution" : "Newton did not converge";
             if (system.linear && !rejected) {
-                result.message = increment_text(index, lambda, target) + ": " + report.message;  // "linear solve failed (...)"
+                result.message = increment_text(index, lambda, target) + ": " + report.message;  // "the linear solver did not converge (...)"
                 return result;
             }
             if (!stepping.adaptive) {
@@ -175,7 +175,7 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
             increment = halved;
             if (context)
                 context->log(Verbosity::verbose, increment_text(index, lambda, target) + ": " +
-                                                     (rejected ? decision.message : outcome_name(report)) +
+                                                     (rejected ? decision.message : status_name(report.status)) +
                                                      ", cutting back to " + format_g(increment, 6));
         }
 

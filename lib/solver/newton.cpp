@@ -156,21 +156,28 @@ StepResult newton_step(SparseMatrix& K, const Vector& r, LinearSolver& solver, R
     return result;
 }
 
-/// "singular", or the status with what the solver saw ("not converged: cg + gamg stopped ...").
-std::string linear_failure_text(LinearStatus status, const LinearSolver& solver)
+/// How a step that could not be solved ends Newton: a Krylov method that stopped short
+/// says only that (a singular tangent and a hard one both stop it); a direct method
+/// found the tangent singular. The clause carries what the solver saw.
+struct LinearFailure {
+    NewtonStatus status;
+    std::string text;  // "the linear solver did not converge (cg + gamg stopped after ...)"
+};
+LinearFailure linear_failure(LinearStatus status, const LinearSolver& solver)
 {
     const std::string detail = solver.failure_detail();
-    return std::string(status_name(status)) + (detail.empty() ? std::string() : ": " + detail);
+    const std::string seen = detail.empty() ? std::string() : " (" + detail + ")";
+    switch (status) {
+    case LinearStatus::not_converged:
+        return {NewtonStatus::linear_solver_not_converged, "the linear solver did not converge" + seen};
+    case LinearStatus::failed: return {NewtonStatus::singular, "the linear solve failed" + seen};
+    case LinearStatus::singular:
+    case LinearStatus::ok: break;
+    }
+    return {NewtonStatus::singular, "the tangent is singular" + seen};
 }
 
 }  // namespace
-
-const char* outcome_name(const NewtonReport& report)
-{
-    if (report.status == NewtonStatus::singular && report.linear_status == LinearStatus::not_converged)
-        return "linear_solver_not_converged";
-    return status_name(report.status);
-}
 
 const char* status_name(NewtonStatus status)
 {
@@ -179,6 +186,7 @@ const char* status_name(NewtonStatus status)
     case NewtonStatus::max_iterations: return "max_iterations";
     case NewtonStatus::diverged: return "diverged";
     case NewtonStatus::singular: return "singular";
+    case NewtonStatus::linear_solver_not_converged: return "linear_solver_not_converged";
     case NewtonStatus::evaluation_failed: return "evaluation_failed";
     }
     return "unknown";
@@ -304,10 +312,9 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         const StepResult step = newton_step(current.tangent, current.residual, solver, context, du, true, false,
                                             accuracy_needed(settings.tolerance, r_norm, current.force_scale));
         if (step.status != LinearStatus::ok) {
-            report.linear_status = step.status;
-            return finish(NewtonStatus::singular, "linear solve failed (" + linear_failure_text(step.status, solver) +
-                                                      "), even with regularization up to mu = " +
-                                                      format_g(largest_mu()));
+            const LinearFailure failure = linear_failure(step.status, solver);
+            return finish(failure.status,
+                          failure.text + ", even with regularization up to mu = " + format_g(largest_mu()));
         }
         report.regularized_iterations = step.regularized ? 1 : 0;
         auto residual_at = [&](const Vector& state) {
@@ -365,14 +372,10 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         const StepResult step = newton_step(current.tangent, current.residual, solver, context, du, true,
                                             current.singular_tangent, accuracy);
         if (step.status != LinearStatus::ok) {
-            report.linear_status = step.status;
-            return finish(NewtonStatus::singular,
-                          "iteration " + std::to_string(iteration) + ": " +
-                              (step.status == LinearStatus::not_converged ? "linear solver did not converge ("
-                                                                          : "tangent singular (") +
-                              linear_failure_text(step.status, solver) + ") even with regularization up to mu = " +
-                              format_g(largest_mu()) +
-                              "; last relative residual " + format_g(rel) + tolerance_text());
+            const LinearFailure failure = linear_failure(step.status, solver);
+            return finish(failure.status, "iteration " + std::to_string(iteration) + ": " + failure.text +
+                                              ", even with regularization up to mu = " + format_g(largest_mu()) +
+                                              "; last relative residual " + format_g(rel) + tolerance_text());
         }
         if (step.regularized)
             ++report.regularized_iterations;

@@ -147,7 +147,11 @@ struct NewtonSettings {
 /// penalty 1e12 E); 10 allows for sums whose errors add up less kindly, and no more.
 inline constexpr double round_off_margin = 10.0;
 
-enum class NewtonStatus { converged, max_iterations, diverged, singular, evaluation_failed };
+/// singular: the tangent could not be solved, even shifted (a direct solver met a zero
+/// pivot, or its solution failed the backward-error check); linear_solver_not_converged:
+/// an iterative solver stopped short of its tolerance, even shifted, which a singular
+/// tangent and a merely hard one both cause.
+enum class NewtonStatus { converged, max_iterations, diverged, singular, linear_solver_not_converged, evaluation_failed };
 
 const char* status_name(NewtonStatus status);
 
@@ -163,9 +167,6 @@ struct NewtonReport {
     /// Last full Newton correction over the displacement, ||du||_inf / ||u||_inf.
     double correction = 0;
     bool last_step_regularized = false;  ///< the last step needed K + mu D
-    /// Status singular: what the last linear solve returned (`not_converged`: an
-    /// iterative method that stopped short, which may or may not be a singular K).
-    LinearStatus linear_status = LinearStatus::ok;
     /// ||r|| at the last accepted state over ||r|| at the start (absolute, unlike the
     /// relative history, whose force scale grows with a diverging residual).
     double norm_ratio = 1;
@@ -174,10 +175,6 @@ struct NewtonReport {
     int inadmissible_trials = 0;     ///< trial states rejected because their evaluation failed
     std::string message;             ///< why it stopped, human readable
 };
-
-/// The status's name, except that a `singular` stop where an iterative linear solver only
-/// stopped short says so ("linear_solver_not_converged"): the tangent may not be singular.
-const char* outcome_name(const NewtonReport& report);
 
 /// Solves r(u; load_factor) = 0 starting from u. On success u holds the solution;
 /// on failure u is restored to its input value. Which factorization or method

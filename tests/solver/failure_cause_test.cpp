@@ -99,17 +99,16 @@ TEST(FailureCause, NonFiniteGrowthIsGrowth)
     EXPECT_EQ(failure_cause(report), FailureCause::growth);
 }
 
-// A singular Newton status is a free mode only when a direct method found K singular;
-// an iterative method that stopped short is reported as such.
+// Only a direct method's singular tangent is called a free mode; an iterative method
+// that stopped short is reported as such (NewtonStatus::linear_solver_not_converged).
 TEST(FailureCause, AnIterativeSolverThatStoppedShortIsNotCalledAFreeMode)
 {
     NewtonReport report;
-    report.status = NewtonStatus::singular;
     report.residual_history = {1.0};
-    report.linear_status = LinearStatus::not_converged;
+    report.status = NewtonStatus::linear_solver_not_converged;
     EXPECT_EQ(failure_cause(report), FailureCause::linear_solver);
     EXPECT_NE(cause_text(report).find("iterative linear solver did not converge"), std::string::npos);
-    report.linear_status = LinearStatus::singular;
+    report.status = NewtonStatus::singular;
     EXPECT_EQ(failure_cause(report), FailureCause::free_mode);
 }
 

@@ -550,6 +550,38 @@ TEST(Newton, ALinearSystemAsksItsSolverForWhatTheToleranceNeeds)
     EXPECT_TRUE(test::at_most(report.residual_norm, 0.5 * settings.tolerance * (1 + 1e-6)));
 }
 
+// A Krylov method that stops short, shifted or not: Newton says so once, with what the
+// solver saw, and does not call the tangent singular (both paths: linear and not).
+class StoppingSolver final : public LinearSolver {
+public:
+    LinearStatus factorize(const SparseMatrix&) override { return LinearStatus::ok; }
+    LinearStatus factorize_shifted(double) override { return LinearStatus::ok; }
+    LinearStatus solve(const Vector&, Vector&) override { return LinearStatus::not_converged; }
+    LinearStatistics statistics() const override { return {}; }
+    std::string describe() const override { return "stopping"; }
+    std::string failure_detail() const override { return "cg + gamg stopped after 2 iterations: DIVERGED_ITS"; }
+};
+
+TEST(Newton, AKrylovSolverThatStopsShortIsReportedAsSuch)
+{
+    for (bool linear : {true, false}) {
+        SCOPED_TRACE(linear ? "linear" : "nonlinear");
+        CubicSystem cubic;
+        NonlinearSystem system = cubic.system();
+        system.linear = linear;
+        StoppingSolver solver;
+        Vector u = Vector::Zero(4);
+        const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
+        EXPECT_EQ(report.status, NewtonStatus::linear_solver_not_converged);
+        EXPECT_STREQ(status_name(report.status), "linear_solver_not_converged");
+        EXPECT_NE(report.message.find("the linear solver did not converge (cg + gamg stopped after 2 iterations"),
+                  std::string::npos)
+            << report.message;
+        EXPECT_EQ(report.message.find("not converged"), std::string::npos) << "said once: " << report.message;
+        EXPECT_TRUE(u.isZero(0.0)) << "a failed solve restores u";
+    }
+}
+
 TEST(Newton, InconsistentSingularLinearSystemFails)
 {
     // Floating spring pushed along its rigid mode: no solution exists.
