@@ -49,7 +49,8 @@ std::string failure_advice(solver::FailureCause cause, const FailureContext& c)
     case solver::FailureCause::none: return {};
     case solver::FailureCause::linear_solver:
         return ". The iterative linear solver did not converge: the tangent may be singular (a body held by "
-               "nothing, or only by contact that is not yet closed) or hard for its preconditioner. "
+               "nothing, or only by contact that is not yet closed) or hard for its preconditioner (a nearly "
+               "incompressible material, nu near 0.5, is hard for algebraic multigrid). "
                "solver.type: direct tells the two apart; solver.options (PETSc options) changes the method";
     case solver::FailureCause::free_mode:
         return ". Singular tangent: a body may be unconstrained (held by nothing, or only by frictionless "

@@ -51,8 +51,8 @@ FailureCause failure_cause(const NewtonReport& report)
     case NewtonStatus::diverged: return FailureCause::growth;
     case NewtonStatus::max_iterations: break;
     }
-    if (report.last_step_regularized)
-        return FailureCause::free_mode;
+    if (report.last_step_regularized)  // a Krylov method that stopped short has not shown a free mode
+        return report.krylov_stopped ? FailureCause::linear_solver : FailureCause::free_mode;
     if (!(report.norm_ratio <= growth_factor))  // NaN grows too
         return FailureCause::growth;
     if (at_floor(report))

@@ -112,6 +112,10 @@ struct StepResult {
     LinearStatus status = LinearStatus::ok;
     bool regularized = false;
     double mu = 0;
+    /// Why the step was shifted: an iterative solver that stopped short on K (not a K
+    /// found singular), with what it saw.
+    bool krylov_stopped = false;
+    std::string krylov_detail;
 };
 
 // Solves K du = -r; on a singular K retries with K + mu D (see the header). With
@@ -138,6 +142,9 @@ StepResult newton_step(SparseMatrix& K, const Vector& r, LinearSolver& solver, R
         // touch) as well as a hard one: the shift helps either.
         if (result.status != LinearStatus::singular && result.status != LinearStatus::not_converged)
             return result;
+        result.krylov_stopped = result.status == LinearStatus::not_converged;
+        if (result.krylov_stopped)
+            result.krylov_detail = solver.failure_detail();
     }
 
     const int first_attempt = shift_at_once ? first_singular_attempt : 0;
@@ -317,6 +324,8 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
                           failure.text + ", even with regularization up to mu = " + format_g(largest_mu()));
         }
         report.regularized_iterations = step.regularized ? 1 : 0;
+        report.last_step_regularized = step.regularized;
+        report.krylov_stopped = step.krylov_stopped;
         auto residual_at = [&](const Vector& state) {
             evaluate(system, state, load_factor, false, trial, context);
             return trial.ok ? relative(trial.residual.norm(), trial.force_scale) : NAN;
@@ -349,6 +358,12 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
             return finish(NewtonStatus::converged, "linear solve, relative residual " + format_g(rel) +
                                                        " at its round-off floor " +
                                                        format_g(report.floor_history.back()) + tolerance_text());
+        if (step.krylov_stopped)  // the shift was what it could solve, not what the system is
+            return finish(NewtonStatus::linear_solver_not_converged,
+                          "the linear solver did not converge" +
+                              (step.krylov_detail.empty() ? std::string() : " (" + step.krylov_detail + ")") +
+                              "; on the tangent shifted by mu = " + format_g(step.mu) +
+                              " it did, but that leaves a relative residual " + format_g(rel) + tolerance_text());
         return finish(NewtonStatus::max_iterations, "linear solve left a relative residual " + format_g(rel) +
                                                         tolerance_text() + ": the tangent is singular or ill-conditioned");
     }
@@ -380,6 +395,7 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
         if (step.regularized)
             ++report.regularized_iterations;
         report.last_step_regularized = step.regularized;
+        report.krylov_stopped = step.krylov_stopped;
         if (system.max_step > 0) {
             const double size = du.lpNorm<Eigen::Infinity>();
             if (size > system.max_step)

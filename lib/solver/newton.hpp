@@ -167,6 +167,8 @@ struct NewtonReport {
     /// Last full Newton correction over the displacement, ||du||_inf / ||u||_inf.
     double correction = 0;
     bool last_step_regularized = false;  ///< the last step needed K + mu D
+    /// ... because an iterative solver stopped short on K, not because K was found singular.
+    bool krylov_stopped = false;
     /// ||r|| at the last accepted state over ||r|| at the start (absolute, unlike the
     /// relative history, whose force scale grows with a diverging residual).
     double norm_ratio = 1;

@@ -2,6 +2,7 @@
 // quadratic convergence, line search, trust-radius cap, singular tangents at
 // first contact, linear systems, failure statuses and the restored state.
 
+#include "solver/failure_cause.hpp"
 #include "solver/newton.hpp"
 #include "solver/suitesparse_solver.hpp"
 #include "core/parallel.hpp"
@@ -580,6 +581,68 @@ TEST(Newton, AKrylovSolverThatStopsShortIsReportedAsSuch)
         EXPECT_EQ(report.message.find("not converged"), std::string::npos) << "said once: " << report.message;
         EXPECT_TRUE(u.isZero(0.0)) << "a failed solve restores u";
     }
+}
+
+// A Krylov method that stops short on K and on small shifts but converges on K + 1e-2 I
+// (nearly incompressible elasticity under CG + GAMG): refinement with so perturbed a
+// matrix cannot reach the tolerance, and the report says that the linear solver
+// stopped, not that K is singular or Newton slow.
+class ShiftOnlySolver final : public LinearSolver {
+public:
+    LinearStatus factorize(const SparseMatrix& K) override
+    {
+        K_ = Matrix(K);
+        shifted_ = false;
+        return LinearStatus::ok;
+    }
+    LinearStatus factorize_shifted(double mu) override
+    {
+        shifted_ = true;
+        mu_ = mu;
+        return LinearStatus::ok;
+    }
+    LinearStatus solve(const Vector& b, Vector& x) override
+    {
+        if (!shifted_ || mu_ < 1e-2)  // the small shifts do not help it either
+            return LinearStatus::not_converged;
+        const Matrix I = Matrix::Identity(K_.rows(), K_.cols());
+        x = (K_ + mu_ * I).ldlt().solve(b);
+        return LinearStatus::ok;
+    }
+    LinearStatistics statistics() const override { return {}; }
+    std::string describe() const override { return "shift only"; }
+    std::string failure_detail() const override
+    {
+        return "cg + gamg stopped after 1000 iterations: DIVERGED_ITS";
+    }
+
+private:
+    Matrix K_;
+    bool shifted_ = false;
+    double mu_ = 0;
+};
+
+TEST(Newton, ALinearSystemSolvedOnlyWithAShiftSaysTheSolverStopped)
+{
+    CubicSystem cubic;
+    NonlinearSystem system;
+    system.linear = true;
+    system.evaluate = [&](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+        out.residual = cubic.A * u - lambda * cubic.f;
+        out.force_scale = lambda * cubic.f.norm();
+        if (need_tangent)
+            out.tangent = sparse(cubic.A);
+    };
+    ShiftOnlySolver solver;
+    Vector u = Vector::Zero(4);
+    const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
+    EXPECT_EQ(report.status, NewtonStatus::linear_solver_not_converged);
+    EXPECT_TRUE(report.last_step_regularized);
+    EXPECT_TRUE(report.krylov_stopped);
+    EXPECT_EQ(failure_cause(report), FailureCause::linear_solver) << "not a free mode: K is regular";
+    EXPECT_NE(report.message.find("did not converge (cg + gamg stopped after 1000 iterations"), std::string::npos)
+        << report.message;
+    EXPECT_NE(report.message.find("on the tangent shifted by mu = "), std::string::npos) << report.message;
 }
 
 TEST(Newton, InconsistentSingularLinearSystemFails)
