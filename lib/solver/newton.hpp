@@ -151,7 +151,14 @@ inline constexpr double round_off_margin = 10.0;
 /// pivot, or its solution failed the backward-error check); linear_solver_not_converged:
 /// an iterative solver stopped short of its tolerance, even shifted, which a singular
 /// tangent and a merely hard one both cause.
-enum class NewtonStatus { converged, max_iterations, diverged, singular, linear_solver_not_converged, evaluation_failed };
+enum class NewtonStatus {
+    converged,
+    max_iterations,
+    diverged,
+    singular,
+    linear_solver_not_converged,
+    evaluation_failed
+};
 
 const char* status_name(NewtonStatus status);
 
@@ -167,7 +174,8 @@ struct NewtonReport {
     /// Last full Newton correction over the displacement, ||du||_inf / ||u||_inf.
     double correction = 0;
     bool last_step_regularized = false;  ///< the last step needed K + mu D
-    /// ... because an iterative solver stopped short on K, not because K was found singular.
+    /// The last step was shifted because an iterative solver stopped short on K, not
+    /// because K was found singular.
     bool krylov_stopped = false;
     /// ||r|| at the last accepted state over ||r|| at the start (absolute, unlike the
     /// relative history, whose force scale grows with a diverging residual).

@@ -123,7 +123,7 @@ KSP make_ksp(const LinearSolverPolicy& policy)
 
 struct PetscSolver::State {
     Mat A = nullptr;   // the summed K (AIJ): the preconditioner's matrix, and the operator unless `op` is made
-    Mat op = nullptr;  // CG's operator for a symmetric K: its upper triangle (SBAIJ), see load()
+    Mat op = nullptr;  // CG's operator for a symmetric K: its upper triangle (SBAIJ), see create_upper_triangle()
     KSP ksp = nullptr;
     Vec b = nullptr, x = nullptr, x_all = nullptr;
     VecScatter to_all = nullptr;
@@ -181,7 +181,8 @@ struct PetscSolver::State {
         check(MatGetBlockSize(A, &bs), "MatGetBlockSize");
         const PetscInt n_blocks = (last - first) / bs, first_block = first / bs, last_block = last / bs;
         std::vector<PetscInt> d_nnz(static_cast<std::size_t>(n_blocks)), o_nnz(static_cast<std::size_t>(n_blocks));
-        std::vector<PetscInt> seen(static_cast<std::size_t>(n / bs), -1);  // the last block row that counted a block column
+        // seen[J]: the last block row that counted block column J.
+        std::vector<PetscInt> seen(static_cast<std::size_t>(n / bs), -1);
         for (PetscInt I = 0; I < n_blocks; ++I)
             for (PetscInt r = (first_block + I) * bs; r < (first_block + I + 1) * bs; ++r) {
                 PetscInt nc = 0;

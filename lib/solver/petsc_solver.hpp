@@ -28,10 +28,11 @@
 // The options database comes last and wins: the deck's `solver.options`, then the
 // PETSC_OPTIONS environment variable (e.g. "-pc_type gamg -ksp_monitor").
 //
-// Statuses: a zero pivot in the factorization, a preconditioner that cannot be
-// built, a Krylov method that does not converge, or a solution whose true residual
-// exceeds 1e-6 ||b||: `singular` (Newton then shifts, solver/newton.hpp); a
-// non-finite entry on any rank: `failed`.
+// Statuses: a zero pivot in the factorization or a preconditioner that cannot be
+// built: `singular`; a solution whose true residual exceeds its bound (1e-6 ||b||, or
+// what solve_to asked where that is more): `singular` from MUMPS, `not_converged` from
+// a Krylov method, as is one that stops short (Newton shifts on either,
+// solver/newton.hpp); a non-finite entry on any rank: `failed`.
 
 #include "core/parallel.hpp"
 #include "solver/linear.hpp"
