@@ -87,7 +87,7 @@ public:
     /// solve() for a caller that needs no more than ||K x - b|| <= accuracy ||b||
     /// (Newton's linear path knows what its tolerance asks of the step): an iterative
     /// backend may stop there instead of at its own tolerance, and its backward-error
-    /// bound becomes max(1e-6, accuracy). A direct backend solves to round-off anyway.
+    /// bound becomes max(1e-6, 10 accuracy). A direct backend solves to round-off anyway.
     virtual LinearStatus solve_to(const Vector& b, Vector& x, double accuracy)
     {
         (void)accuracy;

@@ -30,7 +30,7 @@
 //
 // Statuses: a zero pivot in the factorization or a preconditioner that cannot be
 // built: `singular`; a solution whose true residual exceeds its bound (1e-6 ||b||, or
-// what solve_to asked where that is more): `singular` from MUMPS, `not_converged` from
+// 10 times the Krylov tolerance where that is more): `singular` from MUMPS, `not_converged` from
 // a Krylov method, as is one that stops short (Newton shifts on either,
 // solver/newton.hpp); a non-finite entry on any rank: `failed`.
 

@@ -252,6 +252,27 @@ TEST(PetscSolver, AKrylovSolveStopsWhereTheCallerAsks)
     }
 }
 
+// A user's -ksp_rtol looser than the backward-error bound 1e-6 is honoured: the solve is
+// checked against ten times that tolerance, not rejected for missing 1e-6.
+TEST(PetscSolver, AUserToleranceLooserThanTheBoundIsHonoured)
+{
+    std::mt19937 rng(seed);
+    const SparseMatrix K = dominant_matrix(300, true, rng);
+    const Vector b = random_vector(300, rng);
+    LinearSolverPolicy policy = petsc_policy(Method::iterative, true);
+    policy.options = "-ksp_rtol 1e-4";
+    PetscSolver solver(policy, Communicator());
+    PetscOptionsClearValue(nullptr, "-ksp_rtol");  // the options database is global: read by now
+    ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+    Vector x;
+    ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+    const double residual = (K * x - b).norm() / b.norm();
+    EXPECT_TRUE(test::at_most(residual, 1e-3)) << "the bound: ten times the tolerance";
+    EXPECT_GT(residual, 1e-6) << "a solve that stopped at 1e-4, not one that went on to 1e-8: " << residual;
+    ASSERT_EQ(solver.solve_to(b, x, 1e-10), LinearStatus::ok) << "the user's tolerance holds for every solve";
+    EXPECT_GT((K * x - b).norm() / b.norm(), 1e-6) << (K * x - b).norm() / b.norm();
+}
+
 // PETSc and MPI are finalized once, after the last test.
 class FinalizeParallel : public ::testing::Environment {
 public:
