@@ -498,6 +498,21 @@ TEST(Newton, LinearSystemIsOneSolve)
     EXPECT_TRUE(test::at_most((u - reference).norm(), solution_tolerance));
 }
 
+// r(u) = A u - lambda f, the cubic system's linear part, with force scale
+// force_factor * lambda ||f||.
+NonlinearSystem affine_system(const CubicSystem& cubic, double force_factor)
+{
+    NonlinearSystem system;
+    system.linear = true;
+    system.evaluate = [&cubic, force_factor](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+        out.residual = cubic.A * u - lambda * cubic.f;
+        out.force_scale = force_factor * lambda * cubic.f.norm();
+        if (need_tangent)
+            out.tangent = sparse(cubic.A);
+    };
+    return system;
+}
+
 // A solver that solves only as far as it is asked: its solution leaves exactly the
 // relative residual `accuracy` (an iterative backend's stopping test, at its limit).
 class InexactSolver final : public LinearSolver {
@@ -530,15 +545,8 @@ private:
 // refinement solve, which restarts it.
 TEST(Newton, ALinearSystemAsksItsSolverForWhatTheToleranceNeeds)
 {
-    CubicSystem cubic;
-    NonlinearSystem system;
-    system.linear = true;
-    system.evaluate = [&](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
-        out.residual = cubic.A * u - lambda * cubic.f;
-        out.force_scale = 2.0 * lambda * cubic.f.norm();
-        if (need_tangent)
-            out.tangent = sparse(cubic.A);
-    };
+    const CubicSystem cubic;
+    const NonlinearSystem system = affine_system(cubic, 2.0);
     InexactSolver solver;
     Vector u = Vector::Zero(4);
     const NewtonSettings settings;
@@ -624,15 +632,8 @@ private:
 
 TEST(Newton, ALinearSystemSolvedOnlyWithAShiftSaysTheSolverStopped)
 {
-    CubicSystem cubic;
-    NonlinearSystem system;
-    system.linear = true;
-    system.evaluate = [&](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
-        out.residual = cubic.A * u - lambda * cubic.f;
-        out.force_scale = lambda * cubic.f.norm();
-        if (need_tangent)
-            out.tangent = sparse(cubic.A);
-    };
+    const CubicSystem cubic;
+    const NonlinearSystem system = affine_system(cubic, 1.0);
     ShiftOnlySolver solver;
     Vector u = Vector::Zero(4);
     const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, nullptr);
