@@ -155,8 +155,27 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         throw DeckError(io::located_issue(deck.source_file, "solver.backend", "petsc",
                                           "this igacontact was built without PETSc (scripts/setup.sh installs it, "
                                           "then rebuild); the suitesparse backend needs nothing else"));
-    const std::unique_ptr<solver::LinearSolver> linear =
-        solver::make_linear_solver(linear_solver_policy(deck, scene, nonlinear, comm), comm);
+    const std::unique_ptr<solver::LinearSolver> linear = [&] {
+        try {
+            return solver::make_linear_solver(linear_solver_policy(deck, scene, nonlinear, comm), comm);
+        } catch (const Error& e) {
+            // PETSc reads its options when the solver is made: a value it rejects
+            // (-ksp_rtol abc) is bad input, named where the user gave it.
+            const char* env = deck.solver.backend == io::SolverBackend::petsc ? std::getenv("PETSC_OPTIONS") : nullptr;
+            const std::string reason = std::string("PETSc could not set up the solver with these options: ") + e.what();
+            if (deck.solver.backend == io::SolverBackend::petsc && !deck.solver.options.empty())
+                throw DeckError(io::located_issue(deck.source_file, "solver.options", deck.solver.options, reason));
+            if (env && *env) {
+                DeckIssue issue;
+                issue.where.file = "environment";
+                issue.path = "PETSC_OPTIONS";
+                issue.value = env;
+                issue.reason = reason;
+                throw DeckError(std::move(issue));
+            }
+            throw;
+        }
+    }();
     context.log(Verbosity::verbose, "  linear solver: " + linear->describe());
     if (const std::string kernels = blas_kernels(); !kernels.empty()) {
         const char* forced = std::getenv("OPENBLAS_CORETYPE");
