@@ -12,6 +12,7 @@
 #include "io/deck_writer.hpp"
 #include "io/output_paths.hpp"
 #include "io/results_compare.hpp"
+#include "solver/linear.hpp"
 #include "summary_json.hpp"
 #include "version.hpp"
 
@@ -74,7 +75,9 @@ int run_command(int argc, char** argv, const Communicator& comm)
                "  igacontact compare REF.h5 NEW.h5 [options]    regression check of two results files\n"
                "  igacontact study DECK [--levels N] [--jobs J]  refinement study: error estimates and their cost\n"
                "Exit codes: 0 success, 1 the solve failed, 2 bad input or usage, 3 internal error.");
-    cli.set_version_flag("--version", std::string("igacontact ") + program_version);
+    // The backends a build has: scripts (and users) ask this before a `solver.backend: petsc` run.
+    cli.set_version_flag("--version", fmt::format("igacontact {} (linear solvers: suitesparse{})", program_version,
+                                                  solver::petsc_available() ? ", petsc" : ""));
 
     std::string deck_path, output, summary;
     std::vector<std::string> overrides;

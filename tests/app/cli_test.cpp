@@ -10,6 +10,7 @@
 
 #include "cli_support.hpp"
 #include "io/h5_file.hpp"
+#include "solver/linear.hpp"
 #include "support/tolerance.hpp"
 #include "version.hpp"
 
@@ -124,12 +125,14 @@ TEST(Cli, BlasKernelsAreThoseTheCpuAllowsUnlessTheUserChose)
     EXPECT_NE(forced.find("Prescott kernels (OPENBLAS_CORETYPE=Prescott)"), std::string::npos) << forced;
 }
 
-TEST(Cli, VersionPrintsTheProgramVersion)
+TEST(Cli, VersionPrintsTheProgramVersionAndTheLinearSolvers)
 {
     const auto dir = scratch_dir("version");
     const CliResult r = run_cli("--version", dir);
     EXPECT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE((r.out + r.err).find(std::string("igacontact ") + program_version), std::string::npos)
+    const std::string backends = solver::petsc_available() ? "suitesparse, petsc" : "suitesparse";
+    EXPECT_NE((r.out + r.err).find(std::string("igacontact ") + program_version + " (linear solvers: " + backends + ")"),
+              std::string::npos)
         << r.out << r.err;
 }
 

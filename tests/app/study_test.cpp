@@ -179,8 +179,8 @@ TEST(Study, SigintKeepsTheFinishedLevels)
     const fs::path err = dir / "stderr.txt";
     const pid_t pid = ::fork();
     if (pid == 0) {
-        std::freopen(err.c_str(), "w", stderr);
-        std::freopen((dir / "stdout.txt").c_str(), "w", stdout);
+        if (!std::freopen(err.c_str(), "w", stderr) || !std::freopen((dir / "stdout.txt").c_str(), "w", stdout))
+            ::_exit(126);
         const std::string exe = cli_path(), deck_arg = deck.string();
         ::execl(exe.c_str(), exe.c_str(), "study", deck_arg.c_str(), "--levels", "4", "--set", "steps.count=400",
                 "--set", "steps.adaptive=false", static_cast<char*>(nullptr));
@@ -249,8 +249,8 @@ TEST(Study, LevelsDieWithAKilledStudy)
     const fs::path err = dir / "stderr.txt";
     const pid_t study = ::fork();
     if (study == 0) {
-        std::freopen(err.c_str(), "w", stderr);
-        std::freopen((dir / "stdout.txt").c_str(), "w", stdout);
+        if (!std::freopen(err.c_str(), "w", stderr) || !std::freopen((dir / "stdout.txt").c_str(), "w", stdout))
+            ::_exit(126);
         const std::string exe = cli_path(), deck_arg = deck.string();
         ::execl(exe.c_str(), exe.c_str(), "study", deck_arg.c_str(), "--levels", "1", "--set", "steps.count=100000",
                 "--set", "steps.adaptive=false", static_cast<char*>(nullptr));

@@ -17,6 +17,8 @@
 #                       ("NAME.yaml: error: " then)
 #   # exit: N           expected exit code (default 2: bad input or usage)
 #   # skip-if-root: yes permission cases: root ignores file modes, so they cannot fail
+#   # needs: petsc      cases of the PETSc backend: skipped when `igacontact --version`
+#                       does not list it (a build without PETSc refuses them earlier)
 # For every run: the exit code is the expected one (a crash, 3 or 0 fails), the
 # message is there, and the scratch folder is unchanged: an existing results file
 # (result.h5, a copy of base.yaml's results) is byte-identical and no file (results,
@@ -37,6 +39,8 @@ if ! (cd "$work/base" && "$exe" base.yaml -q -o base.h5) || [ ! -s "$work/base/b
   exit 1
 fi
 reference="$work/base/base.h5"
+has_petsc=no
+[[ "$("$exe" --version)" == *petsc* ]] && has_petsc=yes
 
 header() {  # header FILE KEY -> the value of "# KEY: value", if any
   sed -n "s/^# $2: //p" "$1" | head -n 1
@@ -112,6 +116,10 @@ for case_file in "$here"/*.args; do
   fi
   if [ "$(header "$case_file" skip-if-root)" = yes ] && [ "$(id -u)" -eq 0 ]; then
     echo "SKIP $name (running as root: file permissions do not apply)"
+    n_skip=$((n_skip + 1)); continue
+  fi
+  if [ "$(header "$case_file" needs)" = petsc ] && [ "$has_petsc" = no ]; then
+    echo "SKIP $name (this igacontact was built without PETSc)"
     n_skip=$((n_skip + 1)); continue
   fi
   want_exit="$(header "$case_file" exit)"; want_exit="${want_exit:-2}"
