@@ -139,6 +139,61 @@ std::vector<std::string> release_initial_overclosure(Scene& scene, SceneSystem& 
     return out;
 }
 
+namespace {
+
+/// "1 pressed Gauss point", "3 pressed Gauss points".
+std::string pressed_points(double n)
+{
+    return fmt::format("{:.0f} pressed Gauss point{}", n, n == 1.0 ? "" : "s");
+}
+
+/// Why the two half passes of a pair disagree, from what the run shows (docs/theory.md,
+/// "Two-half-pass balance"): a penalty far stiffer than `penalty: auto`, or the
+/// augmented Lagrangian, over-constrains the contact (each side's Gauss points hold
+/// the other surface off by themselves); otherwise the zone is sampled by too few
+/// pressed Gauss points, or differently on the two sides.
+std::string half_pass_cause(const PairModel& model, const io::ContactPairResult& pair, int d)
+{
+    const std::string& a = pair.sides[0].side_name;
+    const std::string& b = pair.sides[1].side_name;
+    const double n_a = attribute(pair.sides[0], "n_active"), n_b = attribute(pair.sides[1], "n_active");
+    // Pressed points per direction of the zone: a curve's count, a surface's square root.
+    auto across = [d](double n) { return d == 3 ? std::sqrt(n) : n; };
+    const auto it = pair.attributes.find("penalty");
+    const double penalty = it == pair.attributes.end() ? model.initial_penalty : it->second;
+    const std::string single = "formulation: single_pass, which balances the two bodies exactly";
+    if (model.augmented)
+        return fmt::format("with enforcement: augmented_lagrangian both half passes drive the gap to zero at their "
+                           "own Gauss points ({:.0f} pressed on {}, {:.0f} on {}), more conditions than the two "
+                           "surfaces can meet at once, so the force splits unevenly between the sides: use "
+                           "enforcement: penalty with penalty: auto, or {}",
+                           n_a, a, n_b, b, single);
+    if (model.rule.penalty > 0.0 && penalty > stiff_half_pass_penalty * model.rule.penalty)
+        return fmt::format("the penalty {:.3g} is {:.0f} times what penalty: auto gives ({:.3g}); so stiff a penalty "
+                           "lets the Gauss points of one side hold the other surface off by themselves ({:.0f} pressed "
+                           "on {}, {:.0f} on {}), so the force splits unevenly between the sides: use contact.{}."
+                           "penalty: auto, or {}",
+                           penalty, penalty / model.rule.penalty, model.rule.penalty, n_a, a, n_b, b, pair.name, single);
+    if (std::min(across(n_a), across(n_b)) < resolved_zone_points) {
+        if (std::max(n_a, n_b) >= 2.0 * std::min(n_a, n_b)) {
+            const bool a_coarse = n_a < n_b;
+            return fmt::format("the contact zone holds only {} of {} against {:.0f} of {}: "
+                               "refine {} where it touches (more knot spans there) or raise contact.{}.quadrature",
+                               pressed_points(std::min(n_a, n_b)), a_coarse ? a : b, std::max(n_a, n_b), a_coarse ? b : a,
+                               a_coarse ? a : b, pair.name);
+        }
+        return fmt::format("the contact zone holds only {} of {} and {:.0f} of {}, too few "
+                           "for the two integrals to agree: refine both sides where they touch (more knot spans "
+                           "across the zone)",
+                           pressed_points(n_a), a, n_b, b);
+    }
+    return fmt::format("the two sides sample the contact zone differently ({:.0f} pressed Gauss points on {}, {:.0f} on "
+                       "{}): refine the coarser side or raise contact.{}.quadrature",
+                       n_a, a, n_b, b, pair.name);
+}
+
+}  // namespace
+
 std::vector<std::string> contact_warnings(const io::Deck& deck, const Scene& scene, const io::StepData& step)
 {
     std::vector<std::string> out;
@@ -179,12 +234,10 @@ std::vector<std::string> contact_warnings(const io::Deck& deck, const Scene& sce
             const BodyModel& body = scene.bodies[static_cast<std::size_t>(model.body[0])];
             const double material_force = body.material.E * std::pow(body_size(body), d - 1);
             if (scale > negligible_contact_force * material_force && std::abs(f1 - f2) > half_pass_disagreement * scale)
-                out.push_back(fmt::format(
-                    "contact pair '{}': the two half passes disagree in normal force by {:.1f} % ({}: {:.6g}, "
-                    "{}: {:.6g}); the sides are resolved very differently or the contact zone spans few Gauss "
-                    "points: refine the coarser side or raise contact.{}.quadrature",
-                    pair.name, 100.0 * std::abs(f1 - f2) / scale, pair.sides[0].side_name, f1,
-                    pair.sides[1].side_name, f2, pair.name));
+                out.push_back(fmt::format("contact pair '{}': the two half passes disagree in normal force by {:.1f} % "
+                                          "({}: {:.6g}, {}: {:.6g}); {}",
+                                          pair.name, 100.0 * std::abs(f1 - f2) / scale, pair.sides[0].side_name, f1,
+                                          pair.sides[1].side_name, f2, half_pass_cause(model, pair, d)));
         }
     }
     return out;

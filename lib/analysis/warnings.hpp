@@ -9,8 +9,10 @@
 //    imposed by displacements and obstacle motion: the penalty is too soft for
 //    the answer to mean much;
 //  - two-half-pass sides whose contact forces disagree by more than
-//    half_pass_disagreement: the two surfaces are resolved too differently
-//    (refine the coarser side), or the contact zone is barely resolved;
+//    half_pass_disagreement, with the cause the run shows: a penalty far stiffer than
+//    `penalty: auto` or the augmented Lagrangian (both over-constrain the two half
+//    passes), a contact zone held by few pressed Gauss points, or two sides that
+//    sample it differently;
 //  - two contact pairs that share a patch side on both surfaces (in either order;
 //    a named surface counts as its sides, a rigid obstacle as itself): each adds its
 //    own contact forces there, so the contact is enforced twice (twice as stiff).
@@ -40,6 +42,17 @@ constexpr double penetration_to_travel = 0.1;
 /// Relative disagreement of the two half passes' normal forces (0.35 % on matched
 /// two-cylinder meshes): a few per cent flags a real resolution mismatch.
 constexpr double half_pass_disagreement = 0.03;
+/// A penalty above this multiple of `penalty: auto`'s is named as the cause of a
+/// half-pass disagreement: on a steel half disc pressed into an aluminium block
+/// (tests/analysis/decks/disc_into_block_2d.yaml at 160 spans), 1.7 % with auto's, 6.0 %
+/// at 2 times, 9.5 % at 3, 28 % at 5; at 40 spans and 6500 times the disc's Gauss points
+/// carried the whole force and the block's none (docs/theory.md, "Two-half-pass balance").
+constexpr double stiff_half_pass_penalty = 3.0;
+/// Pressed Gauss points per direction of the contact zone (a curve's count, a
+/// surface's square root) below which the zone counts as barely resolved: the same
+/// deck disagreed by 7.4 % with 2 pressed points a side, 1.7 % with 12 and 14, 0.5 %
+/// with 26 and 34, and the two-cylinder Hertz deck (131 a side) by 0.003 %.
+constexpr double resolved_zone_points = 20.0;
 /// Contact forces below this fraction of E L^(d-1) (L the body size) are round-off
 /// of grazing contact, not a resolved force: no disagreement is reported for them.
 constexpr double negligible_contact_force = 1e-8;

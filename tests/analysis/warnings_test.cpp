@@ -10,6 +10,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace iga::test {
 
 namespace {
@@ -78,6 +80,46 @@ TEST(Warnings, HalfPassDisagreementIsReported)
                                  dir / "coarse.h5");
     const std::string all = joined(coarse.warnings);
     EXPECT_NE(all.find("half passes disagree"), std::string::npos) << coarse.status << ": " << all;
+}
+
+// A half-pass disagreement is worded from what the run shows (analysis/warnings.hpp):
+// too few pressed Gauss points, a penalty far stiffer than auto's, or the augmented
+// Lagrangian; the reactions of the two bodies differ by what the warning says.
+TEST(Warnings, HalfPassDisagreementNamesItsCause)
+{
+    const auto dir = scratch_dir("warnings_half_pass_cause");
+    const std::string deck = source_path("tests/analysis/decks/disc_into_block_2d.yaml");
+    auto reaction_y = [](const std::filesystem::path& file, const std::string& side) {
+        const std::vector<double> r = Results(file).reals("/results/reactions/" + side);
+        return r.size() >= 2 ? r[1] : std::nan("");
+    };
+
+    const auto coarse = run_deck(deck, {}, dir / "auto.h5");
+    ASSERT_EQ(coarse.status, "completed") << coarse.message;
+    std::string all = joined(coarse.warnings);
+    EXPECT_NE(all.find("half passes disagree"), std::string::npos) << all;
+    EXPECT_NE(all.find("too few for the two integrals to agree"), std::string::npos) << all;
+    const double top = -reaction_y(dir / "auto.h5", "disc.v1"), bottom = reaction_y(dir / "auto.h5", "block.v0");
+    EXPECT_GT(std::abs(top - bottom), 0.03 * bottom) << top << " " << bottom;  // what the warning is about
+
+    const auto stiff = run_deck(deck, {"contact.press.penalty=1e12"}, dir / "stiff.h5");
+    ASSERT_EQ(stiff.status, "completed") << stiff.message;
+    all = joined(stiff.warnings);
+    EXPECT_NE(all.find("times what penalty: auto gives"), std::string::npos) << all;
+    EXPECT_NE(all.find("single_pass, which balances the two bodies exactly"), std::string::npos) << all;
+
+    const auto augmented = run_deck(deck, {"contact.press.enforcement=augmented_lagrangian"}, dir / "al.h5");
+    ASSERT_EQ(augmented.status, "completed") << augmented.message;
+    all = joined(augmented.warnings);
+    EXPECT_NE(all.find("with enforcement: augmented_lagrangian both half passes"), std::string::npos) << all;
+
+    // One integral acts on both bodies: action equals reaction to the solver's tolerance.
+    const auto single = run_deck(deck, {"contact.press.penalty=1e12", "contact.press.formulation=single_pass"},
+                                 dir / "single.h5");
+    ASSERT_EQ(single.status, "completed") << single.message;
+    EXPECT_TRUE(single.warnings.empty()) << joined(single.warnings);
+    const double single_top = -reaction_y(dir / "single.h5", "disc.v1");
+    EXPECT_NEAR(reaction_y(dir / "single.h5", "block.v0"), single_top, 1e-8 * single_top);
 }
 
 TEST(Warnings, RepeatedContactPairIsReported)
