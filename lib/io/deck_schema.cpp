@@ -216,9 +216,9 @@ constexpr Row deck_rows[] = {
      "the largest increment an adaptive run takes. With [amplitudes](#load-paths-amplitude) the pseudo-time goes "
      "from 0 to T in steps of T/`count` (read 1/`count` as T/`count` in this table)"},
     {"steps.adaptive", boolean(), fallback("`true`"),
-     "if an increment fails, halve it and retry. After each converged increment, scale the next one by 6 / (its "
-     "Newton iterations), bounded to [0.5, 2] (an increment converged at its start state: 2), and never beyond "
-     "1/`count`"},
+     "if an increment fails, halve it and retry. After a converged increment of n Newton iterations, scale the "
+     "next one by 6/n if n < 6 (at most 2; an increment converged at its start state: 2), keep it for n = 6 to 10, "
+     "and scale it by 10/n (at least 0.5) if n > 10; never beyond 1/`count`"},
     {"steps.max_cutbacks", integer(at_least(0)), fallback("`8`"),
      "how many halvings one increment may take before the run stops as failed. An increment never becomes "
      "smaller than 1/`count`/2^`max_cutbacks`"},

@@ -30,15 +30,29 @@ std::string increment_text(int index, double from, double to)
 
 }  // namespace
 
+double next_increment_factor(int iterations, const SteppingSettings& stepping)
+{
+    if (iterations <= 0)
+        return stepping.max_growth;
+    const double n = iterations;
+    double factor = 1.0;
+    if (iterations < stepping.target_iterations)
+        factor = stepping.target_iterations / n;
+    else if (iterations > stepping.slow_iterations)
+        factor = stepping.slow_iterations / n;
+    return std::clamp(factor, stepping.max_shrink, stepping.max_growth);
+}
+
 SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const SteppingSettings& stepping,
                               const NewtonSettings& newton, LinearSolver& solver, SteppingCallbacks& callbacks,
                               RunContext* context)
 {
     IGA_CHECK(stepping.count >= 1, "run_load_steps: count must be >= 1");
     IGA_CHECK(stepping.max_cutbacks >= 0, "run_load_steps: max_cutbacks must be >= 0");
-    IGA_CHECK(stepping.target_iterations >= 1 && stepping.max_growth >= 1.0 && stepping.max_shrink > 0.0 &&
+    IGA_CHECK(stepping.target_iterations >= 1 && stepping.slow_iterations >= stepping.target_iterations &&
+                  stepping.max_growth >= 1.0 && stepping.max_shrink > 0.0 &&
                   stepping.max_shrink <= 1.0,
-              "run_load_steps: target_iterations >= 1, max_growth >= 1 and max_shrink in (0, 1] are required");
+              "run_load_steps: target_iterations >= 1, slow_iterations >= target_iterations, max_growth >= 1 and max_shrink in (0, 1] are required");
 
     const LoadPath& path = stepping.path;
     IGA_CHECK(path.end > 0.0 && !path.breakpoints.empty() && path.breakpoints.back() == path.end,
@@ -209,12 +223,8 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
             callbacks.converged(result.increments.back(), u);
 
         if (stepping.adaptive) {
-            const double factor =
-                first_solve_iterations > 0
-                    ? std::clamp(static_cast<double>(stepping.target_iterations) / first_solve_iterations,
-                                 stepping.max_shrink, stepping.max_growth)
-                    : stepping.max_growth;
-            increment = std::clamp(increment * factor, min_increment, initial_increment);
+            increment = std::clamp(increment * next_increment_factor(first_solve_iterations, stepping),
+                                   min_increment, initial_increment);
         }
     }
     result.completed = true;

@@ -21,10 +21,14 @@
 //
 // Step control by iteration count (adaptive only): after an increment that
 // converged in n Newton iterations, the next increment is the last planned one
-// times target_iterations / n, the factor bounded to [max_shrink, max_growth]
-// (n = 0: max_growth), and the result bounded to [T/count / 2^max_cutbacks,
-// T/count]. An increment that needs more iterations than the target shrinks the
-// next one before it fails; an easy one lets it grow back quickly after cutbacks.
+// times a factor (next_increment_factor): target_iterations / n below the target,
+// 1 from the target to slow_iterations, slow_iterations / n above, bounded to
+// [max_shrink, max_growth] (n = 0: max_growth); the result is bounded to
+// [T/count / 2^max_cutbacks, T/count]. An increment that needs many iterations
+// shrinks the next one before it fails; an easy one lets it grow back quickly after
+// cutbacks. The band between keeps the size: a frictional increment takes 7-9
+// iterations as its stick/slip states settle at any size, and shrinking on every
+// one of them made a press-then-shear deck take 177 increments for its planned 10.
 //
 // Reference force: Newton's relative residual is ||r|| / force_scale, force_scale
 // the forces in play at the state (Evaluation). Along a path that returns to zero
@@ -82,10 +86,18 @@ struct SteppingSettings {
     /// increment converging quadratically from a predicted state needs 4-6, so an
     /// increment at the target is as large as Newton handles without strain.
     int target_iterations = 6;
+    /// Up to this many iterations the next increment keeps its size; above, it shrinks
+    /// by slow_iterations / n. 10: twice the iterations a quadratic Newton needs from a
+    /// predicted state, still well inside newton.max_iterations (25 by default).
+    int slow_iterations = 10;
     double max_growth = 2.0;  ///< bound on the factor target / n that grows the next increment
     double max_shrink = 0.5;  ///< bound on the factor that shrinks it (the same as a cutback)
     Predictor predictor = Predictor::linearized;
 };
+
+/// The factor by which an increment that converged in `iterations` Newton
+/// iterations scales the next one (the step control above).
+double next_increment_factor(int iterations, const SteppingSettings& stepping);
 
 /// What the outer loop decides after a converged Newton solve (see the header paragraph).
 struct OuterDecision {

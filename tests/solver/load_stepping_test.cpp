@@ -259,14 +259,15 @@ NonlinearSystem moving_triple_root(double s)
 
 TEST(LoadStepping, NextIncrementFollowsTheIterationCount)
 {
-    // The rule of load_stepping.hpp: next = last * clamp(target / n, max_shrink,
-    // max_growth), bounded to [1/count / 2^max_cutbacks, 1/count]. The load factors
-    // are sums of increments: equal to the rule up to a few ulps of lambda <= 1.
+    // The rule of load_stepping.hpp: next = last * clamp(f(n), max_shrink, max_growth),
+    // f = target / n below the target, 1 up to slow_iterations, slow_iterations / n
+    // above; bounded to [1/count / 2^max_cutbacks, 1/count]. The load factors are sums
+    // of increments: equal to the rule up to a few ulps of lambda <= 1.
     constexpr double lambda_round_off = 1e-14;
     NewtonSettings newton;
     newton.max_iterations = 40;  // a triple root from x = 0.25 needs ~16 linear-rate iterations
     SteppingSettings stepping;
-    stepping.count = 4;
+    stepping.count = 8;  // from 14 iterations at 1/8 down to 10, which keeps the size
     SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
     SteppingCallbacks callbacks;
     Vector u = Vector::Zero(1);
@@ -277,16 +278,17 @@ TEST(LoadStepping, NextIncrementFollowsTheIterationCount)
 
     const double largest = 1.0 / stepping.count;
     const double smallest = std::ldexp(largest, -stepping.max_cutbacks);
-    bool shrank = false, grew = false;
+    bool shrank = false, grew = false, kept = false;
     double previous_lambda = 0.0;
     for (std::size_t k = 0; k + 1 < result.increments.size(); ++k) {
         const IncrementRecord& r = result.increments[k];
         const double increment = r.load_factor - previous_lambda;
         const double next = result.increments[k + 1].load_factor - r.load_factor;
-        const double factor = r.report.iterations == 0
-                                  ? stepping.max_growth
-                                  : std::clamp(double(stepping.target_iterations) / r.report.iterations,
-                                               stepping.max_shrink, stepping.max_growth);
+        const int n = r.report.iterations;
+        const double f = n < stepping.target_iterations ? double(stepping.target_iterations) / n
+                         : n > stepping.slow_iterations ? double(stepping.slow_iterations) / n
+                                                        : 1.0;
+        const double factor = n == 0 ? stepping.max_growth : std::clamp(f, stepping.max_shrink, stepping.max_growth);
         const double expected = std::clamp(increment * factor, smallest, largest);
         const bool last = k + 2 == result.increments.size();  // the final one may be cut to end at 1
         if (last)
@@ -295,11 +297,13 @@ TEST(LoadStepping, NextIncrementFollowsTheIterationCount)
             EXPECT_TRUE(test::near(next, expected, lambda_round_off))
                 << "increment " << k + 2 << " after " << r.report.iterations << " iterations";
         shrank = shrank || next < increment * (1.0 - lambda_round_off);
+        kept = kept || (!last && n >= stepping.target_iterations && test::near(next, increment, lambda_round_off));
         grew = grew || (!last && next > increment * (1.0 + lambda_round_off));
         previous_lambda = r.load_factor;
     }
     EXPECT_TRUE(shrank) << "no increment shrank: the test no longer exercises the shrinking rule";
     EXPECT_TRUE(grew) << "no increment grew: the test no longer exercises the growth rule";
+    EXPECT_TRUE(kept) << "no increment kept its size: the test no longer exercises the band";
     // Newton stops at |x|^3 <= 1e-10: |x| <= 4.7e-4 (and 1e-3 with margin).
     constexpr double triple_root_tolerance = 1e-3;
     EXPECT_TRUE(test::near(u(0), 0.5, triple_root_tolerance));
