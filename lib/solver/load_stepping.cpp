@@ -52,7 +52,8 @@ SteppingResult run_load_steps(const NonlinearSystem& system, Vector& u, const St
     IGA_CHECK(stepping.target_iterations >= 1 && stepping.slow_iterations >= stepping.target_iterations &&
                   stepping.max_growth >= 1.0 && stepping.max_shrink > 0.0 &&
                   stepping.max_shrink <= 1.0,
-              "run_load_steps: target_iterations >= 1, slow_iterations >= target_iterations, max_growth >= 1 and max_shrink in (0, 1] are required");
+              "run_load_steps: target_iterations >= 1, slow_iterations >= target_iterations, max_growth >= 1 "
+              "and max_shrink in (0, 1] are required");
 
     const LoadPath& path = stepping.path;
     IGA_CHECK(path.end > 0.0 && !path.breakpoints.empty() && path.breakpoints.back() == path.end,
