@@ -1,4 +1,5 @@
 #include "analysis/constraints.hpp"
+#include "core/text.hpp"
 
 #include "io/locate.hpp"
 #include "nurbs/side_patch.hpp"
@@ -13,14 +14,6 @@ namespace iga::analysis {
 namespace {
 
 constexpr const char* component_names[] = {"x", "y", "z"};
-
-std::string point_text(const RowMatrix& points, int row)
-{
-    std::string out = "(";
-    for (Index i = 0; i < points.cols(); ++i)
-        out += fmt::format("{}{:.6g}", i ? ", " : "", points(row, i));
-    return out + ")";
-}
 
 std::string item_label(const io::Constraint& c, std::size_t index)
 {

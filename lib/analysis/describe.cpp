@@ -1,4 +1,5 @@
 #include "analysis/describe.hpp"
+#include "core/text.hpp"
 #include "io/deck_names.hpp"
 
 #include "analysis/geometry.hpp"
@@ -17,14 +18,6 @@ std::string generic_side_meaning(Side s)
 {
     static const char* directions = "uvw";
     return fmt::format("{} = {}", directions[side_direction(s)], side_at_end(s) ? "max" : "min");
-}
-
-std::string point_text(const VecN& x)
-{
-    std::string out = "(";
-    for (Index i = 0; i < x.size(); ++i)
-        out += fmt::format("{}{:.6g}", i ? ", " : "", x(i));
-    return out + ")";
 }
 
 /// Control points of a patch coincide when closer than this: round-off of the
@@ -46,7 +39,7 @@ std::string side_corners(const nurbs::SidePatch& sp)
     for (int r : rows) {
         if (!out.empty())
             out += ' ';
-        out += point_text(P.row(r).transpose());
+        out += point_text(P, r);
     }
     return out;
 }

@@ -1,4 +1,5 @@
 #include "analysis/free_modes.hpp"
+#include "core/text.hpp"
 
 #include "core/error.hpp"
 
@@ -13,6 +14,15 @@
 namespace iga::analysis {
 
 namespace {
+
+/// A point for a message: round-off below 1e-12 shown as 0.
+VecN tidy(VecN p)
+{
+    for (Index i = 0; i < p.size(); ++i)
+        if (std::abs(p(i)) < 1e-12)
+            p(i) = 0.0;
+    return p;
+}
 
 constexpr const char* axis_name[] = {"x", "y", "z"};
 
@@ -53,14 +63,6 @@ VecN rotation_motion(int axis, const VecN& X, const VecN& c)
     r.head(d) = X - c;
     const Eigen::Vector3d v = Eigen::Vector3d::Unit(axis).cross(r);
     return v.head(d);
-}
-
-std::string point_text(const VecN& p)
-{
-    std::string out = "(";
-    for (Index i = 0; i < p.size(); ++i)
-        out += fmt::format("{}{:.4g}", i > 0 ? ", " : "", std::abs(p(i)) < 1e-12 ? 0.0 : p(i));
-    return out + ")";
 }
 
 /// The group's nodes: full dofs (n_nodes x d) and reference positions.
@@ -288,9 +290,9 @@ std::vector<FreeModeGroup> find_free_modes(const Scene& scene)
             mode.axis = axes[r];
             mode.centre = nodes.centroid + shift.head(d);
             mode.displacement = nodes.size * full_motion(scene, nodes, q);  // unit angle
-            mode.text = d == 2 ? fmt::format("rotate freely about {}", point_text(mode.centre))
+            mode.text = d == 2 ? fmt::format("rotate freely about {}", point_text(tidy(mode.centre), 4))
                                : fmt::format("rotate freely about the {} axis through {}", axis_name[axes[r]],
-                                             point_text(mode.centre));
+                                             point_text(tidy(mode.centre), 4));
             group.named.push_back(std::move(mode));
         }
 
@@ -350,9 +352,9 @@ std::optional<std::string> driven_free_mode(const Scene& scene, const std::vecto
                     mode.kind == FreeMode::Kind::translation
                         ? fmt::format("a resultant {:.4g} in {}", work, axis_name[mode.axis])
                     : scene.dim == 2
-                        ? fmt::format("a moment {:.4g} about {}", work, point_text(mode.centre))
+                        ? fmt::format("a moment {:.4g} about {}", work, point_text(tidy(mode.centre), 4))
                         : fmt::format("a moment {:.4g} about the {} axis through {}", work, axis_name[mode.axis],
-                                      point_text(mode.centre));
+                                      point_text(tidy(mode.centre), 4));
                 return fmt::format("loads drive a free mode: {} can {} and the loads have {}", group.label, mode.text,
                                    what);
             }

@@ -1,4 +1,5 @@
 #include "analysis/multipatch.hpp"
+#include "core/text.hpp"
 
 #include "analysis/geometry.hpp"
 #include "contact/search.hpp"
@@ -27,14 +28,6 @@ std::string patch_path(const io::Body& body, const std::string& patch)
 DeckError body_error(const io::Deck& deck, const std::string& path, const std::string& reason)
 {
     return DeckError(io::located_issue(deck.source_file, path, "", reason));
-}
-
-std::string point_text(const VecN& x)
-{
-    std::string out = "(";
-    for (Index i = 0; i < x.size(); ++i)
-        out += fmt::format("{}{:.6g}", i ? ", " : "", x(i));
-    return out + ")";
 }
 
 /// A point of one patch inside another.

@@ -252,12 +252,11 @@ void add_friction(io::ContactSideResult& r, const PairModel& model, int carrier_
 
 }  // namespace
 
-io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_free, double load_factor,
-                       int samples_per_span)
+namespace {
+
+/// The displacements of every body at a state: per body, or per patch of a multi-patch body.
+void add_displacements(const Scene& scene, const SceneSystem& system, const Vector& u_full, io::StepData& step)
 {
-    io::StepData step;
-    step.load_factor = load_factor;
-    const Vector u_full = scene.dofs->expand(u_free, load_factor);
     for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
         const BodyModel& body = scene.bodies[b];
         const RowMatrix u = system.body_displacement(u_full, static_cast<int>(b));
@@ -274,106 +273,288 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
         }
         step.patch_displacement.emplace_back(body.name, std::move(patches));
     }
+}
+
+/// The pair's attributes: its counts, the enforcement in effect and where it came
+/// from, and the force on a rigid obstacle.
+void add_pair_attributes(const Scene& scene, const PairModel& model, const contact::PairEvaluation& state,
+                         io::ContactPairResult& result)
+{
+    result.attributes["n_active"] = state.n_active;
+    result.attributes["max_penetration"] = state.max_penetration;
+    result.attributes["candidates"] = static_cast<double>(state.candidates);
+    result.attributes["projections"] = static_cast<double>(state.projections);
+    // The penalty in effect (the augmented Lagrangian's safeguard may have raised it) and where it came from.
+    result.attributes["penalty"] = model.pair.settings().penalty;
+    result.attributes["penalty_initial"] = model.initial_penalty;
+    result.text_attributes["penalty_rule"] = model.penalty_auto ? "auto" : "value";
+    result.text_attributes["enforcement"] = model.augmented ? "augmented_lagrangian" : "penalty";
+    if (model.augmented)
+        result.attributes["gap_tolerance"] = model.gap_tolerance_used;
+    if (model.pair.settings().friction.active()) {
+        result.attributes["friction_coefficient"] = model.pair.settings().friction.coefficient;
+        result.attributes["tangential_penalty"] = model.pair.settings().friction.tangential_penalty;
+    }
+    if (model.penalty_auto) {  // the inputs of the rule eps = min(kappa_side E*/l, c_max E'/h)
+        result.attributes["penalty_modulus"] = model.rule.modulus;
+        result.attributes["penalty_element_size"] = model.rule.element_size;
+        result.attributes["penalty_hertz_modulus"] = model.rule.hertz_modulus;
+        result.attributes["penalty_side_size"] = model.rule.side_size;
+    }
+    if (model.obstacle >= 0) {
+        // The body's contact force is -r_c; the obstacle feels the opposite, +r_c.
+        const int d = scene.dim;
+        result.obstacle_force.assign(static_cast<std::size_t>(d), 0.0);
+        for (Index k = 0; k < state.residual.size(); ++k)
+            result.obstacle_force[static_cast<std::size_t>(k % d)] += state.residual(k);
+    }
+}
+
+/// Active points, largest penetration and the measure in contact of one carrying side.
+void add_side_attributes(const contact::CarrierResult& carrier, io::ContactSideResult& r)
+{
+    int active = 0;
+    double penetration = 0.0, contact_measure = 0.0;
+    for (Index g = 0; g < carrier.pressure.size(); ++g)
+        if (carrier.pressure(g) > 0.0) {
+            ++active;
+            penetration = std::max(penetration, carrier.gap(g));
+            contact_measure += carrier.weight(g);
+        }
+    r.attributes["n_active"] = active;
+    r.attributes["max_penetration"] = penetration;
+    r.attributes["contact_measure"] = contact_measure;  // length (area in 3D) in contact, measured as the weights
+    r.attributes["contact_area"] = contact_measure;     // the same, by the name /history and friction use
+}
+
+/// One carrying side of pair p: its Gauss points, the pressure recovered at its
+/// control points and sampled, its force, and the friction state.
+io::ContactSideResult side_result(const Scene& scene, const PairModel& model, int c,
+                                  const contact::CarrierResult& computed, const RowMatrix& side_displacement,
+                                  double load_factor, int samples_per_span)
+{
+    // Small kinematics know one area, the reference one: a pressure integrated over
+    // the current surface (two-half-pass) is shown per unit reference area, p j/J,
+    // the traction the linear-elastic body carries (docs/theory.md "Two-half-pass balance").
+    contact::CarrierResult carrier = computed;
+    if (scene.kinematics == mechanics::Kinematics::small) {
+        carrier.pressure = carrier.pressure.cwiseProduct(carrier.stretch);
+        carrier.weight = carrier.weight.cwiseQuotient(carrier.stretch);
+    }
+    const contact::DeformableSide* side = deformable(model.pair, carrier.surface);
+    IGA_CHECK(side != nullptr, "a rigid surface cannot carry Gauss points");
+    const contact::RecoveredPressure recovered =
+        contact::recover_pressure(*side, side_displacement, carrier, samples_per_span);
+    io::ContactSideResult r;
+    r.side_name = model.label[static_cast<std::size_t>(carrier.surface)];
+    r.gauss_points.coordinates = carrier.coordinates;
+    r.gauss_points.reference_coordinates = carrier.reference_coordinates;
+    r.gauss_points.parameter = carrier.parameter;
+    r.gauss_points.gap = carrier.gap;
+    r.gauss_points.pressure = carrier.pressure;
+    r.gauss_points.weight = carrier.weight;
+    if (model.augmented)
+        r.gauss_points.multiplier = carrier.multiplier;
+    r.postprocessed.control_point_pressure = recovered.control_point_pressure;
+    r.postprocessed.coordinates = recovered.coordinates;
+    r.postprocessed.reference_coordinates = recovered.reference_coordinates;
+    r.postprocessed.pressure = recovered.pressure;
+    if (side->pieces.size() > 1) {
+        // One grid per patch side, samples patch side after patch side.
+        r.patch_sides = model.piece_label[static_cast<std::size_t>(carrier.surface)];
+        r.gauss_points.patch = carrier.piece;
+        for (const std::array<Index, 2>& grid : recovered.grids)
+            r.postprocessed.patch_grids.push_back({grid[1], grid[0]});  // [n_v, n_u]; a curve [1, n]
+    } else if (recovered.parameter.cols() == 2) {
+        r.postprocessed.grid = {recovered.grid[1], recovered.grid[0]};  // [n_v, n_u]
+    }
+    r.normal_force = recovered.normal_force;
+    add_side_attributes(carrier, r);
+    if (model.pair.settings().friction.active())
+        add_friction(r, model, c, carrier, *side, side_displacement, load_factor, samples_per_span,
+                     scene.kinematics == mechanics::Kinematics::small);
+    return r;
+}
+
+}  // namespace
+
+io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_free, double load_factor,
+                       int samples_per_span)
+{
+    io::StepData step;
+    step.load_factor = load_factor;
+    const Vector u_full = scene.dofs->expand(u_free, load_factor);
+    add_displacements(scene, system, u_full, step);
     // One evaluation gives the reactions and the contact state of the increment.
     std::vector<contact::PairEvaluation> states;
     step.reactions = reactions(scene, system.full_residual(u_free, load_factor, &states));
-    if (!scene.has_contact())
-        return step;
-
     for (std::size_t p = 0; p < scene.pairs.size(); ++p) {
         const PairModel& model = scene.pairs[p];
-        const contact::PairEvaluation& state = states[p];
         io::ContactPairResult result;
         result.name = model.name;
-        result.attributes["n_active"] = state.n_active;
-        result.attributes["max_penetration"] = state.max_penetration;
-        result.attributes["candidates"] = static_cast<double>(state.candidates);
-        result.attributes["projections"] = static_cast<double>(state.projections);
-        // The penalty in effect (the augmented Lagrangian's safeguard may have raised it) and where it came from.
-        result.attributes["penalty"] = model.pair.settings().penalty;
-        result.attributes["penalty_initial"] = model.initial_penalty;
-        result.text_attributes["penalty_rule"] = model.penalty_auto ? "auto" : "value";
-        result.text_attributes["enforcement"] = model.augmented ? "augmented_lagrangian" : "penalty";
-        if (model.augmented)
-            result.attributes["gap_tolerance"] = model.gap_tolerance_used;
-        if (model.pair.settings().friction.active()) {
-            result.attributes["friction_coefficient"] = model.pair.settings().friction.coefficient;
-            result.attributes["tangential_penalty"] = model.pair.settings().friction.tangential_penalty;
-        }
-        if (model.penalty_auto) {  // the inputs of the rule eps = min(kappa_side E*/l, c_max E'/h)
-            result.attributes["penalty_modulus"] = model.rule.modulus;
-            result.attributes["penalty_element_size"] = model.rule.element_size;
-            result.attributes["penalty_hertz_modulus"] = model.rule.hertz_modulus;
-            result.attributes["penalty_side_size"] = model.rule.side_size;
-        }
-        if (model.obstacle >= 0) {
-            // The body's contact force is -r_c; the obstacle feels the opposite, +r_c.
-            const int d = scene.dim;
-            result.obstacle_force.assign(static_cast<std::size_t>(d), 0.0);
-            for (Index k = 0; k < state.residual.size(); ++k)
-                result.obstacle_force[static_cast<std::size_t>(k % d)] += state.residual(k);
-        }
-        for (std::size_t c = 0; c < state.carriers.size(); ++c) {
-            const contact::CarrierResult& computed = state.carriers[c];
-            // Small kinematics know one area, the reference one: a pressure integrated over
-            // the current surface (two-half-pass) is shown per unit reference area, p j/J,
-            // the traction the linear-elastic body carries (docs/theory.md "Two-half-pass balance").
-            contact::CarrierResult carrier = computed;
-            if (scene.kinematics == mechanics::Kinematics::small) {
-                carrier.pressure = carrier.pressure.cwiseProduct(carrier.stretch);
-                carrier.weight = carrier.weight.cwiseQuotient(carrier.stretch);
-            }
-            const contact::DeformableSide* side = deformable(model.pair, carrier.surface);
-            IGA_CHECK(side != nullptr, "a rigid surface cannot carry Gauss points");
-            const contact::RecoveredPressure recovered = contact::recover_pressure(
-                *side, system.side_displacement(u_full, static_cast<int>(p), carrier.surface), carrier,
-                samples_per_span);
-            io::ContactSideResult r;
-            r.side_name = model.label[static_cast<std::size_t>(carrier.surface)];
-            r.gauss_points.coordinates = carrier.coordinates;
-            r.gauss_points.reference_coordinates = carrier.reference_coordinates;
-            r.gauss_points.parameter = carrier.parameter;
-            r.gauss_points.gap = carrier.gap;
-            r.gauss_points.pressure = carrier.pressure;
-            r.gauss_points.weight = carrier.weight;
-            if (model.augmented)
-                r.gauss_points.multiplier = carrier.multiplier;
-            r.postprocessed.control_point_pressure = recovered.control_point_pressure;
-            r.postprocessed.coordinates = recovered.coordinates;
-            r.postprocessed.reference_coordinates = recovered.reference_coordinates;
-            r.postprocessed.pressure = recovered.pressure;
-            if (side->pieces.size() > 1) {
-                // One grid per patch side, samples patch side after patch side.
-                r.patch_sides = model.piece_label[static_cast<std::size_t>(carrier.surface)];
-                r.gauss_points.patch = carrier.piece;
-                for (const std::array<Index, 2>& grid : recovered.grids)
-                    r.postprocessed.patch_grids.push_back({grid[1], grid[0]});  // [n_v, n_u]; a curve [1, n]
-            } else if (recovered.parameter.cols() == 2) {
-                r.postprocessed.grid = {recovered.grid[1], recovered.grid[0]};  // [n_v, n_u]
-            }
-            r.normal_force = recovered.normal_force;
-            int active = 0;
-            double penetration = 0.0, contact_measure = 0.0;
-            for (Index g = 0; g < carrier.pressure.size(); ++g)
-                if (carrier.pressure(g) > 0.0) {
-                    ++active;
-                    penetration = std::max(penetration, carrier.gap(g));
-                    contact_measure += carrier.weight(g);
-                }
-            r.attributes["n_active"] = active;
-            r.attributes["max_penetration"] = penetration;
-            r.attributes["contact_measure"] = contact_measure;  // length (area in 3D) in contact, measured as the weights
-            r.attributes["contact_area"] = contact_measure;     // the same, by the name /history and friction use
-            if (model.pair.settings().friction.active())
-                add_friction(r, model, static_cast<int>(c), carrier, *side,
-                             system.side_displacement(u_full, static_cast<int>(p), carrier.surface), load_factor,
-                             samples_per_span, scene.kinematics == mechanics::Kinematics::small);
-            result.sides.push_back(std::move(r));
+        add_pair_attributes(scene, model, states[p], result);
+        for (std::size_t c = 0; c < states[p].carriers.size(); ++c) {
+            const contact::CarrierResult& carrier = states[p].carriers[c];
+            result.sides.push_back(side_result(scene, model, static_cast<int>(c), carrier,
+                                               system.side_displacement(u_full, static_cast<int>(p), carrier.surface),
+                                               load_factor, samples_per_span));
         }
         step.contact.push_back(std::move(result));
     }
     return step;
 }
+
+namespace {
+
+/// E and the nu that enters E* of surface k of a pair (a rigid one: E infinite).
+void elastic_constants(const Scene& scene, const PairModel& model, int k, double& E, double& nu)
+{
+    const int b = model.body[static_cast<std::size_t>(k)];
+    if (b < 0) {
+        E = std::numeric_limits<double>::infinity();
+        nu = 0.0;
+        return;
+    }
+    const mechanics::Material& m = scene.bodies[static_cast<std::size_t>(b)].material;
+    E = m.E;
+    // Plane stress: E* = E (nu drops out); plane strain: E / (1 - nu^2).
+    nu = m.plane == mechanics::PlaneMode::stress ? 0.0 : m.nu;
+}
+
+/// A 2D Hertz solution placed on the pair: where the first touch is, and the tangent
+/// its x runs along (increasing to the right, for plots).
+struct PlacedLineContact {
+    analytic::HertzLineContact hertz{};
+    VecN center = VecN::Zero(2);
+    VecN tangent = VecN::Zero(2);
+};
+
+PlacedLineContact cylinder_on_plane(const Scene& scene, const PairModel& model, const io::Reference& ref,
+                                    io::ReferenceData& data)
+{
+    PlacedLineContact out;
+    data.type = "hertz_cylinder_plane";
+    const int k_body = deformable(model.pair, 0) ? 0 : 1;
+    const int k_plane = 1 - k_body;
+    double E, nu;
+    elastic_constants(scene, model, k_body, E, nu);
+    out.hertz = analytic::hertz_cylinder_plane(E, nu, ref.radius, ref.force);
+    VecN normal(2);
+    const auto* obstacle = std::get_if<contact::RigidObstacle>(&model.pair.surface(k_plane));
+    if (const auto* plane = obstacle ? std::get_if<contact::RigidPlane>(&obstacle->shape) : nullptr)
+        normal = plane->normal;
+    else
+        normal << 0.0, 1.0;
+    out.tangent << normal(1), -normal(0);
+    // The deepest of the pieces' first-touch points.
+    const contact::DeformableSide* surface = deformable(model.pair, k_body);
+    double deepest = std::numeric_limits<double>::infinity();
+    for (const contact::SidePiece& piece : surface->pieces) {
+        const VecN x = first_touch_point(piece.side.patch, normal);
+        if (x.dot(normal) < deepest) {
+            deepest = x.dot(normal);
+            out.center = x;
+        }
+    }
+    data.inputs["radius"] = ref.radius;
+    data.inputs["E"] = E;
+    data.inputs["nu"] = nu;
+    return out;
+}
+
+PlacedLineContact two_cylinders(const Scene& scene, const PairModel& model, const io::Reference& ref,
+                                io::ReferenceData& data)
+{
+    PlacedLineContact out;
+    data.type = "hertz_two_cylinders";
+    double E1, nu1, E2, nu2;
+    elastic_constants(scene, model, 0, E1, nu1);
+    elastic_constants(scene, model, 1, E2, nu2);
+    out.hertz = analytic::hertz_two_cylinders(E1, nu1, ref.radii[0], E2, nu2, ref.radii[1], ref.force);
+    const contact::DeformableSide* s0 = deformable(model.pair, 0);
+    const contact::DeformableSide* s1 = deformable(model.pair, 1);
+    IGA_CHECK(s0 && s1, "hertz_two_cylinders needs two deformable sides");
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const contact::SidePiece& a : s0->pieces)
+        for (const contact::SidePiece& b : s1->pieces) {
+            const ClosestPair closest = closest_points(a.side.patch, b.side.patch);
+            const double gap = (closest.x_a - closest.x_b).norm();
+            if (gap >= nearest)
+                continue;
+            nearest = gap;
+            out.center = 0.5 * (closest.x_a + closest.x_b);
+            VecN p(1);
+            p(0) = closest.xi_a;
+            out.tangent = nurbs::evaluate(a.side.patch, p, 1).dx.col(0).normalized();
+        }
+    data.inputs["radius_first"] = ref.radii[0];
+    data.inputs["radius_second"] = ref.radii[1];
+    return out;
+}
+
+/// The analytic pressure curve over [-1.5 a, 1.5 a] along the tangent.
+void sample_curve(const PlacedLineContact& placed, io::ReferenceData& data)
+{
+    constexpr int n_curve = 601;
+    const analytic::HertzLineContact& hertz = placed.hertz;
+    data.x.resize(n_curve);
+    data.pressure.resize(n_curve);
+    data.coordinates.resize(n_curve, 2);
+    for (int i = 0; i < n_curve; ++i) {
+        const double x = -1.5 * hertz.a + 3.0 * hertz.a * i / (n_curve - 1);
+        data.x(i) = x;
+        data.pressure(i) = hertz.pressure(x);
+        data.coordinates.row(i) = (placed.center + x * placed.tangent).transpose();
+    }
+}
+
+/// Peak, half-width and L2 errors of pressures p at reference coordinates X, named
+/// `tag` + peak / half_width / l2.
+void add_line_errors(const PlacedLineContact& placed, const RowMatrix& X, const Vector& p, const std::string& tag,
+                     io::ReferenceData& data)
+{
+    std::vector<double> xs, ps;
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (Index i = 0; i < X.rows(); ++i) {
+        const double x = (X.row(i).transpose() - placed.center).dot(placed.tangent);
+        xs.push_back(x);
+        ps.push_back(p(i));
+        lo = std::min(lo, x);
+        hi = std::max(hi, x);
+    }
+    if (xs.empty())
+        return;
+    // A symmetric half model covers one side of x = 0 only: count it twice.
+    const double slack = 1e-8 * std::max(1.0, placed.hertz.a);
+    const bool mirror = lo >= -slack || hi <= slack;
+    const analytic::PressureErrors e = analytic::pressure_errors(placed.hertz, xs, ps, mirror);
+    data.errors[tag + "peak"] = e.peak;
+    data.errors[tag + "half_width"] = e.half_width;
+    data.errors[tag + "l2"] = e.l2;
+}
+
+/// Errors of this run (last converged increment) over reference coordinates.
+void add_step_errors(const PlacedLineContact& placed, const io::StepData& step, const std::string& pair_name,
+                     io::ReferenceData& data)
+{
+    for (const io::ContactPairResult& pair : step.contact) {
+        if (pair.name != pair_name)
+            continue;
+        for (std::size_t s = 0; s < pair.sides.size(); ++s) {
+            const io::ContactSideResult& side = pair.sides[s];
+            const std::string prefix = s == 0 ? "" : side.side_name + ".";
+            add_line_errors(placed, side.postprocessed.reference_coordinates, side.postprocessed.pressure, prefix,
+                            data);
+            add_line_errors(placed, side.gauss_points.reference_coordinates, side.gauss_points.pressure,
+                            prefix + "gauss_", data);
+            // Force balance: the contact resultant against the force of the (modelled part of the) load.
+            if (s == 0)
+                data.errors["normal_force"] = side.normal_force;
+        }
+    }
+}
+
+}  // namespace
 
 std::vector<io::ReferenceData> references(const io::Deck& deck, const Scene& scene, const io::StepData* step)
 {
@@ -390,134 +571,23 @@ std::vector<io::ReferenceData> references(const io::Deck& deck, const Scene& sce
         out.push_back(point_contact_reference(deck, scene, *model, step));
         return out;
     }
-
-    auto elastic = [&](int k, double& E, double& nu) {
-        const int b = model->body[static_cast<std::size_t>(k)];
-        if (b < 0) {
-            E = std::numeric_limits<double>::infinity();
-            nu = 0.0;
-            return;
-        }
-        const mechanics::Material& m = scene.bodies[static_cast<std::size_t>(b)].material;
-        E = m.E;
-        // Plane stress: E* = E (nu drops out); plane strain: E / (1 - nu^2).
-        nu = m.plane == mechanics::PlaneMode::stress ? 0.0 : m.nu;
-    };
-
     io::ReferenceData data;
     data.pair = ref.pair;
-    analytic::HertzLineContact hertz{};
-    VecN center(2), tangent(2);
-    if (ref.type == io::ReferenceType::hertz_cylinder_plane) {
-        data.type = "hertz_cylinder_plane";
-        int k_body = deformable(model->pair, 0) ? 0 : 1;
-        int k_plane = 1 - k_body;
-        double E, nu;
-        elastic(k_body, E, nu);
-        hertz = analytic::hertz_cylinder_plane(E, nu, ref.radius, ref.force);
-        VecN normal(2);
-        const auto* obstacle = std::get_if<contact::RigidObstacle>(&model->pair.surface(k_plane));
-        if (const auto* plane = obstacle ? std::get_if<contact::RigidPlane>(&obstacle->shape) : nullptr)
-            normal = plane->normal;
-        else
-            normal << 0.0, 1.0;
-        tangent << normal(1), -normal(0);
-        // The deepest of the pieces' first-touch points.
-        const contact::DeformableSide* surface = deformable(model->pair, k_body);
-        double deepest = std::numeric_limits<double>::infinity();
-        for (const contact::SidePiece& piece : surface->pieces) {
-            const VecN x = first_touch_point(piece.side.patch, normal);
-            if (x.dot(normal) < deepest) {
-                deepest = x.dot(normal);
-                center = x;
-            }
-        }
-        data.inputs["radius"] = ref.radius;
-        data.inputs["E"] = E;
-        data.inputs["nu"] = nu;
-    } else {
-        data.type = "hertz_two_cylinders";
-        double E1, nu1, E2, nu2;
-        elastic(0, E1, nu1);
-        elastic(1, E2, nu2);
-        hertz = analytic::hertz_two_cylinders(E1, nu1, ref.radii[0], E2, nu2, ref.radii[1], ref.force);
-        const contact::DeformableSide* s0 = deformable(model->pair, 0);
-        const contact::DeformableSide* s1 = deformable(model->pair, 1);
-        IGA_CHECK(s0 && s1, "hertz_two_cylinders needs two deformable sides");
-        double nearest = std::numeric_limits<double>::infinity();
-        for (const contact::SidePiece& a : s0->pieces)
-            for (const contact::SidePiece& b : s1->pieces) {
-                const ClosestPair closest = closest_points(a.side.patch, b.side.patch);
-                const double gap = (closest.x_a - closest.x_b).norm();
-                if (gap >= nearest)
-                    continue;
-                nearest = gap;
-                center = 0.5 * (closest.x_a + closest.x_b);
-                VecN p(1);
-                p(0) = closest.xi_a;
-                tangent = nurbs::evaluate(a.side.patch, p, 1).dx.col(0).normalized();
-            }
-        data.inputs["radius_first"] = ref.radii[0];
-        data.inputs["radius_second"] = ref.radii[1];
-    }
-    if (tangent(0) < 0 || (tangent(0) == 0 && tangent(1) < 0))
-        tangent = -tangent;  // x increases to the right, for plots
+    PlacedLineContact placed = ref.type == io::ReferenceType::hertz_cylinder_plane
+                                   ? cylinder_on_plane(scene, *model, ref, data)
+                                   : two_cylinders(scene, *model, ref, data);
+    if (placed.tangent(0) < 0 || (placed.tangent(0) == 0 && placed.tangent(1) < 0))
+        placed.tangent = -placed.tangent;  // x increases to the right, for plots
     data.inputs["force"] = ref.force;
-    data.inputs["E_star"] = hertz.E_star;
-    data.inputs["R_star"] = hertz.R_star;
-    data.a = hertz.a;
-    data.p0 = hertz.p0;
-    data.center = to_std(center);
-    data.tangent = to_std(tangent);
-
-    constexpr int n_curve = 601;
-    data.x.resize(n_curve);
-    data.pressure.resize(n_curve);
-    data.coordinates.resize(n_curve, 2);
-    for (int i = 0; i < n_curve; ++i) {
-        const double x = -1.5 * hertz.a + 3.0 * hertz.a * i / (n_curve - 1);
-        data.x(i) = x;
-        data.pressure(i) = hertz.pressure(x);
-        data.coordinates.row(i) = (center + x * tangent).transpose();
-    }
-
-    // Errors of this run (last converged increment) over reference coordinates.
-    if (step) {
-        for (const io::ContactPairResult& pair : step->contact) {
-            if (pair.name != ref.pair)
-                continue;
-            for (std::size_t s = 0; s < pair.sides.size(); ++s) {
-                const io::ContactSideResult& side = pair.sides[s];
-                auto measure = [&](const RowMatrix& X, const Vector& p, const std::string& prefix) {
-                    std::vector<double> xs, ps;
-                    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-                    for (Index i = 0; i < X.rows(); ++i) {
-                        const double x = (X.row(i).transpose() - center).dot(tangent);
-                        xs.push_back(x);
-                        ps.push_back(p(i));
-                        lo = std::min(lo, x);
-                        hi = std::max(hi, x);
-                    }
-                    if (xs.empty())
-                        return;
-                    // A symmetric half model covers one side of x = 0 only: count it twice.
-                    const double slack = 1e-8 * std::max(1.0, hertz.a);
-                    const bool mirror = lo >= -slack || hi <= slack;
-                    const analytic::PressureErrors e = analytic::pressure_errors(hertz, xs, ps, mirror);
-                    const std::string tag = s == 0 ? prefix : side.side_name + "." + prefix;
-                    data.errors[tag + "peak"] = e.peak;
-                    data.errors[tag + "half_width"] = e.half_width;
-                    data.errors[tag + "l2"] = e.l2;
-                };
-                measure(side.postprocessed.reference_coordinates, side.postprocessed.pressure, "");
-                measure(side.gauss_points.reference_coordinates, side.gauss_points.pressure, "gauss_");
-                if (s == 0) {
-                    // Force balance: the contact resultant against the force of the (modelled part of the) load.
-                    data.errors["normal_force"] = side.normal_force;
-                }
-            }
-        }
-    }
+    data.inputs["E_star"] = placed.hertz.E_star;
+    data.inputs["R_star"] = placed.hertz.R_star;
+    data.a = placed.hertz.a;
+    data.p0 = placed.hertz.p0;
+    data.center = to_std(placed.center);
+    data.tangent = to_std(placed.tangent);
+    sample_curve(placed, data);
+    if (step)
+        add_step_errors(placed, *step, ref.pair, data);
     out.push_back(std::move(data));
     return out;
 }

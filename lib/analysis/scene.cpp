@@ -7,6 +7,7 @@
 #include "boundary/patch_side.hpp"
 #include "analysis/geometry.hpp"
 #include "analysis/obstacles.hpp"
+#include "core/text.hpp"
 #include "io/deck_names.hpp"
 #include "io/locate.hpp"
 #include "nurbs/side_patch.hpp"
@@ -39,14 +40,6 @@ mechanics::Material to_material(const io::Material& m, const io::Analysis& analy
 DeckIssue body_issue(const io::Deck& deck, const std::string& path, const std::string& reason)
 {
     return io::located_issue(deck.source_file, path, "", reason);
-}
-
-std::string format_vec(const VecN& v)
-{
-    std::string out = "(";
-    for (Index i = 0; i < v.size(); ++i)
-        out += fmt::format("{}{:.6g}", i ? ", " : "", v(i));
-    return out + ")";
 }
 
 /// Full dofs of a list of body control points (local dof a*d + i order).
@@ -104,14 +97,6 @@ std::vector<std::string> BodyModel::patch_names() const
     return names;
 }
 
-int BodyModel::patch_of_element(int e) const
-{
-    for (std::size_t p = 0; p < patches.size(); ++p)
-        if (e >= patches[p].first_element && e < patches[p].first_element + patches[p].n_elements)
-            return static_cast<int>(p);
-    return -1;
-}
-
 std::vector<BodySide> sides_of(const io::Deck& deck, const Scene& scene, const std::string& body,
                                const std::string& patch, Side side, const std::string& surface)
 {
@@ -162,75 +147,95 @@ LoadPath deck_load_path(const io::Deck& deck)
     return load_path(amplitudes);
 }
 
-Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& stop, const Communicator& comm)
-{
-    check_size(deck);  // refuse an absurd model before allocating any of it
-    Scene scene;
-    scene.dim = deck.analysis.dimension;
-    const int d = scene.dim;
-    scene.kinematics =
-        deck.analysis.kinematics == io::Kinematics::finite ? mechanics::Kinematics::finite : mechanics::Kinematics::small;
+namespace {
 
-    // Bodies: patches, glued, and element geometry over body nodes.
-    Eigen::VectorXd lo = Eigen::VectorXd::Constant(d, 1e300), hi = Eigen::VectorXd::Constant(d, -1e300);
+/// The bounding box of the deformable bodies' control points, grown patch by patch.
+struct BoundingBox {
+    Eigen::VectorXd lo, hi;
+    explicit BoundingBox(int d) : lo(Eigen::VectorXd::Constant(d, 1e300)), hi(Eigen::VectorXd::Constant(d, -1e300)) {}
+    void add(const RowMatrix& points)
+    {
+        lo = lo.cwiseMin(points.colwise().minCoeff().transpose());
+        hi = hi.cwiseMax(points.colwise().maxCoeff().transpose());
+    }
+};
+
+/// One deformable body of the deck: its patches refined and glued, their element
+/// geometry over body nodes, its material.
+BodyModel body_model(const io::Deck& deck, const io::Body& body, int refine_levels, const StopRequest& stop,
+                     BoundingBox& box)
+{
+    const int d = deck.analysis.dimension;
+    BodyPatches built = build_body_patches(deck, body, refine_levels, stop);
+    BodyModel model;
+    model.name = body.name;
+    model.multi_patch = body.multi_patch();
+    model.interfaces = built.topology.interfaces;
+    model.n_nodes = built.topology.n_nodes;
+    model.node_points.resize(model.n_nodes, d);
+    for (std::size_t p = 0; p < built.patches.size(); ++p) {
+        nurbs::Patch& patch = built.patches[p];
+        const std::vector<int>& node = built.topology.node[p];
+        const std::string path = "bodies." + body.name + (body.multi_patch() ? ".patches." + built.names[p] : "");
+        stop.check();
+        std::vector<mechanics::ElementGeometry> elements;
+        try {
+            elements = mechanics::patch_geometry(patch, body.quadrature.element);
+        } catch (const mechanics::NonPositiveJacobian& e) {
+            throw DeckError(body_issue(
+                deck, path,
+                fmt::format("the parametrization is inverted or degenerate: det(dX/dxi) = {:.3g} at parameter {} "
+                            "(X = {}); check the control point order (u index fastest) and that u, v(, w) "
+                            "form a right-handed system",
+                            e.det_J(), point_text(e.xi()), point_text(e.X()))));
+        }
+        for (int a = 0; a < patch.n_control_points(); ++a)
+            model.node_points.row(node[static_cast<std::size_t>(a)]) = patch.control_points().row(a);
+        PatchModel pm{built.names[p], patch, node, static_cast<int>(model.elements.size()),
+                      static_cast<int>(elements.size())};
+        for (mechanics::ElementGeometry& element : elements) {
+            for (int& a : element.indices)
+                a = node[static_cast<std::size_t>(a)];
+            model.elements.push_back(std::move(element));
+        }
+        box.add(patch.control_points());
+        model.patches.push_back(std::move(pm));
+    }
+    const io::Material* material = deck.find_material(body.material);
+    IGA_CHECK(material != nullptr, "the deck reader let an unknown material through");
+    model.material = to_material(*material, deck.analysis);
+    return model;
+}
+
+void add_bodies(const io::Deck& deck, int refine_levels, const StopRequest& stop, Scene& scene)
+{
+    BoundingBox box(scene.dim);
     for (const io::Body& body : deck.bodies) {
         if (body.rigid) {
             scene.body_of_deck.push_back(-1);
             continue;
         }
         scene.body_of_deck.push_back(static_cast<int>(scene.bodies.size()));
-        BodyPatches built = build_body_patches(deck, body, refine_levels, stop);
-        BodyModel model;
-        model.name = body.name;
-        model.multi_patch = body.multi_patch();
-        model.interfaces = built.topology.interfaces;
-        model.n_nodes = built.topology.n_nodes;
-        model.node_points.resize(model.n_nodes, d);
-        for (std::size_t p = 0; p < built.patches.size(); ++p) {
-            nurbs::Patch& patch = built.patches[p];
-            const std::vector<int>& node = built.topology.node[p];
-            const std::string path = "bodies." + body.name + (body.multi_patch() ? ".patches." + built.names[p] : "");
-            stop.check();
-            std::vector<mechanics::ElementGeometry> elements;
-            try {
-                elements = mechanics::patch_geometry(patch, body.quadrature.element);
-            } catch (const mechanics::NonPositiveJacobian& e) {
-                throw DeckError(body_issue(
-                    deck, path,
-                    fmt::format("the parametrization is inverted or degenerate: det(dX/dxi) = {:.3g} at parameter {} "
-                                "(X = {}); check the control point order (u index fastest) and that u, v(, w) "
-                                "form a right-handed system",
-                                e.det_J(), format_vec(e.xi()), format_vec(e.X()))));
-            }
-            for (int a = 0; a < patch.n_control_points(); ++a)
-                model.node_points.row(node[static_cast<std::size_t>(a)]) = patch.control_points().row(a);
-            PatchModel pm{built.names[p], patch, node, static_cast<int>(model.elements.size()),
-                          static_cast<int>(elements.size())};
-            for (mechanics::ElementGeometry& element : elements) {
-                for (int& a : element.indices)
-                    a = node[static_cast<std::size_t>(a)];
-                model.elements.push_back(std::move(element));
-            }
-            lo = lo.cwiseMin(patch.control_points().colwise().minCoeff().transpose());
-            hi = hi.cwiseMax(patch.control_points().colwise().maxCoeff().transpose());
-            model.patches.push_back(std::move(pm));
-        }
-        const io::Material* material = deck.find_material(body.material);
-        IGA_CHECK(material != nullptr, "the deck reader let an unknown material through");
-        model.material = to_material(*material, deck.analysis);
-        scene.bodies.push_back(std::move(model));
+        scene.bodies.push_back(body_model(deck, body, refine_levels, stop, box));
     }
     if (!scene.bodies.empty())
-        scene.model_size = std::max((hi - lo).norm(), 1e-300);
+        scene.model_size = std::max((box.hi - box.lo).norm(), 1e-300);
+}
 
-    auto body_index = [&](const std::string& name) {
-        for (std::size_t k = 0; k < deck.bodies.size(); ++k)
-            if (deck.bodies[k].name == name)
-                return scene.body_of_deck[k];
-        return -1;
-    };
+/// The deformable body index of a deck body name (-1: rigid or unknown).
+int body_index(const io::Deck& deck, const Scene& scene, const std::string& name)
+{
+    for (std::size_t k = 0; k < deck.bodies.size(); ++k)
+        if (deck.bodies[k].name == name)
+            return scene.body_of_deck[k];
+    return -1;
+}
 
-    // Dirichlet data.
+/// The dof map with the Dirichlet data and the reaction groups; the element blocks,
+/// and this rank's range of them.
+void add_dofs_and_elements(const io::Deck& deck, const Communicator& comm, Scene& scene,
+                           std::vector<std::vector<int>>& blocks)
+{
     std::vector<int> nodes_per_body;
     std::vector<int> node_offset;
     int n_nodes = 0;
@@ -240,17 +245,13 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
         n_nodes += b.n_nodes;
     }
     DirichletData dirichlet = dirichlet_data(deck, scene.bodies, scene.body_of_deck, node_offset);
-    scene.dofs = std::make_unique<assembly::DofMap>(d, nodes_per_body, dirichlet.prescribed);
+    scene.dofs = std::make_unique<assembly::DofMap>(scene.dim, nodes_per_body, dirichlet.prescribed);
     scene.reactions = std::move(dirichlet.reactions);
-    const assembly::DofMap& dofs = *scene.dofs;
-
-    // Blocks: elements first.
-    std::vector<std::vector<int>> blocks;
     for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
         BodyModel& body = scene.bodies[b];
         body.first_block = static_cast<int>(blocks.size());
         for (const auto& element : body.elements) {
-            body.element_dofs.push_back(dofs_of(dofs, static_cast<int>(b), element.indices));
+            body.element_dofs.push_back(dofs_of(*scene.dofs, static_cast<int>(b), element.indices));
             blocks.push_back(body.element_dofs.back());
         }
     }
@@ -258,215 +259,277 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
     scene.partition.rank = comm.rank();
     scene.partition.size = comm.size();
     scene.partition.n_element_blocks = scene.n_element_blocks;
-    {
-        const auto [first, last] = comm.block_range(scene.n_element_blocks);
-        scene.partition.first_element = static_cast<int>(first);
-        scene.partition.last_element = static_cast<int>(last);
-    }
+    const auto [first, last] = comm.block_range(scene.n_element_blocks);
+    scene.partition.first_element = static_cast<int>(first);
+    scene.partition.last_element = static_cast<int>(last);
+}
 
-    // Loads: dead ones summed at full value, one vector per amplitude.
-    Vector* f_ext = nullptr;  // the vector of the load being built
-    auto scatter = [&](int body, const std::vector<int>& indices, const Vector& f) {
-        const std::vector<int> full = dofs_of(dofs, body, indices);
-        for (std::size_t k = 0; k < full.size(); ++k)
-            (*f_ext)(full[k]) += f(static_cast<Index>(k));
-    };
+/// Adds f (over the control points `indices` of body b) to the full vector f_ext.
+void scatter_load(const assembly::DofMap& dofs, int body, const std::vector<int>& indices, const Vector& f,
+                  Vector& f_ext)
+{
+    const std::vector<int> full = dofs_of(dofs, body, indices);
+    for (std::size_t k = 0; k < full.size(); ++k)
+        f_ext(full[k]) += f(static_cast<Index>(k));
+}
+
+/// The side quadrature a load item acts on (checked: not folded, not an interface).
+mechanics::SideQuadrature load_side(const io::Deck& deck, const Scene& scene, const io::Load& load,
+                                    std::size_t load_index)
+{
+    const BodyModel& body = scene.bodies[static_cast<std::size_t>(body_index(deck, scene, load.body))];
+    const std::vector<BodySide> sides =
+        sides_of(deck, scene, load.body, load.patch, load.side.value_or(Side::u0), load.surface);
+    mechanics::SideQuadrature side;
+    try {
+        side = body_side_quadrature(body, sides, deck.find_body(load.body)->quadrature.side);
+    } catch (const boundary::FoldedSide& e) {
+        throw DeckError(body_issue(deck, fmt::format("loads.{}.side", load_index), e.what()));
+    }
+    check_not_interface(deck, body, sides, fmt::format("loads.{}.side", load_index));
+    return side;
+}
+
+/// One load item: dead loads into f_ext (the vector of its amplitude), a follower
+/// pressure under finite kinematics as its own blocks.
+void add_load(const io::Deck& deck, std::size_t load_index, Scene& scene, Vector& f_ext,
+              std::vector<std::vector<int>>& blocks)
+{
+    const io::Load& load = deck.loads[load_index];
+    const assembly::DofMap& dofs = *scene.dofs;
+    const int d = scene.dim;
+    const int b = body_index(deck, scene, load.body);
+    IGA_CHECK(b >= 0, "the deck reader let a load on a rigid or unknown body through");
+    if (load.kind == io::LoadKind::gravity) {
+        for (const auto& element : scene.bodies[static_cast<std::size_t>(b)].elements) {
+            const mechanics::LocalForce f = mechanics::gravity(element, load.density, to_vec(load.vector));
+            scatter_load(dofs, b, f.indices, f.f_ext, f_ext);
+        }
+        return;
+    }
+    mechanics::SideQuadrature side = load_side(deck, scene, load, load_index);
+    if (load.kind == io::LoadKind::traction || load.kind == io::LoadKind::force) {
+        VecN traction = to_vec(load.vector);
+        if (load.kind == io::LoadKind::force) {
+            const double measure = mechanics::reference_measure(side);
+            if (!(measure > 0.0))
+                throw DeckError(body_issue(deck, fmt::format("loads.{}", load_index),
+                                           "a force on a collapsed side (zero length) cannot be spread"));
+            traction /= measure;
+        }
+        for (const auto& element : side.elements) {
+            const mechanics::LocalForce f = mechanics::dead_traction(element, d, traction);
+            scatter_load(dofs, b, f.indices, f.f_ext, f_ext);
+        }
+    } else if (scene.kinematics == mechanics::Kinematics::small) {
+        for (const auto& element : side.elements) {
+            const Matrix none;
+            const mechanics::LocalForceTangent f =
+                mechanics::follower_pressure(element, d, load.pressure, scene.kinematics, none);
+            scatter_load(dofs, b, f.indices, f.f_ext, f_ext);
+        }
+    } else {
+        FollowerPressure follower{b, load.pressure, load.amplitude.value_or(Amplitude()), std::move(side), {},
+                                  static_cast<int>(blocks.size())};
+        for (const auto& element : follower.side.elements) {
+            follower.element_dofs.push_back(dofs_of(dofs, b, element.indices));
+            blocks.push_back(follower.element_dofs.back());
+        }
+        scene.followers.push_back(std::move(follower));
+    }
+}
+
+/// Loads: dead ones summed at full value, one vector per amplitude.
+void add_loads(const io::Deck& deck, Scene& scene, std::vector<std::vector<int>>& blocks)
+{
     for (std::size_t load_index = 0; load_index < deck.loads.size(); ++load_index) {
-        const io::Load& load = deck.loads[load_index];
-        const Amplitude amplitude = load.amplitude.value_or(Amplitude());
+        const Amplitude amplitude = deck.loads[load_index].amplitude.value_or(Amplitude());
         auto group = std::find_if(scene.dead_loads.begin(), scene.dead_loads.end(),
                                   [&](const DeadLoad& g) { return g.amplitude == amplitude; });
         if (group == scene.dead_loads.end())
-            group = scene.dead_loads.insert(scene.dead_loads.end(), DeadLoad{amplitude, Vector::Zero(dofs.n_full())});
-        f_ext = &group->f;
-        const int b = body_index(load.body);
-        IGA_CHECK(b >= 0, "the deck reader let a load on a rigid or unknown body through");
-        const BodyModel& body = scene.bodies[b];
-        if (load.kind == io::LoadKind::gravity) {
-            for (const auto& element : body.elements) {
-                const mechanics::LocalForce f = mechanics::gravity(element, load.density, to_vec(load.vector));
-                scatter(b, f.indices, f.f_ext);
+            group = scene.dead_loads.insert(scene.dead_loads.end(),
+                                            DeadLoad{amplitude, Vector::Zero(scene.dofs->n_full())});
+        add_load(deck, load_index, scene, group->f, blocks);
+    }
+}
+
+/// The two surfaces of a contact pair as they are being built.
+struct PairSurfaces {
+    std::array<int, 2> body{-1, -1};
+    std::array<std::string, 2> label;
+    std::array<std::vector<int>, 2> parent;
+    std::array<std::vector<std::string>, 2> piece_label;
+};
+
+/// Surface k of a pair: a rigid obstacle, one patch side (the side's own numbering,
+/// the single-patch layout) or the glued sides of a named surface.
+contact::Surface contact_surface(const io::Deck& deck, const Scene& scene, const io::ContactPair& c,
+                                 const io::ContactSurface& s, int k, PairSurfaces& out)
+{
+    const io::Body* deck_body = deck.find_body(s.body);
+    IGA_CHECK(deck_body != nullptr, "the deck reader let an unknown contact body through");
+    if (deck_body->rigid) {
+        out.label[k] = s.body;
+        return rigid_obstacle(*deck_body);
+    }
+    out.body[k] = body_index(deck, scene, s.body);
+    out.label[k] = s.body + "." + io::side_text(s.patch, s.side.value_or(Side::u0), s.surface);
+    const BodyModel& model = scene.bodies[static_cast<std::size_t>(out.body[k])];
+    const std::vector<BodySide> sides = sides_of(deck, scene, s.body, s.patch, s.side.value_or(Side::u0), s.surface);
+    check_not_interface(deck, model, sides, "contact." + c.name + ".between");
+    for (const BodySide& bs : sides)
+        out.piece_label[k].push_back(body_side_text(model.patch_names(), bs));
+    if (sides.size() == 1) {
+        const PatchModel& patch = model.patches[static_cast<std::size_t>(sides.front().patch)];
+        contact::DeformableSide side = contact::DeformableSide::make(patch.patch, sides.front().side);
+        out.parent[k].clear();
+        for (const int a : side.pieces.front().side.parent_index)
+            out.parent[k].push_back(patch.node[static_cast<std::size_t>(a)]);
+        return side;
+    }
+    std::vector<const nurbs::Patch*> parents;
+    std::vector<Side> which;
+    std::vector<std::vector<int>> nodes;
+    for (const BodySide& bs : sides) {
+        const PatchModel& patch = model.patches[static_cast<std::size_t>(bs.patch)];
+        parents.push_back(&patch.patch);
+        which.push_back(bs.side);
+        nodes.push_back(patch.node);
+    }
+    return contact::DeformableSide::make(parents, which, nodes, out.parent[k]);
+}
+
+/// The contact pair of deck item c, with the penalty (or its auto rule) and friction;
+/// a pair the contact module cannot use is bad input, named at its `between`.
+contact::ContactPair contact_pair(const io::Deck& deck, const Scene& scene, const io::ContactPair& c,
+                                  contact::PairSettings& settings, AutoPenalty& rule, PairSurfaces& surfaces)
+{
+    try {
+        contact::Surface first = contact_surface(deck, scene, c, c.first, 0, surfaces);
+        contact::Surface second = contact_surface(deck, scene, c, c.second, 1, surfaces);
+        std::vector<const contact::DeformableSide*> sides;
+        std::vector<const mechanics::Material*> materials;
+        for (int k = 0; k < 2; ++k)
+            if (const auto* side = std::get_if<contact::DeformableSide>(k == 0 ? &first : &second)) {
+                sides.push_back(side);
+                materials.push_back(&scene.bodies[static_cast<std::size_t>(surfaces.body[k])].material);
             }
+        rule = auto_penalty(sides, materials);
+        if (c.penalty_auto)
+            settings.penalty = rule.penalty;
+        settings.friction.coefficient = c.friction.coefficient;
+        settings.friction.tangential_penalty =
+            c.friction.tangential_penalty_auto ? settings.penalty : c.friction.tangential_penalty;
+        return contact::ContactPair(settings, std::move(first), std::move(second));
+    } catch (const Error& e) {
+        std::string reason = e.what();
+        if (reason.rfind("contact: ", 0) == 0)
+            reason = reason.substr(9);
+        throw DeckError(body_issue(deck, "contact." + c.name + ".between", "cannot use this pair: " + reason));
+    }
+}
+
+/// Contact pair c of the deck, its dofs and its candidate couplings as pattern blocks.
+PairModel pair_model(const io::Deck& deck, const Scene& scene, const io::ContactPair& c,
+                     std::vector<std::vector<int>>& blocks)
+{
+    contact::PairSettings settings;
+    settings.formulation = c.formulation == io::Formulation::single_pass ? contact::Formulation::single_pass
+                                                                         : contact::Formulation::two_half_pass;
+    settings.penalty = c.penalty;
+    settings.quadrature = c.quadrature;
+    AutoPenalty rule;  // E', h and the auto penalty of the pair's deformable sides
+    PairSurfaces s;
+    contact::ContactPair pair = contact_pair(deck, scene, c, settings, rule, s);
+    PairModel model{c.name, std::move(pair), s.body, s.parent, s.label, s.piece_label, {}, {}, -1, settings.formulation};
+    model.penalty_auto = c.penalty_auto;
+    model.initial_penalty = settings.penalty;
+    model.augmented = c.enforcement == io::Enforcement::augmented_lagrangian;
+    model.gap_tolerance = c.augmented_lagrangian.gap_tolerance;
+    model.max_updates = c.augmented_lagrangian.max_updates;
+    model.rule = rule;
+    for (int k = 0; k < 2; ++k)
+        if (s.body[k] < 0)
+            model.obstacle = k;
+    if (model.obstacle >= 0)
+        check_obstacle_side(deck, scene, c, model);
+    for (int k = 0; k < 2; ++k)
+        if (s.body[k] >= 0) {
+            const std::vector<int> full = dofs_of(*scene.dofs, s.body[k], s.parent[k]);
+            model.local_to_full.insert(model.local_to_full.end(), full.begin(), full.end());
+        }
+    IGA_CHECK(static_cast<int>(model.local_to_full.size()) == model.pair.n_local_dofs(),
+              "contact pair local numbering does not match its sides");
+    for (const contact::Coupling& coupling : model.pair.candidate_couplings()) {
+        model.blocks.emplace(coupling, static_cast<int>(blocks.size()));
+        blocks.push_back(coupling_full_dofs(model, coupling));
+    }
+    return model;
+}
+
+/// An analytic reference must fit its pair (checked now, not after the solve).
+void check_reference(const io::Deck& deck, const Scene& scene)
+{
+    const auto& ref = deck.output.reference;
+    if (!ref)
+        return;
+    for (const PairModel& p : scene.pairs) {
+        if (p.name != ref->pair)
             continue;
-        }
-        mechanics::SideQuadrature side;
-        try {
-            side = body_side_quadrature(body,
-                                        sides_of(deck, scene, load.body, load.patch, load.side.value_or(Side::u0),
-                                                 load.surface),
-                                        deck.find_body(load.body)->quadrature.side);
-        } catch (const boundary::FoldedSide& e) {
-            throw DeckError(body_issue(deck, fmt::format("loads.{}.side", load_index), e.what()));
-        }
-        check_not_interface(deck, body, sides_of(deck, scene, load.body, load.patch, load.side.value_or(Side::u0),
-                                                 load.surface),
-                            fmt::format("loads.{}.side", load_index));
-        if (load.kind == io::LoadKind::traction || load.kind == io::LoadKind::force) {
-            VecN traction = to_vec(load.vector);
-            if (load.kind == io::LoadKind::force) {
-                const double measure = mechanics::reference_measure(side);
-                if (!(measure > 0.0))
-                    throw DeckError(body_issue(deck, fmt::format("loads.{}", load_index),
-                                               "a force on a collapsed side (zero length) cannot be spread"));
-                traction /= measure;
-            }
-            for (const auto& element : side.elements) {
-                const mechanics::LocalForce f = mechanics::dead_traction(element, d, traction);
-                scatter(b, f.indices, f.f_ext);
-            }
-        } else if (scene.kinematics == mechanics::Kinematics::small) {
-            for (const auto& element : side.elements) {
-                const Matrix none;
-                const mechanics::LocalForceTangent f =
-                    mechanics::follower_pressure(element, d, load.pressure, scene.kinematics, none);
-                scatter(b, f.indices, f.f_ext);
-            }
-        } else {
-            FollowerPressure follower{b, load.pressure, amplitude, std::move(side), {}, static_cast<int>(blocks.size())};
-            for (const auto& element : follower.side.elements) {
-                follower.element_dofs.push_back(dofs_of(dofs, b, element.indices));
-                blocks.push_back(follower.element_dofs.back());
-            }
-            scene.followers.push_back(std::move(follower));
-        }
+        const int n_rigid = (p.body[0] < 0) + (p.body[1] < 0);
+        // The reader matched the reference type to the dimension; here it must fit the pair.
+        const bool round_obstacle = p.obstacle >= 0 && std::holds_alternative<contact::RigidSphere>(
+            std::get<contact::RigidObstacle>(p.pair.surface(p.obstacle)).shape);
+        const std::string type(io::deck_name(ref->type));
+        const bool plane = io::is_against_plane(ref->type);
+        const std::string other = ref->type == io::ReferenceType::hertz_cylinder_plane ? "hertz_two_cylinders"
+                                  : ref->type == io::ReferenceType::hertz_two_cylinders ? "hertz_cylinder_plane"
+                                  : ref->type == io::ReferenceType::hertz_sphere_plane  ? "hertz_two_spheres"
+                                                                                        : "hertz_sphere_plane";
+        if (plane && (n_rigid != 1 || round_obstacle))
+            throw DeckError(body_issue(deck, "output.reference.type",
+                                       type + " needs a pair of a deformable side and a rigid plane; use " + other +
+                                           " for two deformable sides"));
+        if (!plane && n_rigid != 0)
+            throw DeckError(body_issue(deck, "output.reference.type",
+                                       type + " needs two deformable sides; use " + other + " against a rigid plane"));
     }
+}
 
-    // Contact pairs.
-    for (const io::ContactPair& c : deck.contact) {
-        contact::PairSettings settings;
-        settings.formulation = c.formulation == io::Formulation::single_pass ? contact::Formulation::single_pass
-                                                                             : contact::Formulation::two_half_pass;
-        settings.penalty = c.penalty;
-        settings.quadrature = c.quadrature;
-        std::array<int, 2> body{-1, -1};
-        std::array<std::string, 2> label;
-        std::array<std::vector<int>, 2> parent;
-        std::array<std::vector<std::string>, 2> piece_label;
-        auto make_surface = [&](const io::ContactSurface& s, int k) -> contact::Surface {
-            const io::Body* deck_body = deck.find_body(s.body);
-            IGA_CHECK(deck_body != nullptr, "the deck reader let an unknown contact body through");
-            if (deck_body->rigid) {
-                label[k] = s.body;
-                return rigid_obstacle(*deck_body);
-            }
-            body[k] = body_index(s.body);
-            label[k] = s.body + "." + io::side_text(s.patch, s.side.value_or(Side::u0), s.surface);
-            const BodyModel& model = scene.bodies[static_cast<std::size_t>(body[k])];
-            const std::vector<BodySide> sides = sides_of(deck, scene, s.body, s.patch, s.side.value_or(Side::u0), s.surface);
-            check_not_interface(deck, model, sides, "contact." + c.name + ".between");
-            for (const BodySide& bs : sides)
-                piece_label[k].push_back(body_side_text(model.patch_names(), bs));
-            if (sides.size() == 1) {
-                // One patch side: the side's own numbering (the single-patch layout).
-                const PatchModel& patch = model.patches[static_cast<std::size_t>(sides.front().patch)];
-                contact::DeformableSide side = contact::DeformableSide::make(patch.patch, sides.front().side);
-                parent[k].clear();
-                for (const int a : side.pieces.front().side.parent_index)
-                    parent[k].push_back(patch.node[static_cast<std::size_t>(a)]);
-                return side;
-            }
-            std::vector<const nurbs::Patch*> parents;
-            std::vector<Side> which;
-            std::vector<std::vector<int>> nodes;
-            for (const BodySide& bs : sides) {
-                const PatchModel& patch = model.patches[static_cast<std::size_t>(bs.patch)];
-                parents.push_back(&patch.patch);
-                which.push_back(bs.side);
-                nodes.push_back(patch.node);
-            }
-            return contact::DeformableSide::make(parents, which, nodes, parent[k]);
-        };
-        AutoPenalty rule;  // E', h and the auto penalty of the pair's deformable sides
-        auto pair = [&]() {
-            try {
-                contact::Surface first = make_surface(c.first, 0);
-                contact::Surface second = make_surface(c.second, 1);
-                std::vector<const contact::DeformableSide*> sides;
-                std::vector<const mechanics::Material*> materials;
-                for (int k = 0; k < 2; ++k)
-                    if (const auto* side = std::get_if<contact::DeformableSide>(k == 0 ? &first : &second)) {
-                        sides.push_back(side);
-                        materials.push_back(&scene.bodies[static_cast<std::size_t>(body[k])].material);
-                    }
-                rule = auto_penalty(sides, materials);
-                if (c.penalty_auto)
-                    settings.penalty = rule.penalty;
-                settings.friction.coefficient = c.friction.coefficient;
-                settings.friction.tangential_penalty =
-                    c.friction.tangential_penalty_auto ? settings.penalty : c.friction.tangential_penalty;
-                return contact::ContactPair(settings, std::move(first), std::move(second));
-            } catch (const Error& e) {
-                std::string reason = e.what();
-                if (reason.rfind("contact: ", 0) == 0)
-                    reason = reason.substr(9);
-                throw DeckError(body_issue(deck, "contact." + c.name + ".between",
-                                           "cannot use this pair: " + reason));
-            }
-        }();
-        PairModel model{c.name, std::move(pair), body, parent, label, piece_label, {}, {}, -1, settings.formulation};
-        model.penalty_auto = c.penalty_auto;
-        model.initial_penalty = settings.penalty;
-        model.augmented = c.enforcement == io::Enforcement::augmented_lagrangian;
-        model.gap_tolerance = c.augmented_lagrangian.gap_tolerance;
-        model.max_updates = c.augmented_lagrangian.max_updates;
-        model.rule = rule;
-        for (int k = 0; k < 2; ++k)
-            if (body[k] < 0)
-                model.obstacle = k;
-        if (model.obstacle >= 0)
-            check_obstacle_side(deck, scene, c, model);
-        for (int k = 0; k < 2; ++k)
-            if (body[k] >= 0) {
-                const std::vector<int> full = dofs_of(dofs, body[k], parent[k]);
-                model.local_to_full.insert(model.local_to_full.end(), full.begin(), full.end());
-            }
-        IGA_CHECK(static_cast<int>(model.local_to_full.size()) == model.pair.n_local_dofs(),
-                  "contact pair local numbering does not match its sides");
-        for (const contact::Coupling& coupling : model.pair.candidate_couplings()) {
-            model.blocks.emplace(coupling, static_cast<int>(blocks.size()));
-            blocks.push_back(coupling_full_dofs(model, coupling));
-        }
-        scene.pairs.push_back(std::move(model));
-    }
-
-    // An analytic reference must fit its pair (checked now, not after the solve).
-    if (const auto& ref = deck.output.reference) {
-        for (const PairModel& p : scene.pairs) {
-            if (p.name != ref->pair)
-                continue;
-            const int n_rigid = (p.body[0] < 0) + (p.body[1] < 0);
-            // The reader matched the reference type to the dimension; here it must fit the pair.
-            const bool round_obstacle = p.obstacle >= 0 && std::holds_alternative<contact::RigidSphere>(
-                std::get<contact::RigidObstacle>(p.pair.surface(p.obstacle)).shape);
-            const std::string type(io::deck_name(ref->type));
-            const bool plane = io::is_against_plane(ref->type);
-            const std::string other = ref->type == io::ReferenceType::hertz_cylinder_plane ? "hertz_two_cylinders"
-                                      : ref->type == io::ReferenceType::hertz_two_cylinders ? "hertz_cylinder_plane"
-                                      : ref->type == io::ReferenceType::hertz_sphere_plane  ? "hertz_two_spheres"
-                                                                                            : "hertz_sphere_plane";
-            if (plane && (n_rigid != 1 || round_obstacle))
-                throw DeckError(body_issue(deck, "output.reference.type",
-                                           type + " needs a pair of a deformable side and a rigid plane; use " +
-                                               other + " for two deformable sides"));
-            if (!plane && n_rigid != 0)
-                throw DeckError(body_issue(deck, "output.reference.type",
-                                           type + " needs two deformable sides; use " + other +
-                                               " against a rigid plane"));
-        }
-    }
-
+/// The sparsity pattern of this rank's blocks.
+void make_pattern(const Communicator& comm, Scene& scene, std::vector<std::vector<int>> blocks)
+{
     // A block another rank assembles keeps its index but no entries here.
     for (std::size_t k = 0; k < blocks.size(); ++k)
         if (!scene.partition.owns(static_cast<int>(k)))
             blocks[k].clear();
-    // Small kinematics assembles the element blocks once (SceneSystem's constant
+    // Small kinematics assembles the element blocks once (the elastic term's constant
     // stiffness): their entry positions would outweigh the tangent in 3D. Contact
     // couplings: coupling_blocks_searched().
     std::vector<char> searched(blocks.size(), coupling_blocks_searched(scene.dim) ? 1 : 0);
     std::fill_n(searched.begin(), scene.n_element_blocks, scene.kinematics == mechanics::Kinematics::small ? 1 : 0);
-    scene.pattern = std::make_unique<assembly::SparsePattern>(dofs, std::move(blocks), std::move(searched));
+    scene.pattern = std::make_unique<assembly::SparsePattern>(*scene.dofs, std::move(blocks), std::move(searched));
     if (comm.parallel())  // another rank evaluates those elements
         release_element_geometry(scene, [&](int block) { return scene.partition.owns(block); });
+}
+
+}  // namespace
+
+Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& stop, const Communicator& comm)
+{
+    check_size(deck);  // refuse an absurd model before allocating any of it
+    Scene scene;
+    scene.dim = deck.analysis.dimension;
+    scene.kinematics =
+        deck.analysis.kinematics == io::Kinematics::finite ? mechanics::Kinematics::finite : mechanics::Kinematics::small;
+    add_bodies(deck, refine_levels, stop, scene);
+    std::vector<std::vector<int>> blocks;  // pattern blocks: elements, follower sides, contact couplings
+    add_dofs_and_elements(deck, comm, scene, blocks);
+    add_loads(deck, scene, blocks);
+    for (const io::ContactPair& c : deck.contact)
+        scene.pairs.push_back(pair_model(deck, scene, c, blocks));
+    check_reference(deck, scene);
+    make_pattern(comm, scene, std::move(blocks));
     scene.path = deck_load_path(deck);
     return scene;
 }

@@ -72,8 +72,6 @@ struct BodyModel {
     int first_block = 0;                         ///< pattern block of elements[0]
 
     std::vector<std::string> patch_names() const;
-    /// The patch (index) of element e.
-    int patch_of_element(int e) const;
 };
 
 /// A follower pressure in finite kinematics (recomputed each evaluation).

@@ -1,5 +1,7 @@
 #pragma once
-// The residual and tangent of a scene at pseudo-time t, as the sum of its terms:
+// The residual and tangent of a scene at pseudo-time t, as the sum of its terms
+// (analysis/term.hpp: elastic bodies, weak springs, dead loads, follower pressures,
+// one contact term per pair, in that order):
 //   r(u) = f_int(u) - sum_k a_k(t) f_k - sum_j a_j(t) f_follower,j(u) + sum_pairs r_c(u),
 //   K = dr/du,
 // on the free dofs (solver/newton.hpp's NonlinearSystem, whose load factor is t),
@@ -7,13 +9,11 @@
 // prescribed displacements and obstacle motions enter through u_full and r_c at t.
 // Without amplitudes every a(t) = t = lambda, the classic load factor.
 //
-// Finite kinematics: elements are evaluated on n_threads() threads (colored blocks; the count from
-// assembly/threads.hpp: requested, or automatic from the element work); contact
-// pairs serially, first: their tangent blocks (one per slave element x master
-// element coupling) go into the pattern blocks of those couplings, and a coupling
-// not registered yet extends the pattern before the tangent matrix is made.
-// Small kinematics: the element stiffness is constant, assembled once and
-// reused (f_int = K u): no geometric terms are ever computed.
+// Finite kinematics: elements are evaluated on n_threads() threads
+// (analysis/elastic_term.hpp); contact pairs serially, first (their prepare()): a
+// coupling not registered yet extends the pattern before the tangent matrix is made.
+// Small kinematics: the element stiffness is constant, assembled once and reused
+// (f_int = K u): no geometric terms are ever computed.
 //
 // force_scale (the scale of the relative residual) = max(||external forces||,
 // ||reactions||, ||contact forces||, ||f_int||): the forces in play, so that
@@ -44,15 +44,16 @@
 // surfaces are O(N^(2/3)) of the model); then r, the round-off magnitudes and the
 // norms are summed over the ranks, so every rank holds the same residual.
 
+#include "analysis/contact_term.hpp"
+#include "analysis/elastic_term.hpp"
 #include "analysis/free_modes.hpp"
+#include "analysis/load_terms.hpp"
 #include "analysis/scene.hpp"
-#include "assembly/sparse_pattern.hpp"
-#include "assembly/thread_team.hpp"
+#include "analysis/term.hpp"
 #include "core/run_context.hpp"
 #include "solver/newton.hpp"
 
 #include <memory>
-#include <optional>
 #include <vector>
 
 namespace iga::analysis {
@@ -66,10 +67,10 @@ public:
                 const Communicator& comm = Communicator());
 
     /// Threads of the element loop (1 for small kinematics, whose loop is serial).
-    int n_threads() const { return team_ ? team_->n_threads() : 1; }
+    int n_threads() const { return elastic_->n_threads(); }
     /// Threads worth giving the linear solver's BLAS (the automatic choice for the
     /// tangent's size, or --threads), also where the assembly stays serial.
-    int library_threads() const { return library_threads_; }
+    int library_threads() const { return elastic_->library_threads(); }
 
     /// The NonlinearSystem view for the solver (captures this object).
     solver::NonlinearSystem nonlinear_system();
@@ -88,6 +89,11 @@ public:
     /// in the contact timers): for output.
     std::vector<contact::PairEvaluation> contact_state(const Vector& u_free, double load_factor);
 
+    /// After a converged increment: every term's state becomes the committed one.
+    void commit();
+    /// After a failed attempt: every term back to its committed state.
+    void rollback();
+
     /// n_cp x d displacements of the control points of body b from a full vector.
     RowMatrix body_displacement(const Vector& u_full, int b) const;
     /// n_cp_side x d displacements of surface k of pair p (empty for a rigid surface).
@@ -98,15 +104,15 @@ public:
     /// Small kinematics: assembles the constant elastic stiffness K0 now (otherwise at
     /// the first evaluation); afterwards the elements' quadrature data are no longer
     /// read (release_element_geometry). No effect under finite kinematics.
-    void assemble_constant_stiffness(const StopRequest& stop = {});
+    void assemble_constant_stiffness(const StopRequest& stop = {}) { elastic_->assemble_constant_stiffness(stop); }
 
     /// Per rank (one entry each, the same on every rank): the element blocks and the
     /// contact couplings it assembles. Collective.
     std::vector<double> elements_per_rank() const;
     std::vector<double> couplings_per_rank() const;
 
-    /// Weak springs on free rigid-body modes, added to every later evaluation.
-    void set_weak_springs(std::vector<NodeSpring> springs) { springs_ = std::move(springs); }
+    /// Weak springs on free rigid-body modes, a term of every later evaluation.
+    void set_weak_springs(std::vector<NodeSpring> springs);
     /// The tangent is singular while no contact point carries (singular_without_contact,
     /// analysis/free_modes.hpp): such an evaluation says so (Evaluation::singular_tangent).
     void set_singular_without_contact(bool singular) { singular_without_contact_ = singular; }
@@ -125,40 +131,24 @@ private:
     void evaluate_into(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out,
                        RunContext* context, Vector* r_full_out,
                        std::vector<contact::PairEvaluation>* contact_out);
-    /// Extends the pattern by the couplings of these evaluations that it lacks.
-    void register_couplings(const std::vector<contact::PairEvaluation>& contact, RunContext* context);
-    void assemble_elements(const Vector& u_full, bool need_tangent, Vector& r_full, SparseMatrix& K,
-                           solver::Evaluation& out, Vector& magnitude,
-                           const StopRequest& stop);
-
-    /// Sums the ranks' parts of a residual evaluation (no-op on one process) and
-    /// makes failures and stop requests collective.
-    void sum_over_ranks(Vector& r_full, Vector& magnitude, Vector& f_int, double& follower_norm,
-                        solver::Evaluation& out, RunContext* context) const;
-    // Element block -> its geometry, body and full dofs.
-    const mechanics::ElementGeometry& element_of(int block) const;
-    const BodyModel& body_of(int block) const;
-    const std::vector<int>& dofs_of(int block) const;
-    /// Whether this rank assembles weak spring k (the rank of the first element block at its node).
-    bool owns_spring(std::size_t k) const;
+    /// Gives the tangent the pattern (keeping its storage) or releases it.
+    void shape_tangent(bool need_tangent, SparseMatrix& tangent) const;
+    /// Sums the ranks' parts of an evaluation (no-op on one process) and makes
+    /// failures and stop requests collective.
+    void sum_over_ranks(ModelAssembly& a, RunContext* context) const;
+    /// r, the force scale and the round-off floor of a summed evaluation into `out`.
+    void finish(ModelAssembly& a, solver::Evaluation& out) const;
 
     Scene& scene_;
     RunContext& context_;
     Communicator comm_;
-    std::unique_ptr<assembly::ThreadTeam> team_;  // null: serial element loop
-    int library_threads_ = 1;
-    struct BlockOwner {
-        int body;
-        int element;
-    };
-    std::vector<BlockOwner> owner_;                // element block -> (body, element), blocks come first
-    std::optional<SparseMatrix> full_stiffness_;   // small kinematics: elastic K over all (full) dofs, upper triangle
-    std::vector<Vector> element_force_;            // finite kinematics: f_int per block (reused storage)
+    std::vector<std::unique_ptr<Term>> terms_;  // in the order of the sums (analysis/term.hpp)
+    ElasticTerm* elastic_ = nullptr;            // terms_[0]
+    WeakSpringTerm* springs_ = nullptr;         // after it, when set
+    std::vector<ContactTerm*> contact_;         // one per pair, last
     int last_active_ = 0;
-    std::vector<NodeSpring> springs_;
     bool singular_without_contact_ = false;
     StopRequest collective_stop_;
-    std::vector<int> first_block_of_dof_;  // parallel: per full dof, the first element block holding it
 };
 
 }  // namespace iga::analysis

@@ -1,4 +1,5 @@
 #include "analysis/warnings.hpp"
+#include "core/text.hpp"
 
 #include <fmt/format.h>
 
@@ -9,14 +10,6 @@
 namespace iga::analysis {
 
 namespace {
-
-std::string point_text(const RowMatrix& points, Index row)
-{
-    std::string out = "(";
-    for (Index i = 0; i < points.cols(); ++i)
-        out += fmt::format("{}{:.4g}", i ? ", " : "", points(row, i));
-    return out + ")";
-}
 
 double body_size(const BodyModel& body)
 {
@@ -128,7 +121,7 @@ std::vector<std::string> release_initial_overclosure(Scene& scene, SceneSystem& 
                     "pushed out by the first increment; should that need a cutback, the overlap is released "
                     "gradually up to load factor {:.4g}. If it is not intended, move the bodies apart",
                     model.name, model.label[static_cast<std::size_t>(carrier.surface)], carrier.gap(deepest),
-                    point_text(carrier.reference_coordinates, deepest), release_end);
+                    point_text(carrier.reference_coordinates, deepest, 4), release_end);
             overlap.push_back(std::move(g0));
         }
         if (line.empty())

@@ -1,4 +1,5 @@
 #include "mechanics/element_geometry.hpp"
+#include "core/text.hpp"
 
 #include "quadrature/gauss.hpp"
 
@@ -12,22 +13,11 @@ namespace iga::mechanics {
 
 namespace {
 
-std::string format_vector(const VecN& v)
-{
-    std::ostringstream out;
-    out.precision(6);
-    out << '(';
-    for (Index i = 0; i < v.size(); ++i)
-        out << (i > 0 ? ", " : "") << v(i);
-    out << ')';
-    return out.str();
-}
-
 std::string jacobian_message(const VecN& xi, const VecN& X, double det_J)
 {
     std::ostringstream out;
-    out << "non-positive Jacobian det(dX/dxi) = " << det_J << " at parameter " << format_vector(xi) << ", point "
-        << format_vector(X)
+    out << "non-positive Jacobian det(dX/dxi) = " << det_J << " at parameter " << point_text(xi) << ", point "
+        << point_text(X)
         << ": the patch is inverted or degenerate there, or its parametrization is left-handed (reverse the "
            "control-point order of one direction)";
     return out.str();

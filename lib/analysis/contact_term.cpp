@@ -1,0 +1,115 @@
+#include "analysis/contact_term.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+namespace iga::analysis {
+
+namespace {
+
+/// The round-off of a pair's contact forces that |r_c| does not show (see the header).
+double contact_gap_round_off(const contact::PairEvaluation& c, double penalty)
+{
+    double sum2 = 0.0;
+    for (const contact::CarrierResult& carrier : c.carriers)
+        for (Index g = 0; g < carrier.pressure.size(); ++g) {
+            if (!(carrier.pressure(g) > 0.0))
+                continue;
+            const double lambda = carrier.multiplier.size() > g ? std::abs(carrier.multiplier(g)) : 0.0;
+            const double error = carrier.weight(g) * (lambda + penalty * carrier.coordinates.row(g).norm());
+            sum2 += error * error;
+        }
+    return std::numeric_limits<double>::epsilon() * std::sqrt(sum2);
+}
+
+}  // namespace
+
+RowMatrix side_displacement(const Scene& scene, const PairModel& pair, const Vector& u_full, int k)
+{
+    const int b = pair.body[static_cast<std::size_t>(k)];
+    if (b < 0)
+        return RowMatrix(0, scene.dim);
+    const assembly::DofMap& dofs = *scene.dofs;
+    const int d = scene.dim;
+    const auto& parent = pair.parent_index[static_cast<std::size_t>(k)];
+    RowMatrix u(static_cast<Index>(parent.size()), d);
+    for (std::size_t a = 0; a < parent.size(); ++a)
+        for (int i = 0; i < d; ++i)
+            u(static_cast<Index>(a), i) = u_full(dofs.dof(dofs.node_offset(b) + parent[a], i));
+    return u;
+}
+
+ContactTerm::ContactTerm(Scene& scene, int pair)
+    : scene_(scene), model_(scene.pairs[static_cast<std::size_t>(pair)])
+{
+}
+
+void ContactTerm::prepare(ModelAssembly& a)
+{
+    ScopedTimer timer(a.context, "contact");
+    a.stop.check();
+    evaluation_ = model_.pair.evaluate(side_displacement(scene_, model_, a.u_full, 0),
+                                       side_displacement(scene_, model_, a.u_full, 1), a.need_tangent, a.context, a.t);
+    if (a.need_tangent)
+        register_couplings(a.context);
+}
+
+void ContactTerm::add_to(ModelAssembly& a)
+{
+    ScopedTimer timer(a.context, "contact");
+    const contact::PairEvaluation& c = evaluation_;
+    if (!c.ok) {
+        a.fail(fmt::format("contact pair '{}': {}", model_.name, c.message));
+        return;
+    }
+    a.active += c.n_active;
+    if (a.root)
+        for (std::size_t k = 0; k < model_.local_to_full.size(); ++k) {
+            a.r_full(model_.local_to_full[k]) += c.residual(static_cast<Index>(k));
+            a.magnitude(model_.local_to_full[k]) += std::abs(c.residual(static_cast<Index>(k)));
+        }
+    a.contact_norm += c.residual.norm();
+    a.gap_round_off += contact_gap_round_off(c, model_.pair.settings().penalty);
+    if (a.tangent)
+        for (const contact::LocalBlock& block : c.tangent)
+            a.add_block(model_.blocks.at(block.element), block.K);
+}
+
+void ContactTerm::commit()
+{
+    model_.pair.commit();
+}
+
+void ContactTerm::rollback()
+{
+    model_.pair.rollback();
+}
+
+void ContactTerm::register_couplings(RunContext* context)
+{
+    // Every rank registers the same couplings (the contact evaluation is the same on
+    // all); a block another rank assembles keeps its index but no entries here.
+    std::vector<std::vector<int>> new_blocks;
+    std::vector<contact::Coupling> couplings;
+    const int first_index = scene_.pattern->n_blocks();
+    for (const contact::LocalBlock& block : evaluation_.tangent)
+        if (!model_.blocks.contains(block.element)) {
+            const bool mine = scene_.partition.owns(first_index + static_cast<int>(couplings.size()));
+            couplings.push_back(block.element);
+            new_blocks.push_back(mine ? coupling_full_dofs(model_, block.element) : std::vector<int>{});
+        }
+    if (new_blocks.empty())
+        return;
+    const Index nnz_before = scene_.pattern->n_nonzeros();
+    const int first = scene_.pattern->extend(std::move(new_blocks), nullptr, coupling_blocks_searched(scene_.dim));
+    for (std::size_t k = 0; k < couplings.size(); ++k)
+        model_.blocks.emplace(couplings[k], first + static_cast<int>(k));
+    if (context)
+        context->log(Verbosity::verbose,
+                     fmt::format("  contact pair '{}': {} new coupling(s) registered, {} new tangent entries",
+                                 model_.name, couplings.size(), scene_.pattern->n_nonzeros() - nnz_before));
+}
+
+}  // namespace iga::analysis

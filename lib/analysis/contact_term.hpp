@@ -1,0 +1,49 @@
+#pragma once
+// One contact pair as a model term (analysis/term.hpp): its residual r_c and tangent
+// (contact/contact_pair.hpp, Kopacka et al. eqs. 5-7) and its per-point history.
+//
+// prepare() evaluates the pair at the current displacements (search, projection, the
+// contact law per Gauss point) and registers the couplings the pattern lacks (a
+// Gauss point slid onto a master element not met before): the pattern is extended
+// before the tangent is shaped, so every block of an evaluation has its place.
+// add_to() adds the pair's residual (root rank: the contact evaluation runs on every
+// rank, for all Gauss points) and each coupling's block on the rank that owns it.
+// commit() and rollback() keep or drop the pair's trial state (foot points,
+// multipliers, friction history).
+//
+// Round-off: the gap of an active Gauss point is a difference of coordinates of size
+// |x|, so its pressure carries an error of about eps_mach (|lambda| + eps |x|), and W
+// times that lands on the point's dofs; independent errors add in quadrature
+// (ModelAssembly::gap_round_off).
+
+#include "analysis/term.hpp"
+
+#include <optional>
+
+namespace iga::analysis {
+
+class ContactTerm final : public Term {
+public:
+    ContactTerm(Scene& scene, int pair);
+
+    void prepare(ModelAssembly& a) override;
+    void add_to(ModelAssembly& a) override;
+    void commit() override;
+    void rollback() override;
+
+    /// The evaluation of the last prepare(), handed over (for output).
+    contact::PairEvaluation take_evaluation() { return std::move(evaluation_); }
+
+private:
+    /// Extends the pattern by the couplings of the last evaluation that it lacks.
+    void register_couplings(RunContext* context);
+
+    Scene& scene_;
+    PairModel& model_;
+    contact::PairEvaluation evaluation_;
+};
+
+/// n_cp_side x d displacements of surface k of a pair from the full vector (empty for a rigid surface).
+RowMatrix side_displacement(const Scene& scene, const PairModel& pair, const Vector& u_full, int k);
+
+}  // namespace iga::analysis
