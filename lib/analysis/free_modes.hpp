@@ -23,7 +23,7 @@
 // free, if one exists ("can rotate freely about (0, 1)"; a least-squares fit of
 // the translation part). basis spans all free modes, named or not.
 //
-// What the run does with them (analysis/run.cpp): loads with a resultant along a
+// What the run does with them (analysis/run_model.cpp): loads with a resultant along a
 // free mode beyond round-off stop the run at once (driven_free_mode); otherwise
 // weak springs at every node of the group, S_a = k sum_j m_j(X_a) m_j(X_a)^T, hold
 // the modes: their resultant along each free mode balances the loads' (zero), so
