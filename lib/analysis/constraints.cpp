@@ -110,7 +110,7 @@ DirichletData dirichlet_data(const io::Deck& deck, const std::vector<BodyModel>&
                     fmt::format("conflicts with {}: both prescribe the {}-displacement of the control point at {} "
                                 "of body '{}' {}; the sides {}.{} and {}.{} meet there. {}",
                                 item_label(first, it->second.item), component_names[i],
-                                point_text(body.node_points, p), c.body, values, first.body,
+                                point_text(body.node_points, static_cast<Index>(p)), c.body, values, first.body,
                                 io::side_text(first.patch, first.side, first.surface), c.body,
                                 io::side_text(c.patch, c.side, c.surface), advice)));
             }

@@ -39,7 +39,7 @@ std::string side_corners(const nurbs::SidePatch& sp)
     for (int r : rows) {
         if (!out.empty())
             out += ' ';
-        out += point_text(P, r);
+        out += point_text(P, static_cast<Index>(r));
     }
     return out;
 }

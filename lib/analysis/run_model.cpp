@@ -1,5 +1,6 @@
 #include "analysis/run_model.hpp"
 
+#include "analysis/output.hpp"
 #include "analysis/solver_choice.hpp"
 #include "analysis/warnings.hpp"
 #include "assembly/threads.hpp"

@@ -23,17 +23,13 @@ namespace {
 mechanics::Material to_material(const io::Material& m, const io::Analysis& analysis)
 {
     mechanics::Material out;
-    switch (m.model) {
-    case io::MaterialModel::linear_elastic: out.model = mechanics::MaterialModel::linear_elastic; break;
-    case io::MaterialModel::saint_venant_kirchhoff: out.model = mechanics::MaterialModel::saint_venant_kirchhoff; break;
-    case io::MaterialModel::neo_hookean: out.model = mechanics::MaterialModel::neo_hookean; break;
-    }
+    out.model = m.model;
     out.E = m.E;
     out.nu = m.nu;
     if (analysis.dimension == 3)
         out.plane = mechanics::PlaneMode::none;
     else
-        out.plane = analysis.plane == io::PlaneMode::stress ? mechanics::PlaneMode::stress : mechanics::PlaneMode::strain;
+        out.plane = analysis.plane;
     return out;
 }
 
@@ -434,8 +430,7 @@ PairModel pair_model(const io::Deck& deck, const Scene& scene, const io::Contact
                      std::vector<std::vector<int>>& blocks)
 {
     contact::PairSettings settings;
-    settings.formulation = c.formulation == io::Formulation::single_pass ? contact::Formulation::single_pass
-                                                                         : contact::Formulation::two_half_pass;
+    settings.formulation = c.formulation;
     settings.penalty = c.penalty;
     settings.quadrature = c.quadrature;
     AutoPenalty rule;  // E', h and the auto penalty of the pair's deformable sides
@@ -520,8 +515,7 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
     check_size(deck);  // refuse an absurd model before allocating any of it
     Scene scene;
     scene.dim = deck.analysis.dimension;
-    scene.kinematics =
-        deck.analysis.kinematics == io::Kinematics::finite ? mechanics::Kinematics::finite : mechanics::Kinematics::small;
+    scene.kinematics = deck.analysis.kinematics;
     add_bodies(deck, refine_levels, stop, scene);
     std::vector<std::vector<int>> blocks;  // pattern blocks: elements, follower sides, contact couplings
     add_dofs_and_elements(deck, comm, scene, blocks);

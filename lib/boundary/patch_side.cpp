@@ -21,13 +21,6 @@ VecN cross(const VecN& a, const VecN& b)
     return c;
 }
 
-/// Column of the packed second derivatives (nurbs::BasisValues::d2R) for x_,ab.
-int packed(int a, int b, int n_par)
-{
-    if (a > b)
-        std::swap(a, b);
-    return n_par == 1 ? 0 : (a == 0 ? b : 2);
-}
 
 double bounding_diagonal(const RowMatrix& points)
 {
@@ -190,7 +183,7 @@ SurfacePoint PatchSide::evaluate(const RowMatrix& points, int element, const Vec
         MatN d_tangents = MatN::Zero(d, n_side);  // D a_a[delta] = x_,ab delta_b
         for (int a = 0; a < n_side; ++a)
             for (int b = 0; b < n_side; ++b)
-                d_tangents.col(a) += delta(b) * second.col(packed(a, b, n_side));
+                d_tangents.col(a) += delta(b) * second.col(nurbs::second_column(n_side, a, b));
         VecN dn;
         if (d == 2) {
             dn = raw_normal(d_tangents);
@@ -207,7 +200,7 @@ SurfacePoint PatchSide::evaluate(const RowMatrix& points, int element, const Vec
         p.curvature = MatN(n_side, n_side);
         for (int a = 0; a < n_side; ++a)
             for (int b = 0; b < n_side; ++b)
-                p.curvature(a, b) = p.normal.dot(p.second.col(packed(a, b, n_side)));
+                p.curvature(a, b) = p.normal.dot(p.second.col(nurbs::second_column(n_side, a, b)));
     }
     if (basis_out)
         *basis_out = std::move(basis);

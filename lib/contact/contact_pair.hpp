@@ -81,6 +81,7 @@
 #include "contact/projection.hpp"
 #include "contact/rigid_obstacle.hpp"
 #include "contact/search.hpp"
+#include "core/model_options.hpp"
 #include "core/run_context.hpp"
 #include "core/side.hpp"
 #include "core/types.hpp"
@@ -99,7 +100,7 @@ namespace iga::contact {
 /// margin: far above any sensible penalty penetration, small enough to prune.
 inline constexpr double auto_search_fraction = 0.1;
 
-enum class Formulation { two_half_pass, single_pass };
+using iga::Formulation;  // core/model_options.hpp
 
 struct PairSettings {
     Formulation formulation = Formulation::two_half_pass;

@@ -7,12 +7,10 @@
 namespace iga::contact {
 namespace {
 
-/// Column of x,ab in second derivatives packed like BasisValues::d2R (q = 1 or 2).
+/// Column of x,ab in second derivatives packed like BasisValues::d2R.
 Index packed(Index a, Index b, Index q)
 {
-    if (q == 1)
-        return 0;
-    return a == b ? (a == 0 ? 0 : 2) : 1;
+    return packed(a, b, q);
 }
 
 }  // namespace

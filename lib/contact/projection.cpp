@@ -171,13 +171,6 @@ bool all_finite(const Sample& s)
     return s.point.x.allFinite() && s.point.dx.allFinite() && s.point.d2x.allFinite();
 }
 
-/// Column of x_m,ab in the packed second derivatives (BasisValues::d2R order).
-int packed(int a, int b, int n)
-{
-    if (a > b)
-        std::swap(a, b);
-    return a * n - a * (a - 1) / 2 + (b - a);
-}
 
 // A parameter direction whose tangent is shorter than this fraction of the
 // longest is collapsed (a pole): its computed tangent is a difference of equal
@@ -401,7 +394,7 @@ RegionResult newton_in_region(const nurbs::Patch& surface, const Layout& layout,
         MatN H = M;
         for (int a = 0; a < n; ++a)
             for (int b = 0; b < n; ++b)
-                H(a, b) += d.dot(s.point.d2x.col(packed(a, b, n)));
+                H(a, b) += d.dot(s.point.d2x.col(nurbs::second_column(n, a, b)));
         const MatN M_free = sub_matrix(M, free);
         MatN H_free = sub_matrix(H, free);
         VecN g_free(static_cast<Index>(free.size()));
@@ -710,7 +703,7 @@ Projection project_to_surface(const nurbs::Patch& surface, int outward_sign, con
     p.curvature.resize(n, n);
     for (int a = 0; a < n; ++a)
         for (int b = 0; b < n; ++b)
-            p.curvature(a, b) = p.normal.dot(p.second.col(packed(a, b, n)));
+            p.curvature(a, b) = p.normal.dot(p.second.col(nurbs::second_column(n, a, b)));
     p.gap = normal_gap(x, p.point, p.normal);
     p.distance = best->distance;
     p.iterations = total_iterations;

@@ -10,6 +10,7 @@
 // by the reader: a Deck that exists is well-formed (cross-references resolve,
 // knot vectors are open, weights positive, ...).
 
+#include "core/model_options.hpp"
 #include "core/amplitude.hpp"
 #include "core/error.hpp"
 #include "core/side.hpp"
@@ -22,10 +23,11 @@
 
 namespace iga::io {
 
-enum class PlaneMode { strain, stress };
-enum class Kinematics { small, finite };
-enum class MaterialModel { linear_elastic, saint_venant_kirchhoff, neo_hookean };
-enum class Formulation { two_half_pass, single_pass };
+// The modelling choices shared with the modules (core/model_options.hpp).
+using iga::Formulation;
+using iga::Kinematics;
+using iga::MaterialModel;
+using iga::PlaneMode;
 enum class Enforcement { penalty, augmented_lagrangian };
 enum class SolverBackend { suitesparse, petsc };
 enum class SolverType { direct, iterative };

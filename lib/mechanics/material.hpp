@@ -35,13 +35,14 @@
 // the values are then NaN, and the load stepper should cut the step back.
 
 #include "core/types.hpp"
+#include "core/model_options.hpp"
 #include "mechanics/voigt.hpp"
 
 namespace iga::mechanics {
 
-enum class MaterialModel { linear_elastic, saint_venant_kirchhoff, neo_hookean };
-enum class Kinematics { small, finite };
-enum class PlaneMode { strain, stress, none /* 3D */ };
+using iga::Kinematics;     // core/model_options.hpp
+using iga::MaterialModel;
+using iga::PlaneMode;
 
 /// Spatial dimension implied by the plane mode: 2 for strain/stress, 3 for none.
 constexpr int spatial_dim(PlaneMode plane) { return plane == PlaneMode::none ? 3 : 2; }

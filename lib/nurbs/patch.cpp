@@ -10,12 +10,6 @@ namespace iga::nurbs {
 namespace {
 
 /// Column of the pair (k, l), k <= l, in the second-derivative order uu, uv, uw, vv, vw, ww.
-constexpr int second_column(int n_par, int k, int l)
-{
-    // Columns before row k: n_par + (n_par - 1) + ... + (n_par - k + 1).
-    return k * n_par - k * (k - 1) / 2 + (l - k);
-}
-
 }  // namespace
 
 Patch::Patch(std::vector<KnotVector> knots, RowMatrix control_points, Vector weights)

@@ -37,6 +37,18 @@ struct BasisValues {
     Matrix d2R;
 };
 
+/// The column of d^2/dxi_a dxi_b in d2R (and PointDerivatives::d2x), either order of a, b.
+constexpr int second_column(int n_par, int a, int b)
+{
+    if (a > b) {
+        const int t = a;
+        a = b;
+        b = t;
+    }
+    // Columns before row a: n_par + (n_par - 1) + ... + (n_par - a + 1).
+    return a * n_par - a * (a - 1) / 2 + (b - a);
+}
+
 /// A point on the patch and its parametric derivatives.
 struct PointDerivatives {
     VecN x;      ///< d
