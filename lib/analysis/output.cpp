@@ -290,7 +290,7 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
         result.attributes["candidates"] = static_cast<double>(state.candidates);
         result.attributes["projections"] = static_cast<double>(state.projections);
         // The penalty in effect (the augmented Lagrangian's safeguard may have raised it) and where it came from.
-        result.attributes["penalty"] = model.pair.settings().penalty;
+        result.attributes["penalty"] = model.pair.settings().law.stiffness();
         result.attributes["penalty_initial"] = model.initial_penalty;
         result.text_attributes["penalty_rule"] = model.penalty_auto ? "auto" : "value";
         result.text_attributes["enforcement"] = model.augmented ? "augmented_lagrangian" : "penalty";

@@ -336,7 +336,7 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
         contact::PairSettings settings;
         settings.formulation = c.formulation == io::Formulation::single_pass ? contact::Formulation::single_pass
                                                                              : contact::Formulation::two_half_pass;
-        settings.penalty = c.penalty;
+        settings.law = contact::NormalLaw::penalty(c.penalty);
         settings.quadrature = c.quadrature;
         std::array<int, 2> body{-1, -1};
         std::array<std::string, 2> label;
@@ -390,10 +390,10 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
                     }
                 rule = auto_penalty(sides, materials);
                 if (c.penalty_auto)
-                    settings.penalty = rule.penalty;
+                    settings.law = contact::NormalLaw::penalty(rule.penalty);
                 settings.friction.coefficient = c.friction.coefficient;
                 settings.friction.tangential_penalty =
-                    c.friction.tangential_penalty_auto ? settings.penalty : c.friction.tangential_penalty;
+                    c.friction.tangential_penalty_auto ? settings.law.stiffness() : c.friction.tangential_penalty;
                 return contact::ContactPair(settings, std::move(first), std::move(second));
             } catch (const Error& e) {
                 std::string reason = e.what();
@@ -405,7 +405,7 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
         }();
         PairModel model{c.name, std::move(pair), body, parent, label, piece_label, {}, {}, -1, settings.formulation};
         model.penalty_auto = c.penalty_auto;
-        model.initial_penalty = settings.penalty;
+        model.initial_penalty = settings.law.stiffness();
         model.augmented = c.enforcement == io::Enforcement::augmented_lagrangian;
         model.gap_tolerance = c.augmented_lagrangian.gap_tolerance;
         model.max_updates = c.augmented_lagrangian.max_updates;

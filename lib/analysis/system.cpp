@@ -391,6 +391,7 @@ void SceneSystem::evaluate_into(const Vector& u_free, double t, bool need_tangen
             contact.push_back(scene_.pairs[p].pair.evaluate(side_displacement(u_full, static_cast<int>(p), 0),
                                                             side_displacement(u_full, static_cast<int>(p), 1),
                                                             need_tangent, context, t));
+            scene_.pairs[p].pair.adopt(std::move(contact.back().trial));
         }
         if (need_tangent)
             register_couplings(contact, context);
@@ -490,7 +491,7 @@ void SceneSystem::evaluate_into(const Vector& u_free, double t, bool need_tangen
                     magnitude(pair.local_to_full[k]) += std::abs(c.residual(static_cast<Index>(k)));
                 }
             contact_norm += c.residual.norm();
-            gap_round_off += contact_gap_round_off(c, pair.pair.settings().penalty);
+            gap_round_off += contact_gap_round_off(c, pair.pair.settings().law.stiffness());
             if (need_tangent)
                 for (const contact::LocalBlock& block : c.tangent) {
                     const int index = pair.blocks.at(block.element);
@@ -631,10 +632,12 @@ std::vector<contact::PairEvaluation> SceneSystem::contact_state(const Vector& u_
 {
     const Vector u_full = scene_.dofs->expand(u_free, load_factor);
     std::vector<contact::PairEvaluation> out;
-    for (std::size_t p = 0; p < scene_.pairs.size(); ++p)
+    for (std::size_t p = 0; p < scene_.pairs.size(); ++p) {
         out.push_back(scene_.pairs[p].pair.evaluate(side_displacement(u_full, static_cast<int>(p), 0),
                                                     side_displacement(u_full, static_cast<int>(p), 1), false,
                                                     nullptr, load_factor));
+        scene_.pairs[p].pair.adopt(std::move(out.back().trial));
+    }
     return out;
 }
 

@@ -44,7 +44,7 @@ KernelResult evaluate(const RigidObstacle& obstacle, const Point& point, const R
     for (Index a = 0; a < X.rows(); ++a)
         x += point.N(a) * X.row(a).transpose();
     const ObstacleFoot foot = obstacle.foot(x, 0.0);
-    const KernelSettings settings{.penalty = normal_penalty, .need_tangent = need_tangent};
+    const KernelSettings settings{.law = NormalLaw::penalty(normal_penalty), .need_tangent = need_tangent};
     KernelResult kr = gpts_rigid_kernel(point.N, point.W, foot.normal, foot.gap, settings, foot.radius);
     const VecN dp = kr.pressure > 0.0 ? VecN(-normal_penalty * foot.normal) : VecN(VecN::Zero(d));
     const TangentialResponse t = coulomb_response({coefficient, tangential_penalty}, committed, multiplier, x,
