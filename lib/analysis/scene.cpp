@@ -336,7 +336,9 @@ Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& st
         contact::PairSettings settings;
         settings.formulation = c.formulation == io::Formulation::single_pass ? contact::Formulation::single_pass
                                                                              : contact::Formulation::two_half_pass;
-        settings.law = contact::NormalLaw::penalty(c.penalty);
+        settings.law = c.law.type == io::LawType::exponential
+                           ? contact::NormalLaw::exponential(c.law.clearance, c.law.pressure)
+                           : contact::NormalLaw::penalty(c.penalty);
         settings.quadrature = c.quadrature;
         std::array<int, 2> body{-1, -1};
         std::array<std::string, 2> label;
