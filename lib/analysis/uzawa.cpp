@@ -116,7 +116,8 @@ solver::OuterDecision UzawaLoop::after_solve(const Vector& u_free, double load_f
         const std::string note = fmt::format(
             "contact pair '{}': the augmented Lagrangian raised the penalty to {:.3g} ({:.3g} x the initial {:.3g}): "
             "the penetration stalled ({:.3g} -> {:.3g} at load factor {:.4g})",
-            model.name, model.pair.settings().law.stiffness(), model.pair.settings().law.stiffness() / model.initial_penalty,
+            model.name, model.pair.settings().law.stiffness(),
+            model.pair.settings().law.stiffness() / model.initial_penalty,
             model.initial_penalty, last, penetration, load_factor);
         context_.log(Verbosity::normal, note);
         notes_.push_back(note);

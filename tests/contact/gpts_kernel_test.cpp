@@ -317,7 +317,8 @@ TEST(Kernel, MultiplierKeepsAnOpenPointActiveWithTheAugmentedPressure)
     EXPECT_EQ(penalty_only.pressure, 0.0) << "penalty alone: an open gap carries nothing";
 
     const double eps = 1e3, lambda = 60.0;  // lambda + eps g_N > 0 at g_N > -0.06
-    const KernelSettings settings{.law = NormalLaw::penalty(eps), .multiplier = lambda, .master_rows = true, .need_tangent = true};
+    const KernelSettings settings{
+        .law = NormalLaw::penalty(eps), .multiplier = lambda, .master_rows = true, .need_tangent = true};
     const KernelResult k = evaluate_kernel(slave, master, u, settings);
     ASSERT_TRUE(k.ok);
     EXPECT_TRUE(test::near_rel(k.pressure, lambda + eps * p.gap, round_off)) << "p = <lambda + eps g_N>";
@@ -341,7 +342,8 @@ TEST(Kernel, RigidKernelUsesTheAugmentedPressure)
     normal << 0.0, 1.0;
     const double eps = 5e2, lambda = 3.0, gap = -2e-3;  // open, yet lambda + eps g = 2 > 0
     const KernelResult k =
-        gpts_rigid_kernel(N, slave.W, normal, gap, {.law = NormalLaw::penalty(eps), .multiplier = lambda, .need_tangent = true});
+        gpts_rigid_kernel(N, slave.W, normal, gap,
+                          {.law = NormalLaw::penalty(eps), .multiplier = lambda, .need_tangent = true});
     EXPECT_TRUE(test::near_rel(k.pressure, lambda + eps * gap, round_off));
     EXPECT_TRUE(test::near_rel(k.residual.norm(), k.pressure * slave.W * N.norm(), round_off));
     EXPECT_TRUE(test::near_rel(k.tangent.norm(), eps * slave.W * N.squaredNorm(), round_off));

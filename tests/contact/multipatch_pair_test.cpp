@@ -153,7 +153,8 @@ Counts check_against_closed_form(const ContactPair& pair, double shift)
             EXPECT_TRUE(test::near(c.gap(g), gap, gap_tolerance));
             if (gap > 0.0) {
                 ++counts.active;
-                EXPECT_TRUE(test::near(c.pressure(g), pair.settings().law.stiffness() * gap, gap_tolerance * pair.settings().law.stiffness()));
+                const double eps = pair.settings().law.stiffness();
+                EXPECT_TRUE(test::near(c.pressure(g), eps * gap, gap_tolerance * eps));
                 if (past > 0.0 && past < just_past)
                     ++counts.just_past_active;
             }
