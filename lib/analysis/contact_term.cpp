@@ -52,6 +52,7 @@ void ContactTerm::prepare(ModelAssembly& a)
     a.stop.check();
     evaluation_ = model_.pair.evaluate(side_displacement(scene_, model_, a.u_full, 0),
                                        side_displacement(scene_, model_, a.u_full, 1), a.need_tangent, a.context, a.t);
+    model_.pair.adopt(std::move(evaluation_.trial));  // the state in use: warm starts, trial history
     if (a.need_tangent)
         register_couplings(a.context);
 }
@@ -71,7 +72,7 @@ void ContactTerm::add_to(ModelAssembly& a)
             a.magnitude(model_.local_to_full[k]) += std::abs(c.residual(static_cast<Index>(k)));
         }
     a.contact_norm += c.residual.norm();
-    a.gap_round_off += contact_gap_round_off(c, model_.pair.settings().penalty);
+    a.gap_round_off += contact_gap_round_off(c, model_.pair.settings().law.stiffness());
     if (a.tangent)
         for (const contact::LocalBlock& block : c.tangent)
             a.add_block(model_.blocks.at(block.element), block.K);

@@ -33,9 +33,9 @@ FailureContext failure_context(const Scene& scene)
     for (const BodyModel& b : scene.bodies)
         E_min = std::min(E_min, b.material.E);
     for (const PairModel& p : scene.pairs) {
-        penalty_max = std::max(penalty_max, p.pair.settings().penalty);
+        penalty_max = std::max(penalty_max, p.pair.settings().law.stiffness());
         if (p.initial_penalty > 0)
-            c.penalty_raised = std::max(c.penalty_raised, p.pair.settings().penalty / p.initial_penalty);
+            c.penalty_raised = std::max(c.penalty_raised, p.pair.settings().law.stiffness() / p.initial_penalty);
     }
     c.penalty_over_modulus = penalty_max / E_min;
     return c;

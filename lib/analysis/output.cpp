@@ -284,10 +284,19 @@ void add_pair_attributes(const Scene& scene, const PairModel& model, const conta
     result.attributes["max_penetration"] = state.max_penetration;
     result.attributes["candidates"] = static_cast<double>(state.candidates);
     result.attributes["projections"] = static_cast<double>(state.projections);
-    // The penalty in effect (the augmented Lagrangian's safeguard may have raised it) and where it came from.
-    result.attributes["penalty"] = model.pair.settings().penalty;
-    result.attributes["penalty_initial"] = model.initial_penalty;
-    result.text_attributes["penalty_rule"] = model.penalty_auto ? "auto" : "value";
+    // The penalty in effect (the augmented Lagrangian's safeguard may have raised it) and where it came from;
+    // the exponential law's parameters and slope at touch instead (contact/normal_law.hpp).
+    const contact::NormalLaw& law = model.pair.settings().law;
+    result.text_attributes["law"] = law.name();
+    if (const auto* exponential = law.as_exponential()) {
+        result.attributes["law_clearance"] = exponential->clearance;
+        result.attributes["law_pressure"] = exponential->pressure;
+        result.attributes["law_stiffness"] = law.stiffness();
+    } else {
+        result.attributes["penalty"] = law.stiffness();
+        result.attributes["penalty_initial"] = model.initial_penalty;
+        result.text_attributes["penalty_rule"] = model.penalty_auto ? "auto" : "value";
+    }
     result.text_attributes["enforcement"] = model.augmented ? "augmented_lagrangian" : "penalty";
     if (model.augmented)
         result.attributes["gap_tolerance"] = model.gap_tolerance_used;

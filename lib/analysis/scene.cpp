@@ -412,10 +412,10 @@ contact::ContactPair contact_pair(const io::Deck& deck, const Scene& scene, cons
             }
         rule = auto_penalty(sides, materials);
         if (c.penalty_auto)
-            settings.penalty = rule.penalty;
+            settings.law = contact::NormalLaw::penalty(rule.penalty);
         settings.friction.coefficient = c.friction.coefficient;
         settings.friction.tangential_penalty =
-            c.friction.tangential_penalty_auto ? settings.penalty : c.friction.tangential_penalty;
+            c.friction.tangential_penalty_auto ? settings.law.stiffness() : c.friction.tangential_penalty;
         return contact::ContactPair(settings, std::move(first), std::move(second));
     } catch (const Error& e) {
         std::string reason = e.what();
@@ -431,14 +431,15 @@ PairModel pair_model(const io::Deck& deck, const Scene& scene, const io::Contact
 {
     contact::PairSettings settings;
     settings.formulation = c.formulation;
-    settings.penalty = c.penalty;
+    settings.law = c.law.type == io::LawType::exponential ? contact::NormalLaw::exponential(c.law.clearance, c.law.pressure)
+                                                          : contact::NormalLaw::penalty(c.penalty);
     settings.quadrature = c.quadrature;
     AutoPenalty rule;  // E', h and the auto penalty of the pair's deformable sides
     PairSurfaces s;
     contact::ContactPair pair = contact_pair(deck, scene, c, settings, rule, s);
     PairModel model{c.name, std::move(pair), s.body, s.parent, s.label, s.piece_label, {}, {}, -1, settings.formulation};
     model.penalty_auto = c.penalty_auto;
-    model.initial_penalty = settings.penalty;
+    model.initial_penalty = settings.law.stiffness();
     model.augmented = c.enforcement == io::Enforcement::augmented_lagrangian;
     model.gap_tolerance = c.augmented_lagrangian.gap_tolerance;
     model.max_updates = c.augmented_lagrangian.max_updates;

@@ -96,7 +96,8 @@ solver::LinearSolverPolicy linear_solver_policy(const io::Deck& deck, const Scen
     for (const PairModel& pair : scene.pairs)
         if (pair.rule.modulus > 0.0)
             policy.penalty_ratio = std::max(policy.penalty_ratio,
-                                            pair.pair.settings().penalty * pair.rule.element_size / pair.rule.modulus);
+                                            pair.pair.settings().law.stiffness() * pair.rule.element_size /
+                                                pair.rule.modulus);
     if (policy.backend == solver::Backend::petsc && policy.method == solver::Method::iterative) {
         policy.rigid_body_modes = rigid_body_modes(scene);
         policy.block_size = point_block_size(scene);

@@ -109,14 +109,15 @@ solver::OuterDecision UzawaLoop::after_solve(const Vector& u_free, double load_f
         if (!(last > 0.0) || !(penetration > model.gap_tolerance_used) ||
             !stalls(penetration / last, penetration, model.gap_tolerance_used, model.max_updates - updates_))
             continue;
-        const double penalty = model.pair.settings().penalty;
+        const double penalty = model.pair.settings().law.stiffness();
         if (penalty * uzawa_raise_factor > uzawa_max_raise * model.initial_penalty * (1.0 + 1e-12))
             continue;  // at the bound: Uzawa goes on at this penalty
         model.pair.set_penalty(penalty * uzawa_raise_factor);
         const std::string note = fmt::format(
             "contact pair '{}': the augmented Lagrangian raised the penalty to {:.3g} ({:.3g} x the initial {:.3g}): "
             "the penetration stalled ({:.3g} -> {:.3g} at load factor {:.4g})",
-            model.name, model.pair.settings().penalty, model.pair.settings().penalty / model.initial_penalty,
+            model.name, model.pair.settings().law.stiffness(),
+            model.pair.settings().law.stiffness() / model.initial_penalty,
             model.initial_penalty, last, penetration, load_factor);
         context_.log(Verbosity::normal, note);
         notes_.push_back(note);

@@ -161,7 +161,8 @@ std::string half_pass_cause(const PairModel& model, const io::ContactPairResult&
                            "surfaces can meet at once, so the force splits unevenly between the sides: use "
                            "enforcement: penalty with penalty: auto, or {}",
                            n_a, a, n_b, b, single);
-    if (model.rule.penalty > 0.0 && penalty > stiff_half_pass_penalty * model.rule.penalty)
+    if (model.pair.settings().law.as_penalty() && model.rule.penalty > 0.0 &&
+        penalty > stiff_half_pass_penalty * model.rule.penalty)
         return fmt::format("the penalty {:.3g} is {:.0f} times what penalty: auto gives ({:.3g}); so stiff a penalty "
                            "lets the Gauss points of one side hold the other surface off by themselves ({:.0f} pressed "
                            "on {}, {:.0f} on {}), so the force splits unevenly between the sides: use contact.{}."
@@ -214,7 +215,7 @@ std::vector<std::string> contact_warnings(const io::Deck& deck, const Scene& sce
             else if (travel > 0.0 && penetration > penetration_to_travel * travel)
                 against = fmt::format("{:.0f} % of the imposed travel ({:.3g})", 100.0 * penetration / travel,
                                       travel);
-            if (!against.empty())
+            if (!against.empty() && model.pair.settings().law.as_penalty())  // softened contact: overclosure by design
                 out.push_back(fmt::format(
                     "contact pair '{}': {} penetrates {:.3g} at load factor {:.3g}, {}: the penalty is too soft "
                     "for this load; raise contact.{}.penalty (the penetration falls in proportion)",

@@ -214,7 +214,9 @@ struct ContactPair::Timing {
 ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
     : settings_(settings), surfaces_{std::move(first), std::move(second)}
 {
-    IGA_CHECK(std::isfinite(settings_.penalty) && settings_.penalty > 0.0, "contact: penalty must be > 0");
+    IGA_CHECK(settings_.law.valid(), settings_.law.as_penalty()
+                                         ? "contact: penalty must be > 0"
+                                         : "contact: the exponential law's clearance and pressure must be > 0");
     IGA_CHECK(settings_.quadrature >= 0, "contact: quadrature must be >= 0 (0 = degree + 2)");
     IGA_CHECK(std::isfinite(settings_.search_distance) && settings_.search_distance >= 0.0,
               "contact: search distance must be >= 0");
@@ -248,6 +250,7 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
             size = std::max(size, (cps.colwise().maxCoeff() - cps.colwise().minCoeff()).norm());
         }
     search_distance_ = settings_.search_distance > 0.0 ? settings_.search_distance : auto_search_fraction * size;
+    search_distance_ = std::max(search_distance_, search_reach_factor * settings_.law.reach());
 
     for (int i = 0; i < 2; ++i) {
         if (!deformable[i])
@@ -352,7 +355,7 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
     trial_ = committed_;
 }
 
-void ContactPair::ContactPointState::clear_response(int d)
+void ContactPointState::clear_response(int d)
 {
     status = StickSlip::open;
     traction = VecN::Zero(d);
@@ -361,7 +364,7 @@ void ContactPair::ContactPointState::clear_response(int d)
     elastic_slip = 0.0;
 }
 
-void ContactPair::ContactPointState::record(const TangentialResponse& t)
+void ContactPointState::record(const TangentialResponse& t)
 {
     friction = t.next;
     status = t.status;
@@ -369,6 +372,15 @@ void ContactPair::ContactPointState::record(const TangentialResponse& t)
     frame_traction = t.frame_traction;
     slip_increment = t.slip_increment;
     elastic_slip = t.elastic_slip;
+}
+
+void ContactPair::adopt(PairState trial)
+{
+    IGA_CHECK(trial.carriers.size() == trial_.size(), "contact: a pair adopts the state of its own evaluation");
+    for (std::size_t c = 0; c < trial_.size(); ++c)
+        IGA_CHECK(trial.carriers[c].size() == trial_[c].size(),
+                  "contact: a pair adopts the state of its own evaluation");
+    trial_ = std::move(trial.carriers);
 }
 
 void ContactPair::commit()
@@ -488,7 +500,7 @@ void ContactPair::update_multipliers(const PairEvaluation& state)
         IGA_CHECK(!friction || cr.friction.frame_traction.rows() == cr.pressure.size(),
                   "contact: a frictional evaluation reports each point's traction in its anchor's frame");
         for (std::size_t g = 0; g < points.size(); ++g) {
-            points[g].multiplier = cr.pressure(static_cast<Index>(g));
+            points[g].multiplier = settings_.law.updated_multiplier(cr.pressure(static_cast<Index>(g)));
             if (friction)
                 points[g].tangential_multiplier = cr.friction.frame_traction.row(static_cast<Index>(g)).transpose();
         }
@@ -497,8 +509,7 @@ void ContactPair::update_multipliers(const PairEvaluation& state)
 
 void ContactPair::set_penalty(double penalty)
 {
-    IGA_CHECK(std::isfinite(penalty) && penalty > 0.0, "contact: penalty must be > 0");
-    settings_.penalty = penalty;
+    settings_.law.set_penalty(penalty);
 }
 
 int ContactPair::n_control_points(int i) const
@@ -582,6 +593,8 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
     const int d = dim_;
     PairEvaluation ev;
     ev.residual = Vector::Zero(n_local_dofs());
+    // The trial state starts as the state in use; the sweeps write its feet, histories and responses.
+    ev.trial.carriers = trial_;
     const RowMatrix* disp[2] = {&disp_first, &disp_second};
     for (int i = 0; i < 2; ++i) {
         const int n_cp = n_control_points(i);
@@ -599,22 +612,26 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
             current[i] = current_points(*side, *disp[i]);
 
     Sweep sweep{ev, current, need_tangent, load_factor,
-                KernelSettings{.penalty = settings_.penalty, .master_rows = false, .need_tangent = need_tangent},
+                KernelSettings{.law = settings_.law, .master_rows = false, .need_tangent = need_tangent},
                 {}, {}, {}, {}};
     // The part of the initial overlap not yet released enters the pressure law as a
-    // shift of the multiplier: p = <(lambda - eps (1 - r) g_0) + eps g_N>.
+    // shift: p(g_N - (1 - r) g_0, lambda), for the penalty law the multiplier
+    // lambda - eps (1 - r) g_0 (NormalLaw::shifted).
     const double unreleased = releasing_ ? 1.0 - std::clamp(load_factor / release_end_, 0.0, 1.0) : 0.0;
     for (std::size_t ci = 0; ci < carriers_.size() && ev.ok; ++ci) {
         CarrierResult cr = carrier_kinematics(ci, current);
-        for (ContactPointState& point : trial_[ci])
+        for (ContactPointState& point : ev.trial.carriers[ci])
             point.clear_response(d);
-        const Vector multiplier = cr.multiplier - settings_.penalty * unreleased * initial_overlap_[ci];
+        std::vector<NormalLaw::Shifted> law_input(static_cast<std::size_t>(cr.multiplier.size()));
+        for (Index g = 0; g < cr.multiplier.size(); ++g)
+            law_input[static_cast<std::size_t>(g)] =
+                settings_.law.shifted(cr.multiplier(g), unreleased, initial_overlap_[ci](g));
         const bool ok = std::holds_alternative<RigidObstacle>(surfaces_[carriers_[ci].master])
-                            ? evaluate_on_obstacle(ci, cr, multiplier, sweep)
-                            : evaluate_on_surface(ci, cr, multiplier, sweep);
+                            ? evaluate_on_obstacle(ci, cr, law_input, sweep)
+                            : evaluate_on_surface(ci, cr, law_input, sweep);
         if (!ok)
             break;
-        cr.friction = friction_state(trial_[ci]);
+        cr.friction = friction_state(ev.trial.carriers[ci]);
         ev.carriers.push_back(std::move(cr));
     }
     if (ctx) {
@@ -713,8 +730,8 @@ void ContactPair::scatter(const KernelResult& kr, const Carrier& c, const GaussP
             block.K(map[row], map[col]) += kr.tangent(static_cast<Index>(row), static_cast<Index>(col));
 }
 
-bool ContactPair::evaluate_on_obstacle(std::size_t ci, CarrierResult& cr, const Vector& multiplier,
-                                       Sweep& sweep) const
+bool ContactPair::evaluate_on_obstacle(std::size_t ci, CarrierResult& cr,
+                                       const std::vector<NormalLaw::Shifted>& law_input, Sweep& sweep) const
 {
     const int d = dim_;
     const Carrier& c = carriers_[ci];
@@ -730,17 +747,18 @@ bool ContactPair::evaluate_on_obstacle(std::size_t ci, CarrierResult& cr, const 
         cr.gap(g) = foot.gap;
         cr.state[g] = PointState::ok;
         KernelSettings point_settings = sweep.kernel_base;
-        point_settings.multiplier = multiplier(g);
+        point_settings.multiplier = law_input[static_cast<std::size_t>(g)].multiplier;
+        point_settings.gap_offset = law_input[static_cast<std::size_t>(g)].gap_offset;
         KernelResult kr = gpts_rigid_kernel(c.points[g].N, c.points[g].weight, foot.normal, foot.gap,
                                             point_settings, foot.radius);
         cr.pressure(g) = kr.pressure;
         if (settings_.friction.active()) {
-            // Slip in the obstacle's frame; dp/dy = -eps n where the point presses.
+            // Slip in the obstacle's frame; dp/dy = -p' n where the point presses.
             const VecN y = x - obstacle.shift(sweep.load_factor);
-            const VecN d_pressure = kr.pressure > 0.0 ? VecN(-settings_.penalty * foot.normal)
+            const VecN d_pressure = kr.pressure > 0.0 ? VecN(-kr.slope * foot.normal)
                                                       : VecN(VecN::Zero(d));
             const FrictionHistory& committed = committed_[ci][static_cast<std::size_t>(g)].friction;
-            ContactPointState& point = trial_[ci][static_cast<std::size_t>(g)];
+            ContactPointState& point = ev.trial.carriers[ci][static_cast<std::size_t>(g)];
             const TangentialResponse t = coulomb_response(settings_.friction, committed, point.tangential_multiplier,
                                                           y, foot.normal, kr.pressure, d_pressure, foot.radius);
             add_tangential(kr, c.points[g].N, c.points[g].weight, t);
@@ -756,8 +774,8 @@ bool ContactPair::evaluate_on_obstacle(std::size_t ci, CarrierResult& cr, const 
     return true;
 }
 
-bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr, const Vector& multiplier,
-                                      Sweep& sweep) const
+bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr,
+                                      const std::vector<NormalLaw::Shifted>& law_input, Sweep& sweep) const
 {
     const Carrier& c = carriers_[ci];
     const int n_g = static_cast<int>(c.points.size());
@@ -772,7 +790,7 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr, const V
     sweep.search_time.stop();
     const bool friction = settings_.friction.active();
     // Against a deformable master a point is unanchored until it finds a foot.
-    std::vector<ContactPointState>& points = trial_[ci];
+    std::vector<ContactPointState>& points = ev.trial.carriers[ci];
     if (friction)
         for (int g = 0; g < n_g; ++g) {
             points[g].friction = committed_[ci][g].friction;
@@ -802,10 +820,12 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr, const V
         }
         const MasterFoot foot = master_foot(proj);
         cr.state[g] = PointState::ok;
-        // Active when <lambda + eps g_N> > 0: with a multiplier, also at a small open gap.
-        kernel_settings.multiplier = multiplier(g);
+        // Active where the law presses (p > 0): with a multiplier or the exponential law,
+        // also at an open gap.
+        kernel_settings.multiplier = law_input[static_cast<std::size_t>(g)].multiplier;
+        kernel_settings.gap_offset = law_input[static_cast<std::size_t>(g)].gap_offset;
         const MasterReference reference = friction ? master_reference(c.master, proj.basis) : MasterReference{};
-        if (!(kernel_settings.multiplier + kernel_settings.penalty * foot.gap > 0.0)) {
+        if (!settings_.law.active(foot.gap - kernel_settings.gap_offset, kernel_settings.multiplier)) {
             if (friction)
                 points[g].friction = open_history(committed_[ci][g].friction, reference);
             continue;
@@ -818,7 +838,7 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr, const V
         if (!kr.ok)
             return sweep.fail("contact: the penetration at " + describe_point(c.slave, g, gp.xi, x) +
                               " exceeds the master's radius of curvature (the projection is not a distance "
-                              "minimum); try a larger penalty or smaller load steps");
+                              "minimum); try a stiffer contact law or smaller load steps");
         cr.pressure(g) = kr.pressure;
         if (friction) {
             const TangentialResponse t = gpts_friction(kr, gp.N, W, foot, reference, settings_.friction,

@@ -1,7 +1,7 @@
 #pragma once
 // One contact pair: its two surfaces (deformable sides -- curves in 2D, surfaces in
 // 3D -- or a rigid obstacle), the
-// Gauss points that carry the penalty, and the per-Newton-iteration evaluation
+// Gauss points that carry the contact pressure, and the per-Newton-iteration evaluation
 // of its residual and tangent (Kopacka et al. eqs. 5-7; docs/theory.md "Contact formulation").
 //
 // Who carries Gauss points:
@@ -50,22 +50,32 @@
 // point lies in the normal fan of the crease between them (at_kink, inactive, as
 // at an interior C0 knot of one patch). off_end only at the surface's own boundary.
 //
-// Per-Gauss-point state (ContactPointState): each point carries a committed and a
-// trial state -- its last foot point (warm start), its multipliers and its friction
-// history (anchor, accumulated slip: friction.hpp's FrictionHistory), and the tangential
-// response of the evaluation that made it. evaluate() reads the committed history and
-// the trial multipliers (those in use in the current attempt) and writes the trial foot,
-// history and response; commit() keeps the trial state (call it after a converged
-// increment), rollback() returns to the last committed one (after a cutback).
-// Because of this cache, evaluate() is const but not thread-safe on one pair.
+// Per-Gauss-point state (ContactPointState, a PairState per pair): each point carries
+// a committed state and one in use -- its last foot point (warm start), its
+// multipliers and its friction history (anchor, accumulated slip: friction.hpp's
+// FrictionHistory), and the tangential response of the evaluation that made it, a
+// (current, old) pair as in 4C and MOOSE. evaluate() is a pure function of the
+// displacements and these two states: it reads the committed history and the state in
+// use (warm-start feet, multipliers of the current attempt) and RETURNS the trial state
+// it leads to (PairEvaluation::trial: new feet, friction history and response). The
+// caller makes it the state in use with adopt() -- right after each evaluation, so that
+// the next one warm-starts from it; commit() keeps the state in use as committed (call
+// it after a converged increment), rollback() returns to the last committed one (after
+// a cutback).
+//
+// Normal law (normal_law.hpp): the pressure p(g_N, lambda) of every Gauss point is the
+// pair's NormalLaw -- the penalty law p = <lambda + eps g_N>, or the exponential
+// (softened) law, which presses at gaps down to -c0; the pair's search margin is
+// then at least search_reach_factor c0.
 //
 // Augmented Lagrangian (docs/theory.md "Augmented Lagrangian"): every Gauss point
 // carries a multiplier lambda >= 0 (pressure units, 0 at the start) and its
 // pressure is p = <lambda + eps g_N>; with all multipliers 0 this is the penalty
 // law. update_multipliers() is the Uzawa step lambda <- <lambda + eps g_N>, i.e.
-// lambda <- p of an evaluation at a converged state. The multipliers are state
-// like the foot points: commit() keeps them, rollback() restores the committed
-// ones. set_penalty() changes eps (the safeguard that raises it); it is not rolled back.
+// lambda <- p of an evaluation at a converged state (NormalLaw::updated_multiplier).
+// The multipliers are state like the foot points: commit() keeps them, rollback()
+// restores the committed ones. set_penalty() changes eps (the safeguard that raises
+// it); it is not rolled back.
 // With friction each point also carries a tangential multiplier lambda_T (a traction, in
 // the frame of its anchor: friction.hpp, gpts_friction.hpp), which shifts the trial
 // traction; update_multipliers() adopts the returned traction, lambda_T <- t_T
@@ -78,6 +88,7 @@
 #include "contact/friction.hpp"
 #include "contact/gpts_friction.hpp"
 #include "contact/gpts_kernel.hpp"
+#include "contact/normal_law.hpp"
 #include "contact/projection.hpp"
 #include "contact/rigid_obstacle.hpp"
 #include "contact/search.hpp"
@@ -99,14 +110,19 @@ namespace iga::contact {
 /// Fraction of the larger side's reference size used as the automatic search
 /// margin: far above any sensible penalty penetration, small enough to prune.
 inline constexpr double auto_search_fraction = 0.1;
+/// A law that presses at open gaps down to -reach (NormalLaw::reach(): the exponential
+/// law's clearance c0) widens the search margin to at least this many times its reach,
+/// so that no point the law presses is pruned, with room for a step's motion.
+inline constexpr double search_reach_factor = 4.0;
 
 using iga::Formulation;  // core/model_options.hpp
 
 struct PairSettings {
     Formulation formulation = Formulation::two_half_pass;
-    double penalty = 0.0;         ///< eps_N > 0, pressure per unit penetration
+    NormalLaw law;                ///< p(g_N, lambda): penalty (eps_N > 0) or exponential
     int quadrature = 0;           ///< Gauss points per knot span of a carrying side; 0 = degree + 2
-    double search_distance = 0.0; ///< global search margin; 0 = auto (a tenth of the larger side's size)
+    double search_distance = 0.0; ///< global search margin; 0 = auto (a tenth of the larger side's size);
+                                  ///< at least search_reach_factor * law.reach() either way
     FrictionLaw friction{};       ///< Coulomb friction; mu = 0: frictionless
 };
 
@@ -175,13 +191,42 @@ struct CarrierResult {
     RowMatrix reference_coordinates;    ///< n_g x d
     RowMatrix coordinates;              ///< n_g x d, current configuration
     Vector gap;                         ///< n_g, g_N (positive = penetration); far: -search distance, a bound
-    Vector pressure;                    ///< n_g, <lambda + eps g_N> (0 unless state ok)
+    Vector pressure;                    ///< n_g, p(g_N, lambda), e.g. <lambda + eps g_N> (0 unless state ok)
     Vector multiplier;                  ///< n_g, the multipliers lambda of this evaluation (0: penalty)
     Vector weight;                      ///< n_g, W = w_g * area element (current for two-half-pass, see above)
     Vector stretch;                     ///< n_g, W / (w_g * reference area element): the surface stretch j/J
                                         ///< of a current-measure carrier, 1 elsewhere
     std::vector<PointState> state;      ///< n_g
     FrictionState friction;             ///< tangential traction, stick/slip, slip
+};
+
+/// The state of one Gauss point (see the header paragraph).
+struct ContactPointState {
+    struct Foot {                  ///< the last foot point (warm start)
+        VecN xi;
+        int element = -1;          ///< -1: none yet
+    };
+    Foot foot;
+    double multiplier = 0.0;   ///< lambda >= 0 in use (trial) or at the last commit
+    VecN tangential_multiplier; ///< lambda_T, d, in the anchor's frame; like `multiplier`
+    FrictionHistory friction;  ///< committed: what evaluate() starts from; trial: what it leads to
+    // The tangential response of the evaluation that made this state (the results
+    // report a committed one): open and zeros where no friction kernel ran.
+    StickSlip status = StickSlip::open;
+    VecN traction;             ///< t_T on the slave, d
+    VecN frame_traction;       ///< t_T in the anchor's frame, d
+    double slip_increment = 0.0;
+    double elastic_slip = 0.0;
+
+    /// Clears the tangential response (before an evaluation; d the dimension).
+    void clear_response(int d);
+    /// Keeps a friction kernel's response: the history it leads to and what it found.
+    void record(const TangentialResponse& t);
+};
+
+/// The per-point state of a pair: per carrier (PairEvaluation::carriers order), n_g points.
+struct PairState {
+    std::vector<std::vector<ContactPointState>> carriers;
 };
 
 /// A coupling: element number on the first and second surface (-1 on a rigid obstacle).
@@ -206,6 +251,7 @@ struct PairEvaluation {
     double max_penetration = 0.0; ///< largest positive gap of an ok point, 0 if none
     double max_elastic_slip = 0.0; ///< largest elastic slip |t_T - lambda_T| / eps_T (friction), 0 if none
     std::vector<CarrierResult> carriers;  ///< one per carrying side (2 for two_half_pass, else 1)
+    PairState trial;              ///< the per-point state this evaluation leads to: pass it to ContactPair::adopt
 };
 
 class ContactPair {
@@ -241,9 +287,13 @@ public:
     PairEvaluation evaluate(const RowMatrix& disp_first, const RowMatrix& disp_second, bool need_tangent,
                             RunContext* ctx = nullptr, double load_factor = 0.0) const;
 
-    /// Keeps the state of the last evaluate() (call it after a converged increment,
-    /// whose final evaluation is the last one): foot points, multipliers, friction
-    /// anchors and slip, and the tangential response of that increment.
+    /// Makes an evaluation's trial state (PairEvaluation::trial) the state in use: its
+    /// warm-start feet, trial friction history and tangential response; the multipliers
+    /// in use are the ones it was evaluated with. Call it right after each evaluate().
+    void adopt(PairState trial);
+    /// Keeps the state in use, that of the last adopted evaluation (call it after a
+    /// converged increment, whose final evaluation is the last one), as committed: foot
+    /// points, multipliers, friction anchors and slip, and the tangential response.
     void commit();
     /// Returns to the state of the last commit() (after a cutback).
     void rollback() { trial_ = committed_; }
@@ -261,13 +311,14 @@ public:
     /// The tangential multipliers in use on carrier c, n_gauss_points(c) x d, each in
     /// its anchor's frame (zeros without friction or before any update).
     RowMatrix tangential_multipliers(int carrier) const;
-    /// Replaces eps_N (> 0, finite); the multipliers are kept.
+    /// Replaces eps_N (> 0, finite) of the penalty law; the multipliers are kept.
     void set_penalty(double penalty);
 
     /// Initial overclosure (docs/theory.md "Initial overclosure"): g0[c]
     /// (n_gauss_points(c), >= 0) is the overlap of carrier c's Gauss points at rest.
     /// Once release_overlap() is called the pressure becomes
-    /// p = <lambda + eps (g_N - (1 - r) g_0)> with r = clamp(load factor / release_end, 0, 1):
+    /// p = p(g_N - (1 - r) g_0, lambda), e.g. <lambda + eps (g_N - (1 - r) g_0)>, with
+    /// r = clamp(load factor / release_end, 0, 1):
     /// the overlap is pushed out by load factor release_end > 0 and cutbacks shrink it
     /// like any load. Before that call the overlap acts at once, as placed.
     void set_initial_overlap(std::vector<Vector> g0, double release_end);
@@ -307,31 +358,9 @@ private:
     /// Per surface and piece: per side direction k, whether its lower / upper edge
     /// is shared with another piece (an interface inside the surface).
     std::array<std::vector<std::array<std::array<bool, 2>, 2>>, 2> inner_edge_;
-    struct Foot {                  ///< a Gauss point's last foot point (warm start)
-        VecN xi;
-        int element = -1;          ///< -1: none yet
-    };
-    /// The state of one Gauss point (see the header paragraph).
-    struct ContactPointState {
-        Foot foot;
-        double multiplier = 0.0;   ///< lambda >= 0 in use (trial) or at the last commit
-        VecN tangential_multiplier; ///< lambda_T, d, in the anchor's frame; like `multiplier`
-        FrictionHistory friction;  ///< committed: what evaluate() starts from; trial: what it leads to
-        // The tangential response of the evaluation that made this state (the results
-        // report a committed one): open and zeros where no friction kernel ran.
-        StickSlip status = StickSlip::open;
-        VecN traction;             ///< t_T on the slave, d
-        VecN frame_traction;       ///< t_T in the anchor's frame, d
-        double slip_increment = 0.0;
-        double elastic_slip = 0.0;
-
-        /// Clears the tangential response (before an evaluation; d the dimension).
-        void clear_response(int d);
-        /// Keeps a friction kernel's response: the history it leads to and what it found.
-        void record(const TangentialResponse& t);
-    };
+    using Foot = ContactPointState::Foot;
     std::vector<std::vector<ContactPointState>> committed_;  ///< per carrier, n_g
-    mutable std::vector<std::vector<ContactPointState>> trial_;
+    std::vector<std::vector<ContactPointState>> trial_;      ///< in use: the last adopted evaluation's
     std::vector<Vector> initial_overlap_;       ///< per carrier, n_g: g_0 >= 0, released up to release_end_
     double release_end_ = 1.0;                  ///< load factor by which the initial overlap is released
     bool releasing_ = false;                    ///< release_overlap() called
@@ -352,8 +381,11 @@ private:
     /// coupling blocks. The two evaluate_on_* return false on a numerical failure
     /// (recorded in the sweep's evaluation).
     CarrierResult carrier_kinematics(std::size_t carrier, const std::array<RowMatrix, 2>& current) const;
-    bool evaluate_on_obstacle(std::size_t carrier, CarrierResult& cr, const Vector& multiplier, Sweep& sweep) const;
-    bool evaluate_on_surface(std::size_t carrier, CarrierResult& cr, const Vector& multiplier, Sweep& sweep) const;
+    /// `law_input`: per Gauss point, the multiplier and gap offset its law is evaluated with.
+    bool evaluate_on_obstacle(std::size_t carrier, CarrierResult& cr, const std::vector<NormalLaw::Shifted>& law_input,
+                              Sweep& sweep) const;
+    bool evaluate_on_surface(std::size_t carrier, CarrierResult& cr, const std::vector<NormalLaw::Shifted>& law_input,
+                             Sweep& sweep) const;
     void scatter(const KernelResult& kr, const Carrier& c, const GaussPoint& gp, const std::vector<int>& master_indices,
                  int master_element, Sweep& sweep) const;
     /// The tangential state of one carrier's points as the results report it.

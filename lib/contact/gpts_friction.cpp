@@ -86,7 +86,7 @@ TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W
     Matrix d_trial = eps_T * (Xc + a * C) * v.D.transpose();
     for (Index b = 0; b < n_m; ++b)
         d_trial.block(0, (n_s + b) * d, d, d).diagonal().array() += eps_T * master.dR.row(b).dot(c);
-    const Vector d_pressure = -settings.penalty * v.Nn;
+    const Vector d_pressure = -result.slope * v.Nn;  // dp/du = p' dg_N/du
 
     out = coulomb_return_map(law, eps_T * a * c, d_trial, result.pressure, d_pressure);
     out.next = committed;

@@ -6,14 +6,20 @@
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 
+#include <optional>
+
 namespace iga::contact {
 
 namespace {
 
-/// lambda + eps g_N: the pressure law's argument, p = <lambda + eps g_N>.
-double contact_pressure_argument(const KernelSettings& settings, double g_N)
+/// The law at the kernel's gap: p and p' of g_N - s with the point's multiplier,
+/// or nullopt where the point is inactive (p = 0: nothing to assemble).
+std::optional<NormalResponse> pressure_at(const KernelSettings& settings, double g_N)
 {
-    return settings.multiplier + settings.penalty * g_N;
+    const double gap = g_N - settings.gap_offset;
+    if (!settings.law.active(gap, settings.multiplier))
+        return std::nullopt;
+    return settings.law.response(gap, settings.multiplier);
 }
 
 }  // namespace
@@ -41,11 +47,11 @@ KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, co
     out.residual = Vector::Zero(n_dofs);
     if (settings.need_tangent)
         out.tangent = Matrix::Zero(n_dofs, n_dofs);
-    const double g_N = master.gap;
-    const double trial = contact_pressure_argument(settings, g_N);
-    out.pressure = macaulay(trial);
-    if (heaviside(trial) == 0.0)
+    const std::optional<NormalResponse> law = pressure_at(settings, master.gap);
+    if (!law)
         return out;
+    out.pressure = law->pressure;
+    out.slope = law->slope;
 
     const FootVariation v = foot_variation(N, master);
     if (!v.ok) {
@@ -54,7 +60,7 @@ KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, co
     }
     const Eigen::LLT<Matrix> m_llt(master.metric);
     const double p = out.pressure;
-    const double eps = settings.penalty;
+    const double slope = out.slope;  // dp/dg_N
     const Vector& Nn = v.Nn;
     const Matrix& T = v.T;
     const Matrix& Nd = v.Nd;
@@ -71,7 +77,7 @@ KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, co
     //   D2g = Nd D^T + T m^-1 (Nd + D b)^T   (symmetric: equal to its transpose up to round-off)
     const Matrix T_m = m_llt.solve(T.transpose()).transpose();                      // T m^-1
     const Matrix turn = Nd + D * master.curvature;                                  // Nd + D b (b symmetric)
-    out.tangent.topRows(n_rows) = eps * W * Nn.head(n_rows) * Nn.transpose();
+    out.tangent.topRows(n_rows) = slope * W * Nn.head(n_rows) * Nn.transpose();
     out.tangent.topRows(n_rows) += p * W * (Nd.topRows(n_rows) * D.transpose() + T_m.topRows(n_rows) * turn.transpose());
     // W = w_g j(u): the current area element stretches with the slave's control points.
     if (dW.size() > 0)
@@ -156,17 +162,18 @@ KernelResult gpts_rigid_kernel(const Vector& N, double W, const VecN& normal, do
     out.residual = Vector::Zero(n_dofs);
     if (settings.need_tangent)
         out.tangent = Matrix::Zero(n_dofs, n_dofs);
-    const double trial = contact_pressure_argument(settings, gap);
-    out.pressure = macaulay(trial);
-    if (heaviside(trial) == 0.0)
+    const std::optional<NormalResponse> law = pressure_at(settings, gap);
+    if (!law)
         return out;
+    out.pressure = law->pressure;
+    out.slope = law->slope;
     Vector Nn(n_dofs);
     for (Index a = 0; a < N.size(); ++a)
         Nn.segment(a * d, d) = N(a) * normal;
     out.residual = -out.pressure * W * Nn;
     if (!settings.need_tangent)
         return out;
-    out.tangent = settings.penalty * W * Nn * Nn.transpose();
+    out.tangent = out.slope * W * Nn * Nn.transpose();
     if (std::isfinite(normal_radius)) {
         // r_a = -p W N_a n(x): the normal turns with x, dn/dx = (I - n n) / normal_radius.
         const Matrix turning = (out.pressure * W / normal_radius) *

@@ -1,15 +1,19 @@
 #pragma once
-// Gauss-point-to-segment (GPTS) penalty kernel: the residual and consistent
+// Gauss-point-to-segment (GPTS) contact kernel: the residual and consistent
 // tangent of one slave Gauss point against a master side (a curve in 2D, a
 // surface in 3D) or a rigid obstacle, in tensor form for any dimension d.
 //
 // Reference: Kopacka et al. eqs. (1), (3), (5), (7); the linearization is derived
 // in docs/theory.md ("GPTS tangent"), with the gap sign of gap.hpp: g_N > 0 is
-// penetration, p = <lambda + eps g_N>, H = H(lambda + eps g_N), where lambda >= 0
-// is the Gauss point's augmented-Lagrangian multiplier (0 for plain penalty, which
-// gives p = eps <g_N>; docs/theory.md "Augmented Lagrangian").
+// penetration. The pressure p = p(g_N, lambda) and its slope p' = dp/dg_N come from
+// the pair's normal law (normal_law.hpp): for the penalty law p = <lambda + eps g_N>
+// and p' = eps H(lambda + eps g_N), where lambda >= 0 is the Gauss point's
+// augmented-Lagrangian multiplier (0 for plain penalty, which gives p = eps <g_N>;
+// docs/theory.md "Augmented Lagrangian"); the exponential law presses at gaps down
+// to -c0. The kernel runs where the law says the point is active (p > 0).
 //
-//   Pi_c = 1/(2 eps) W <lambda + eps g_N>^2,   r = dPi_c/du = p W dg_N/du,   K = dr/du,
+//   Pi_c = W P(g_N), P' = p (penalty: P = <lambda + eps g_N>^2 / (2 eps)),
+//   r = dPi_c/du = p W dg_N/du,   K = dr/du,
 //   W = Gauss weight * area element of the slave: held fixed (the reference one), or
 //       the current one, W = w_g j(u), whose variation dW/du_slave the caller passes
 //       (two-half-pass: both passes integrate over the current surface, docs/theory.md
@@ -21,11 +25,11 @@
 // minimum). Over the dofs [slave ; master]: Nn = [N_a n ; -R_b n],
 // T_al = [N_a a_al ; -R_b a_al], Nd_al = [0 ; R_b,al n], D = (T - g_N Nd) A^-1
 // (the variation of xibar), and
-//   K = eps H W Nn Nn^T + p W [ Nd D^T + T m^-1 (Nd + D b)^T ],
+//   K = p' W Nn Nn^T + p W [ Nd D^T + T m^-1 (Nd + D b)^T ],
 // the second term being the variation of the projection and of the normal. It is
 // symmetric; single pass assembles slave and master rows (K is then the Hessian of
 // Pi_c), a half pass of the two-half-pass algorithm only the slave rows, with slave
-// and master columns. Rigid plane: K = eps H W Nn Nn^T; a rigid sphere adds the
+// and master columns. Rigid plane: K = p' W Nn Nn^T; a rigid sphere adds the
 // turning of its normal (gpts_rigid_kernel).
 //
 // Local numbering (shapes): dofs [slave cps (n_s x d) ; master cps (n_m x d)],
@@ -33,6 +37,7 @@
 // the master basis order). Residual has (n_s + n_m) d entries; the tangent is
 // (n_s + n_m) d square. Rows not assembled are zero.
 
+#include "contact/normal_law.hpp"
 #include "contact/projection.hpp"
 #include "core/types.hpp"
 
@@ -41,15 +46,17 @@
 namespace iga::contact {
 
 struct KernelSettings {
-    double penalty = 0.0;       ///< eps_N > 0
+    NormalLaw law;              ///< p(g_N, lambda) and dp/dg_N
     double multiplier = 0.0;    ///< lambda >= 0 of this Gauss point (augmented Lagrangian); 0: penalty
+    double gap_offset = 0.0;    ///< s: the law is evaluated at g_N - s (an unreleased overlap, NormalLaw::shifted)
     bool master_rows = false;   ///< true: single pass (slave and master rows); false: half pass
     bool need_tangent = true;   ///< false: residual only
 };
 
 struct KernelResult {
     bool ok = true;         ///< false: the foot point is not a distance minimum (c <= 0)
-    double pressure = 0.0;  ///< p = <lambda + eps g_N>
+    double pressure = 0.0;  ///< p = p(g_N - s, lambda), e.g. <lambda + eps g_N>
+    double slope = 0.0;     ///< p' = dp/dg_N at the same point (0 where inactive)
     Vector residual;        ///< (n_s + n_m) d
     Matrix tangent;         ///< (n_s + n_m) d square; empty when need_tangent is false
 };
@@ -97,7 +104,7 @@ KernelResult gpts_kernel(const Vector& N, double W, const Projection& master, co
 /// and gap g_N `gap`: only slave dofs (n_s d), any d. `normal_radius` is the
 /// distance over which the normal turns as the slave point moves (|x - c| for a
 /// sphere, dn/dx = (I - n n)/normal_radius); infinite for a plane:
-///   K_ab = W N_a N_b [ eps H n n - (p / normal_radius) (I - n n) ].
+///   K_ab = W N_a N_b [ p' n n - (p / normal_radius) (I - n n) ].
 KernelResult gpts_rigid_kernel(const Vector& N, double W, const VecN& normal, double gap,
                                const KernelSettings& settings,
                                double normal_radius = std::numeric_limits<double>::infinity());

@@ -29,6 +29,7 @@ using iga::Kinematics;
 using iga::MaterialModel;
 using iga::PlaneMode;
 enum class Enforcement { penalty, augmented_lagrangian };
+enum class LawType { penalty, exponential };
 enum class SolverBackend { suitesparse, petsc };
 enum class SolverType { direct, iterative };
 enum class ShapeType { half_disc, quarter_disc, rectangle, sphere_octant, box };
@@ -312,12 +313,23 @@ struct Friction {
     bool operator==(const Friction&) const = default;
 };
 
+/// contact.<pair>.law: the normal contact law (contact/normal_law.hpp). Absent, or
+/// type penalty: the penalty law of `penalty` and `enforcement`.
+struct ContactLaw {
+    LawType type = LawType::penalty;
+    double clearance = 0.0;  ///< exponential: c0 > 0, no pressure at gaps <= -c0
+    double pressure = 0.0;   ///< exponential: p0 > 0, the pressure at touch (gap 0)
+
+    bool operator==(const ContactLaw&) const = default;
+};
+
 struct ContactPair {
     std::string name;
     ContactSurface first, second;
     Formulation formulation = Formulation::two_half_pass;
     Enforcement enforcement = Enforcement::penalty;
-    double penalty = 0.0;       ///< required: > 0, or `auto` (then 0 here and penalty_auto)
+    ContactLaw law;
+    double penalty = 0.0;       ///< required unless law is exponential: > 0, or `auto` (then 0 here and penalty_auto)
     bool penalty_auto = false;  ///< `penalty: auto`: chosen from the materials and element size (docs/deck.md)
     AugmentedLagrangian augmented_lagrangian;
     Friction friction;

@@ -65,6 +65,11 @@ struct DeckNames<Enforcement> {
     static constexpr std::array<EnumName<Enforcement>, 2> all{
         {{"penalty", Enforcement::penalty}, {"augmented_lagrangian", Enforcement::augmented_lagrangian}}};
 };
+template <>
+struct DeckNames<LawType> {
+    static constexpr std::array<EnumName<LawType>, 2> all{
+        {{"penalty", LawType::penalty}, {"exponential", LawType::exponential}}};
+};
 
 template <>
 struct DeckNames<ShapeType> {

@@ -326,8 +326,43 @@ std::pair<bool, std::optional<double>> number_or_auto(const Cursor& map, std::st
     return {false, std::nullopt};
 }
 
+/// contact.<pair>.law: {type, clearance, pressure}; clearance and pressure with type
+/// exponential only, and required there. False when a `law` is given whose type could
+/// not be read (the issue is recorded; what else the pair needs then is unknown).
+bool read_law(const Cursor& c, ContactPair& p)
+{
+    const Cursor law = c.child("law");
+    if (!law.exists())
+        return true;
+    if (!law.check_keys())
+        return false;
+    const auto type = law.read<LawType>("type");
+    if (!type)
+        return false;
+    p.law.type = *type;
+    const bool exponential = p.law.type == LawType::exponential;
+    for (const char* key : {"clearance", "pressure"})
+        if (!exponential && law.has(key))
+            law.child(key).fail_here("applies with type: exponential only");
+    if (exponential) {
+        p.law.clearance = law.read_required<double>("clearance").value_or(0.0);
+        p.law.pressure = law.read_required<double>("pressure").value_or(0.0);
+    }
+    return true;
+}
+
 void read_penalty(const Cursor& c, ContactPair& p)
 {
+    if (p.law.type == LawType::exponential) {
+        // The exponential law's stiffness comes from its clearance and pressure.
+        if (c.has("penalty"))
+            c.child("penalty").fail_here("does not apply with law: exponential (its stiffness is set by the "
+                                         "law's clearance and pressure)");
+        if (p.enforcement == Enforcement::augmented_lagrangian)
+            c.child("enforcement").fail("the exponential law has no multipliers; use enforcement: penalty or "
+                                        "leave it out with law: exponential");
+        return;
+    }
     if (!c.has("penalty")) {
         c.fail_missing("penalty");
         return;
@@ -406,7 +441,8 @@ std::vector<ContactPair> read_contact(const Cursor& root, KnownNames& known)
         }
         p.formulation = c.read_or("formulation", p.formulation);
         p.enforcement = c.read_or("enforcement", p.enforcement);
-        read_penalty(c, p);
+        if (read_law(c, p))
+            read_penalty(c, p);
         read_augmented_lagrangian(c, p);
         read_friction(c, p);
         p.quadrature = c.read_or("quadrature", p.quadrature);

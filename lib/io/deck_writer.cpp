@@ -295,10 +295,17 @@ void write_contact(YAML::Emitter& out, const ContactPair& p)
         << surface(p.second) << YAML::EndSeq;
     out << YAML::Key << "formulation" << YAML::Value << word(p.formulation);
     out << YAML::Key << "enforcement" << YAML::Value << word(p.enforcement);
-    if (p.penalty_auto)
+    if (p.law.type == LawType::exponential) {
+        out << YAML::Key << "law" << YAML::Value << YAML::Flow << YAML::BeginMap;
+        out << YAML::Key << "type" << YAML::Value << word(p.law.type);
+        out << YAML::Key << "clearance" << YAML::Value << format_number(p.law.clearance);
+        out << YAML::Key << "pressure" << YAML::Value << format_number(p.law.pressure);
+        out << YAML::EndMap;
+    } else if (p.penalty_auto) {
         out << YAML::Key << "penalty" << YAML::Value << "auto";
-    else
+    } else {
         out << YAML::Key << "penalty" << YAML::Value << format_number(p.penalty);
+    }
     if (p.enforcement == Enforcement::augmented_lagrangian) {
         out << YAML::Key << "augmented_lagrangian" << YAML::Value << YAML::Flow << YAML::BeginMap;
         if (p.augmented_lagrangian.gap_tolerance > 0.0)  // 0: automatic, left out as quadrature 0 is

@@ -85,10 +85,11 @@ TEST_P(SparseContactAssembly, EqualsTheDenseAssemblyOfEachPair)
     SceneSystem system(scene, context, 1);
     int n_active = 0;
     for (std::size_t p = 0; p < scene.pairs.size(); ++p) {
-        const PairModel& pair = scene.pairs[p];
-        const contact::PairEvaluation c =
+        PairModel& pair = scene.pairs[p];
+        contact::PairEvaluation c =
             pair.pair.evaluate(system.side_displacement(u_full, static_cast<int>(p), 0),
                                system.side_displacement(u_full, static_cast<int>(p), 1), true, nullptr, 1.0);
+        pair.pair.adopt(std::move(c.trial));
         ASSERT_TRUE(c.ok) << c.message;
         n_active += c.n_active;
         const Index n = pair.pair.n_local_dofs();

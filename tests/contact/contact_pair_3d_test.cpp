@@ -129,7 +129,7 @@ TEST(ContactPair3d, SphereAgainstTiltedPlaneTangentIsDerivative)
 {
     const DeformableSide face = sphere_face();
     const RigidPlane floor = RigidPlane::make(vec3(0.0, 0.0, 0.05), vec3(0.05, -0.03, 1.0));
-    const ContactPair pair({.penalty = 1e3}, face, floor);
+    const ContactPair pair({.law = NormalLaw::penalty(1e3)}, face, floor);
     EXPECT_EQ(pair.dim(), 3);
     expect_tangent_is_derivative(pair, noisy(pair.n_control_points(0), 1), RowMatrix(0, 3), "sphere on plane");
     // The body's contact force is -(sum of the residual): along the plane's normal, up.
@@ -145,7 +145,7 @@ TEST(ContactPair3d, SphereAgainstDomedFaceTangentIsDerivative)
 {
     const DeformableSide face = sphere_face(), top = domed_top();
     for (const Formulation f : {Formulation::two_half_pass, Formulation::single_pass}) {
-        const ContactPair pair({.formulation = f, .penalty = 1e3}, face, top);
+        const ContactPair pair({.formulation = f, .law = NormalLaw::penalty(1e3)}, face, top);
         expect_tangent_is_derivative(pair, noisy(pair.n_control_points(0), 2), noisy(pair.n_control_points(1), 3),
                                      f == Formulation::two_half_pass ? "two half passes" : "single pass");
     }

@@ -87,7 +87,7 @@ void expect_tangent_is_derivative(const ContactPair& pair, const RowMatrix& u1, 
 TEST(ContactPair, TwoHalfPassTangentIsDerivative)
 {
     const Scene s = make_scene();
-    const ContactPair pair({.formulation = Formulation::two_half_pass, .penalty = 1e3}, s.disc, s.block);
+    const ContactPair pair({.formulation = Formulation::two_half_pass, .law = NormalLaw::penalty(1e3)}, s.disc, s.block);
     EXPECT_EQ(pair.n_carriers(), 2);
     for (const unsigned seed : {1u, 2u}) {
         const auto [u1, u2] = overlap_state(pair, seed);
@@ -98,7 +98,7 @@ TEST(ContactPair, TwoHalfPassTangentIsDerivative)
 TEST(ContactPair, SinglePassTangentIsSymmetricDerivative)
 {
     const Scene s = make_scene();
-    const ContactPair pair({.formulation = Formulation::single_pass, .penalty = 1e3}, s.disc, s.block);
+    const ContactPair pair({.formulation = Formulation::single_pass, .law = NormalLaw::penalty(1e3)}, s.disc, s.block);
     EXPECT_EQ(pair.n_carriers(), 1);
     const auto [u1, u2] = overlap_state(pair, 3);
     expect_tangent_is_derivative(pair, u1, u2, "single_pass");
@@ -117,7 +117,7 @@ TEST(ContactPair, TwoHalfPassTangentIsNotSymmetric)
 {
     // Not the Hessian of one potential (docs/theory.md "Contact formulation"): a symmetric solver would be wrong.
     const Scene s = make_scene();
-    const ContactPair pair({.formulation = Formulation::two_half_pass, .penalty = 1e3}, s.disc, s.block);
+    const ContactPair pair({.formulation = Formulation::two_half_pass, .law = NormalLaw::penalty(1e3)}, s.disc, s.block);
     const auto [u1, u2] = overlap_state(pair, 1);
     const PairEvaluation ev = pair.evaluate(u1, u2, true);
     const Matrix K = test::dense(ev.tangent, pair.n_local_dofs());
@@ -127,7 +127,7 @@ TEST(ContactPair, TwoHalfPassTangentIsNotSymmetric)
 TEST(ContactPair, TwoHalfPassIsUnbiasedUnderSwap)
 {
     const Scene s = make_scene();
-    const PairSettings settings{.formulation = Formulation::two_half_pass, .penalty = 1e3};
+    const PairSettings settings{.formulation = Formulation::two_half_pass, .law = NormalLaw::penalty(1e3)};
     const ContactPair ab(settings, s.disc, s.block);
     const ContactPair ba(settings, s.block, s.disc);
     const auto [u1, u2] = overlap_state(ab, 5);
@@ -148,7 +148,7 @@ TEST(ContactPair, RigidPlaneTangentIsDerivative)
     const DeformableSide disc = DeformableSide::make(test::refined_half_disc(8), Side::v0);
     const RigidPlane floor = RigidPlane::make(vec2(0.0, 0.0), vec2(0.05, 1.0));
     for (const Formulation f : {Formulation::two_half_pass, Formulation::single_pass}) {
-        const ContactPair pair({.formulation = f, .penalty = 1e3}, disc, floor);
+        const ContactPair pair({.formulation = f, .law = NormalLaw::penalty(1e3)}, disc, floor);
         EXPECT_EQ(pair.n_local_dofs(), 2 * pair.n_control_points(0));
         std::mt19937 rng(7);
         const RowMatrix u1 = test::shifted(pair.n_control_points(0), vec2(0.0, -0.03), noise, rng);
@@ -162,7 +162,7 @@ TEST(ContactPair, RigidPlaneTangentIsDerivative)
         EXPECT_TRUE(test::at_least(fy, 0.0));
     }
     // The rigid obstacle may also be listed first.
-    const ContactPair flipped({.penalty = 1e3}, floor, disc);
+    const ContactPair flipped({.law = NormalLaw::penalty(1e3)}, floor, disc);
     EXPECT_EQ(flipped.n_control_points(0), 0);
     std::mt19937 rng(7);
     const RowMatrix u = test::shifted(flipped.n_control_points(1), vec2(0.0, -0.03), noise, rng);
@@ -173,7 +173,7 @@ TEST(ContactPair, FarApartDoesNoWork)
 {
     const Scene s = make_scene();
     for (const Formulation f : {Formulation::two_half_pass, Formulation::single_pass}) {
-        const ContactPair pair({.formulation = f, .penalty = 1e3}, s.disc, s.block);
+        const ContactPair pair({.formulation = f, .law = NormalLaw::penalty(1e3)}, s.disc, s.block);
         std::mt19937 rng(3);
         const RowMatrix u1 = test::shifted(pair.n_control_points(0), vec2(0.0, 10.0), noise, rng);
         const RowMatrix u2 = RowMatrix::Zero(pair.n_control_points(1), 2);
@@ -200,14 +200,15 @@ TEST(ContactPair, FarApartDoesNoWork)
 TEST(ContactPair, CountersAndCarriers)
 {
     const Scene s = make_scene();
-    const ContactPair pair({.formulation = Formulation::two_half_pass, .penalty = 1e3, .quadrature = 3}, s.disc,
-                           s.block);
+    ContactPair pair({.formulation = Formulation::two_half_pass, .law = NormalLaw::penalty(1e3), .quadrature = 3},
+                     s.disc, s.block);
     // 8 spans x 3 points on the disc, 2 spans x 3 points on the block.
     EXPECT_EQ(pair.n_gauss_points(0), 24);
     EXPECT_EQ(pair.n_gauss_points(1), 6);
     const auto [u1, u2] = overlap_state(pair, 1);
     RunContext ctx;
     const PairEvaluation ev = pair.evaluate(u1, u2, false, &ctx);
+    pair.adopt(ev.trial);  // the next evaluation warm-starts from this one's feet
     ASSERT_TRUE(ev.ok);
     EXPECT_GT(ev.projections, 0);
     EXPECT_EQ(ctx.count("projections"), ev.projections);
@@ -240,7 +241,7 @@ TEST(ContactPair, CountersAndCarriers)
 TEST(ContactPair, NonFiniteDisplacementIsAFailureStatus)
 {
     const Scene s = make_scene();
-    const ContactPair pair({.penalty = 1e3}, s.disc, s.block);
+    const ContactPair pair({.law = NormalLaw::penalty(1e3)}, s.disc, s.block);
     RowMatrix u1 = RowMatrix::Zero(pair.n_control_points(0), 2);
     u1(3, 1) = std::numeric_limits<double>::quiet_NaN();
     const PairEvaluation ev = pair.evaluate(u1, RowMatrix::Zero(pair.n_control_points(1), 2), true);
@@ -252,18 +253,18 @@ TEST(ContactPair, UnsupportedInputsAreClearErrors)
 {
     const Scene s = make_scene();
     const RigidPlane floor = RigidPlane::make(vec2(0, 0), vec2(0, 1));
-    EXPECT_THROW(ContactPair({.penalty = 1e3}, floor, floor), Error);
-    EXPECT_THROW(ContactPair({.penalty = 0.0}, s.disc, floor), Error);
+    EXPECT_THROW(ContactPair({.law = NormalLaw::penalty(1e3)}, floor, floor), Error);
+    EXPECT_THROW(ContactPair({.law = NormalLaw::penalty(0.0)}, s.disc, floor), Error);
     VecN p3(3), n3(3);
     p3 << 0, 0, 0;
     n3 << 0, 0, 1;
-    EXPECT_THROW(ContactPair({.penalty = 1e3}, s.disc, RigidPlane::make(p3, n3)), Error);
+    EXPECT_THROW(ContactPair({.law = NormalLaw::penalty(1e3)}, s.disc, RigidPlane::make(p3, n3)), Error);
     // A collapsed side (the half disc's u0) cannot carry contact.
     SidePiece collapsed{nurbs::extract_side(test::refined_half_disc(2), Side::u0), 1, {}};
     for (int a = 0; a < collapsed.side.patch.n_control_points(); ++a)
         collapsed.surface_index.push_back(a);
     const int n_collapsed = collapsed.side.patch.n_control_points();
-    EXPECT_THROW(ContactPair({.penalty = 1e3}, DeformableSide{{collapsed}, n_collapsed}, floor), Error);
+    EXPECT_THROW(ContactPair({.law = NormalLaw::penalty(1e3)}, DeformableSide{{collapsed}, n_collapsed}, floor), Error);
 }
 
 }  // namespace
@@ -281,7 +282,7 @@ TEST(ContactPair, TangentBlocksArePerCouplingAndCandidatesCoverThem)
 {
     const Scene s = make_scene();
     for (const Formulation formulation : {Formulation::two_half_pass, Formulation::single_pass}) {
-        const ContactPair pair({.formulation = formulation, .penalty = 1e3}, s.disc, s.block);
+        const ContactPair pair({.formulation = formulation, .law = NormalLaw::penalty(1e3)}, s.disc, s.block);
         const auto [u1, u2] = overlap_state(pair, 7);
         const PairEvaluation ev = pair.evaluate(u1, u2, true);
         ASSERT_TRUE(ev.ok) << ev.message;
@@ -308,6 +309,15 @@ TEST(ContactPair, TangentBlocksArePerCouplingAndCandidatesCoverThem)
 namespace iga::contact {
 namespace {
 
+/// evaluate() followed by adopt() of its trial state, as the driver does after every
+/// evaluation: the next one warm-starts from it, commit() keeps it.
+PairEvaluation evaluate_adopting(ContactPair& pair, const RowMatrix& u1, const RowMatrix& u2, bool need_tangent)
+{
+    PairEvaluation ev = pair.evaluate(u1, u2, need_tangent);
+    pair.adopt(ev.trial);
+    return ev;
+}
+
 // The Uzawa step at a FIXED state is a closed form: with every point's gap g fixed,
 // update k gives lambda_k = <lambda_{k-1} + eps g> = k eps g on the penetrating
 // points (0 elsewhere), and the residual then carries p = (k + 1) eps g: exactly
@@ -317,9 +327,9 @@ TEST(ContactPair, MultiplierUpdateAtAFixedStateIsExact)
     const Scene s = make_scene();
     for (const Formulation f : {Formulation::two_half_pass, Formulation::single_pass}) {
         SCOPED_TRACE(f == Formulation::two_half_pass ? "two_half_pass" : "single_pass");
-        ContactPair pair({.formulation = f, .penalty = 1e3}, s.disc, s.block);
+        ContactPair pair({.formulation = f, .law = NormalLaw::penalty(1e3)}, s.disc, s.block);
         const auto [u1, u2] = overlap_state(pair, 11);
-        const PairEvaluation penalty = pair.evaluate(u1, u2, false);
+        const PairEvaluation penalty = evaluate_adopting(pair, u1, u2, false);
         ASSERT_TRUE(penalty.ok);
         ASSERT_GE(penalty.n_active, 4);
         for (int c = 0; c < pair.n_carriers(); ++c)
@@ -336,7 +346,7 @@ TEST(ContactPair, MultiplierUpdateAtAFixedStateIsExact)
                         << "update " << k << ", carrier " << c << ", point " << g;
                 }
             }
-            state = pair.evaluate(u1, u2, false);
+            state = evaluate_adopting(pair, u1, u2, false);
             ASSERT_TRUE(state.ok);
             EXPECT_EQ(state.n_active, penalty.n_active);
             EXPECT_TRUE(test::at_most((state.residual - (k + 1.0) * penalty.residual).norm(),
@@ -351,22 +361,22 @@ TEST(ContactPair, MultiplierUpdateAtAFixedStateIsExact)
 TEST(ContactPair, RollbackRestoresTheCommittedMultipliers)
 {
     const Scene s = make_scene();
-    ContactPair pair({.formulation = Formulation::two_half_pass, .penalty = 1e3}, s.disc, s.block);
+    ContactPair pair({.formulation = Formulation::two_half_pass, .law = NormalLaw::penalty(1e3)}, s.disc, s.block);
     const auto [u1, u2] = overlap_state(pair, 12);
-    pair.update_multipliers(pair.evaluate(u1, u2, false));
+    pair.update_multipliers(evaluate_adopting(pair, u1, u2, false));
     pair.commit();
     std::vector<Vector> committed;
     for (int c = 0; c < pair.n_carriers(); ++c)
         committed.push_back(pair.multipliers(c));
-    const Vector committed_residual = pair.evaluate(u1, u2, false).residual;
+    const Vector committed_residual = evaluate_adopting(pair, u1, u2, false).residual;
 
-    pair.update_multipliers(pair.evaluate(u1, u2, false));  // an attempt's updates...
-    pair.update_multipliers(pair.evaluate(u1, u2, false));
+    pair.update_multipliers(evaluate_adopting(pair, u1, u2, false));  // an attempt's updates...
+    pair.update_multipliers(evaluate_adopting(pair, u1, u2, false));
     EXPECT_GT((pair.multipliers(0) - committed[0]).norm(), 0.0);
     pair.rollback();  // ...undone by a cutback
     for (int c = 0; c < pair.n_carriers(); ++c)
         EXPECT_EQ((pair.multipliers(c) - committed[static_cast<std::size_t>(c)]).norm(), 0.0) << "carrier " << c;
-    EXPECT_EQ((pair.evaluate(u1, u2, false).residual - committed_residual).norm(), 0.0);
+    EXPECT_EQ((evaluate_adopting(pair, u1, u2, false).residual - committed_residual).norm(), 0.0);
 }
 
 // The tangential multipliers (frictional augmented Lagrangian) are state too: after a
@@ -383,35 +393,35 @@ TEST(ContactPair, RollbackRestoresTheCommittedTangentialMultipliers)
     const FrictionLaw friction{0.3, 1e3};
     for (const bool rigid : {true, false}) {
         SCOPED_TRACE(rigid ? "rigid plane" : "deformable block");
-        ContactPair pair = rigid ? ContactPair({.penalty = 1e3, .friction = friction}, s.disc, floor)
-                                 : ContactPair({.penalty = 1e3, .friction = friction}, s.disc, s.block);
+        ContactPair pair = rigid ? ContactPair({.law = NormalLaw::penalty(1e3), .friction = friction}, s.disc, floor)
+                                 : ContactPair({.law = NormalLaw::penalty(1e3), .friction = friction}, s.disc, s.block);
         const RowMatrix u2 = rigid ? RowMatrix(0, 2) : RowMatrix::Zero(pair.n_control_points(1), 2);
         auto disc_at = [&](double x, double y) {
             std::mt19937 rng(14);
             return test::shifted(pair.n_control_points(0), vec2(x, y), noise, rng);
         };
-        pair.evaluate(disc_at(0.0, -0.03), u2, false);
+        evaluate_adopting(pair, disc_at(0.0, -0.03), u2, false);
         pair.commit();  // pressed: every pressing point anchored
         const RowMatrix slid = disc_at(0.004, -0.03);
-        pair.update_multipliers(pair.evaluate(slid, u2, false));
+        pair.update_multipliers(evaluate_adopting(pair, slid, u2, false));
         pair.commit();
         std::vector<RowMatrix> committed;
         for (int c = 0; c < pair.n_carriers(); ++c)
             committed.push_back(pair.tangential_multipliers(c));
         ASSERT_GT(committed[0].norm(), 0.0) << "the sliding state carries tangential tractions";
-        const Vector committed_residual = pair.evaluate(slid, u2, false).residual;
+        const Vector committed_residual = evaluate_adopting(pair, slid, u2, false).residual;
 
         const RowMatrix further = disc_at(0.01, -0.031);
-        pair.update_multipliers(pair.evaluate(further, u2, false));  // an attempt's updates...
-        pair.update_multipliers(pair.evaluate(further, u2, false));
+        pair.update_multipliers(evaluate_adopting(pair, further, u2, false));  // an attempt's updates...
+        pair.update_multipliers(evaluate_adopting(pair, further, u2, false));
         EXPECT_GT((pair.tangential_multipliers(0) - committed[0]).norm(), 0.0);
         pair.rollback();  // ...undone by a cutback
         for (int c = 0; c < pair.n_carriers(); ++c)
             EXPECT_EQ((pair.tangential_multipliers(c) - committed[static_cast<std::size_t>(c)]).norm(), 0.0)
                 << "carrier " << c;
-        EXPECT_EQ((pair.evaluate(slid, u2, false).residual - committed_residual).norm(), 0.0);
+        EXPECT_EQ((evaluate_adopting(pair, slid, u2, false).residual - committed_residual).norm(), 0.0);
 
-        pair.evaluate(disc_at(0.004, 0.2), u2, false);  // lifted off: every point open
+        evaluate_adopting(pair, disc_at(0.004, 0.2), u2, false);  // lifted off: every point open
         pair.commit();
         for (int c = 0; c < pair.n_carriers(); ++c)
             EXPECT_EQ(pair.tangential_multipliers(c).norm(), 0.0) << "carrier " << c;
@@ -425,14 +435,14 @@ TEST(ContactPair, TangentWithMultipliersIsDerivative)
 {
     const Scene s = make_scene();
     for (const Formulation f : {Formulation::two_half_pass, Formulation::single_pass}) {
-        ContactPair pair({.formulation = f, .penalty = 1e3}, s.disc, s.block);
+        ContactPair pair({.formulation = f, .law = NormalLaw::penalty(1e3)}, s.disc, s.block);
         const auto [u1, u2] = overlap_state(pair, 13);
-        pair.update_multipliers(pair.evaluate(u1, u2, false));
+        pair.update_multipliers(evaluate_adopting(pair, u1, u2, false));
         RowMatrix lifted = u1;
         lifted.col(1).array() += 0.01;
         expect_tangent_is_derivative(pair, lifted, u2, "multipliers");
         pair.set_penalty(1e4);
-        EXPECT_EQ(pair.settings().penalty, 1e4);
+        EXPECT_EQ(pair.settings().law.stiffness(), 1e4);
         expect_tangent_is_derivative(pair, lifted, u2, "multipliers, raised penalty");
     }
 }

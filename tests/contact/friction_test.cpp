@@ -37,16 +37,16 @@ struct Point {
 /// Residual (and tangent) of the point against the obstacle with a committed anchor.
 KernelResult evaluate(const RigidObstacle& obstacle, const Point& point, const RowMatrix& X,
                       const FrictionHistory& committed, const VecN& multiplier, bool need_tangent,
-                      TangentialResponse* response = nullptr)
+                      TangentialResponse* response = nullptr, const NormalLaw& law = NormalLaw::penalty(normal_penalty))
 {
     const Index d = X.cols();
     VecN x = VecN::Zero(d);
     for (Index a = 0; a < X.rows(); ++a)
         x += point.N(a) * X.row(a).transpose();
     const ObstacleFoot foot = obstacle.foot(x, 0.0);
-    const KernelSettings settings{.penalty = normal_penalty, .need_tangent = need_tangent};
+    const KernelSettings settings{.law = law, .need_tangent = need_tangent};
     KernelResult kr = gpts_rigid_kernel(point.N, point.W, foot.normal, foot.gap, settings, foot.radius);
-    const VecN dp = kr.pressure > 0.0 ? VecN(-normal_penalty * foot.normal) : VecN(VecN::Zero(d));
+    const VecN dp = kr.pressure > 0.0 ? VecN(-kr.slope * foot.normal) : VecN(VecN::Zero(d));  // dp/dx = -p' n
     const TangentialResponse t = coulomb_response({coefficient, tangential_penalty}, committed, multiplier, x,
                                                   foot.normal, kr.pressure, dp, foot.radius);
     add_tangential(kr, point.N, point.W, t);
@@ -59,18 +59,18 @@ KernelResult evaluate(const RigidObstacle& obstacle, const Point& point, const R
 /// surface along -n and `slide` along a tangent from the anchor.
 /// `multiplier`: the tangential multiplier lambda_T (empty: none, the penalty law).
 void check_tangent(const RigidObstacle& obstacle, const Point& point, const FrictionHistory& committed,
-                   StickSlip expected, VecN multiplier = VecN())
+                   StickSlip expected, VecN multiplier = VecN(), const NormalLaw& law = NormalLaw::penalty(normal_penalty))
 {
     if (multiplier.size() == 0)
         multiplier = VecN::Zero(point.X.cols());
     TangentialResponse response;
-    const KernelResult kr = evaluate(obstacle, point, point.X, committed, multiplier, true, &response);
+    const KernelResult kr = evaluate(obstacle, point, point.X, committed, multiplier, true, &response, law);
     ASSERT_EQ(response.status, expected);
     const Index n = point.X.size();
     const Eigen::VectorXd x0 = Eigen::Map<const Eigen::VectorXd>(point.X.data(), n);
     auto residual = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
         const RowMatrix X = Eigen::Map<const RowMatrix>(v.data(), point.X.rows(), point.X.cols());
-        return evaluate(obstacle, point, X, committed, multiplier, false).residual;
+        return evaluate(obstacle, point, X, committed, multiplier, false, nullptr, law).residual;
     };
     const Eigen::MatrixXd fd = test::central_difference_jacobian(residual, x0, fd_step);
     const double scale = kr.tangent.norm();
@@ -151,6 +151,19 @@ TEST(Friction, TangentEqualsFiniteDifferences2DPlane)
     // mu p ~ 0.4 * 2e3 * 5e-3 = 4; eps_T 1.5e3: stick below an offset of ~2.7e-3.
     check_tangent(plane, p, anchored(p, (VecN(2) << 1e-3, 0.0).finished()), StickSlip::stick);
     check_tangent(plane, p, anchored(p, (VecN(2) << 2e-2, 0.0).finished()), StickSlip::slip);
+}
+
+// The exponential (softened) law presses at an open gap: the floor 0.01 below, the point
+// 4.9e-3 above it inside the clearance 0.01, p ~ 0.2 p0 = 10 (mu p ~ 4, as above). The
+// tangent, with dp/dx = -p' n from the law, still matches finite differences.
+TEST(Friction, TangentWithTheExponentialLawEqualsFiniteDifferences)
+{
+    const RigidObstacle plane(RigidPlane::make((VecN(2) << 0.0, -0.01).finished(), (VecN(2) << 0.0, 1.0).finished()));
+    const NormalLaw softened = NormalLaw::exponential(0.01, 50.0);
+    const Point p = point_2d();
+    const VecN none = VecN::Zero(2);
+    check_tangent(plane, p, anchored(p, (VecN(2) << 1e-3, 0.0).finished()), StickSlip::stick, none, softened);
+    check_tangent(plane, p, anchored(p, (VecN(2) << 2e-2, 0.0).finished()), StickSlip::slip, none, softened);
 }
 
 TEST(Friction, TangentEqualsFiniteDifferences2DCircle)

@@ -107,7 +107,8 @@ Evaluation evaluate(const Scene& s, const FrictionHistory& committed, const Vect
         reference.second += X * proj.basis.d2R.row(static_cast<Index>(b));
     }
     const double W = s.dW.size() ? s.W0 + s.dW.dot(u.head(n_s * d)) : s.W0;
-    const KernelSettings settings{.penalty = normal_penalty, .master_rows = s.master_rows, .need_tangent = need_tangent};
+    const KernelSettings settings{
+        .law = NormalLaw::penalty(normal_penalty), .master_rows = s.master_rows, .need_tangent = need_tangent};
     KernelResult kr = gpts_kernel(s.N, W, foot, settings, need_tangent ? s.dW : Vector());
     Evaluation out;
     out.response = gpts_friction(kr, s.N, W, foot, reference, {coefficient, tangential_penalty}, committed,

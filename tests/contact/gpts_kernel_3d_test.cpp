@@ -136,7 +136,7 @@ double relative_error(const Matrix& K, const Matrix& K_ref) { return (K - K_ref)
 TEST(Kernel3d, SinglePassTangentIsSymmetricDerivative)
 {
     const Scene3d s = scene();
-    const KernelSettings settings{.penalty = 1e3, .master_rows = true, .need_tangent = true};
+    const KernelSettings settings{.law = NormalLaw::penalty(1e3), .master_rows = true, .need_tangent = true};
     const Index n = 3 * (s.slave.rows() + s.master.n_control_points());
     for (const unsigned seed : {1u, 2u, 3u}) {
         const Vector u = random_state(n, seed);
@@ -156,7 +156,7 @@ TEST(Kernel3d, SinglePassTangentIsSymmetricDerivative)
                 Nn.segment(3 * a, 3) = s.N(a) * foot.normal;
             for (Index b = 0; b < s.master.n_control_points(); ++b)
                 Nn.segment(3 * (s.slave.rows() + b), 3) = -foot.R(b) * foot.normal;
-            return Matrix(settings.penalty * s.W * Nn * Nn.transpose());
+            return Matrix(settings.law.stiffness() * s.W * Nn * Nn.transpose());
         }();
         EXPECT_TRUE(test::at_least(relative_error(K_main, K_fd), geometric_term_share)) << "seed " << seed;
     }
@@ -165,7 +165,7 @@ TEST(Kernel3d, SinglePassTangentIsSymmetricDerivative)
 TEST(Kernel3d, HalfPassTangentIsDerivativeOfSlaveRows)
 {
     const Scene3d s = scene();
-    const KernelSettings settings{.penalty = 1e3, .master_rows = false, .need_tangent = true};
+    const KernelSettings settings{.law = NormalLaw::penalty(1e3), .master_rows = false, .need_tangent = true};
     const Index n_s = 3 * s.slave.rows();
     const Index n = n_s + 3 * s.master.n_control_points();
     const Vector u = random_state(n, 7);
@@ -180,7 +180,7 @@ TEST(Kernel3d, HalfPassTangentIsDerivativeOfSlaveRows)
 TEST(Kernel3d, ForcesBalanceAlongTheNormal)
 {
     const Scene3d s = scene();
-    const KernelSettings settings{.penalty = 2e3, .master_rows = true, .need_tangent = false};
+    const KernelSettings settings{.law = NormalLaw::penalty(2e3), .master_rows = true, .need_tangent = false};
     const Index n = 3 * (s.slave.rows() + s.master.n_control_points());
     MasterFoot foot;
     const KernelResult k = kernel(s, Vector::Zero(n), settings, &foot);
@@ -192,6 +192,40 @@ TEST(Kernel3d, ForcesBalanceAlongTheNormal)
         total += k.residual.segment(3 * i, 3);
     EXPECT_TRUE(test::at_most((slave_force - k.pressure * s.W * foot.normal).norm(), round_off * k.pressure));
     EXPECT_TRUE(test::at_most(total.norm(), round_off * k.pressure));
+}
+
+// The exponential (softened) law: pressed at an open gap inside its clearance (the
+// slave lifted 0.13 off its ~0.1 penetration) and on its linear branch beyond touch,
+// the tangent with dp/dg in place of eps is the derivative of the residual.
+TEST(Kernel3d, ExponentialLawTangentIsDerivative)
+{
+    constexpr double clearance = 0.05, pressure = 50.0;
+    Scene3d s = scene();
+    const NormalLaw law = NormalLaw::exponential(clearance, pressure);
+    const Index n = 3 * (s.slave.rows() + s.master.n_control_points());
+    const RowMatrix resting = s.slave;
+    for (const double lift : {0.13, 0.0}) {
+        SCOPED_TRACE(lift > 0.0 ? "open gap inside the clearance" : "penetrating: the linear branch");
+        s.slave = resting;
+        s.slave.col(2).array() += lift;
+        const Vector u = random_state(n, 8);
+        for (const bool master_rows : {true, false}) {
+            const KernelSettings settings{.law = law, .master_rows = master_rows, .need_tangent = true};
+            MasterFoot foot;
+            const KernelResult k = kernel(s, u, settings, &foot);
+            ASSERT_TRUE(k.ok);
+            if (lift > 0.0)
+                ASSERT_TRUE(foot.gap < -0.2 * clearance && foot.gap > -0.8 * clearance) << foot.gap;
+            else
+                ASSERT_GT(foot.gap, 0.02);
+            ASSERT_GT(k.pressure, 0.0);
+            const Index rows = master_rows ? n : 3 * s.slave.rows();
+            const Matrix K_fd = test::central_difference_jacobian(
+                [&](const Vector& v) { return kernel(s, v, settings).residual; }, u, fd_step);
+            EXPECT_TRUE(test::at_most(relative_error(k.tangent.topRows(rows), K_fd.topRows(rows)), fd_tolerance))
+                << "master rows " << master_rows;
+        }
+    }
 }
 
 }  // namespace

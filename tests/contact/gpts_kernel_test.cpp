@@ -98,7 +98,7 @@ TEST_P(KernelFd, SinglePassTangentIsSymmetricDerivative)
 {
     const Slave slave = GetParam() == 1 ? linear_slave() : quadratic_slave();
     const nurbs::Patch master = test::rational_arch();
-    const KernelSettings settings{.penalty = 1e3, .master_rows = true, .need_tangent = true};
+    const KernelSettings settings{.law = NormalLaw::penalty(1e3), .master_rows = true, .need_tangent = true};
     const Index n = 2 * (slave.curve.n_control_points() + master.n_control_points());
     for (const unsigned seed : {1u, 2u, 3u}) {
         const Vector u = random_state(n, seed);
@@ -123,7 +123,7 @@ TEST_P(KernelFd, SinglePassTangentIsSymmetricDerivative)
             Nn.segment(2 * a, 2) = N(a) * p.normal;
         for (Index b = 0; b < master.n_control_points(); ++b)
             Nn.segment(2 * (n_s + b), 2) = -p.basis.R(b) * p.normal;
-        const Matrix K_main = settings.penalty * slave.W * Nn * Nn.transpose();
+        const Matrix K_main = settings.law.stiffness() * slave.W * Nn * Nn.transpose();
         EXPECT_TRUE(test::at_least(relative_error(K_main, K_fd), geometric_term_share)) << "seed " << seed;
     }
 }
@@ -132,7 +132,7 @@ TEST_P(KernelFd, HalfPassTangentIsDerivativeOfSlaveRows)
 {
     const Slave slave = GetParam() == 1 ? linear_slave() : quadratic_slave();
     const nurbs::Patch master = test::rational_arch();
-    const KernelSettings settings{.penalty = 1e3, .master_rows = false, .need_tangent = true};
+    const KernelSettings settings{.law = NormalLaw::penalty(1e3), .master_rows = false, .need_tangent = true};
     const Index n_s = 2 * slave.curve.n_control_points();
     const Index n = n_s + 2 * master.n_control_points();
     for (const unsigned seed : {4u, 5u}) {
@@ -154,12 +154,12 @@ TEST(Kernel, ForcesPushTheSlaveOutAndBalance)
 {
     const Slave slave = quadratic_slave();
     const nurbs::Patch master = test::rational_arch();
-    const KernelSettings settings{.penalty = 2e3, .master_rows = true, .need_tangent = false};
+    const KernelSettings settings{.law = NormalLaw::penalty(2e3), .master_rows = true, .need_tangent = false};
     const Index n = 2 * (slave.curve.n_control_points() + master.n_control_points());
     Projection p;
     const KernelResult k = evaluate_kernel(slave, master, Vector::Zero(n), settings, &p);
     ASSERT_GT(p.gap, 0.0);
-    EXPECT_TRUE(test::near_rel(k.pressure, settings.penalty * p.gap, round_off));
+    EXPECT_TRUE(test::near_rel(k.pressure, settings.law.stiffness() * p.gap, round_off));
     EXPECT_TRUE(k.tangent.size() == 0);
     // Force on the slave = -(sum of slave rows) = p W n (partition of unity), along
     // the master's outward normal (up, out of the arch's body).
@@ -183,7 +183,7 @@ TEST(Kernel, OpenGapGivesNothing)
         u(2 * a + 1) = 0.5;  // lift the slave well above the arch
     Projection p;
     const KernelResult k =
-        evaluate_kernel(slave, master, u, {.penalty = 1e3, .master_rows = true, .need_tangent = true}, &p);
+        evaluate_kernel(slave, master, u, {.law = NormalLaw::penalty(1e3), .master_rows = true, .need_tangent = true}, &p);
     EXPECT_LT(p.gap, 0.0);
     EXPECT_EQ(k.pressure, 0.0);
     EXPECT_EQ(k.residual.norm(), 0.0);
@@ -194,7 +194,7 @@ TEST(Kernel, RigidPlaneTangentIsDerivative)
 {
     const Slave slave = quadratic_slave();
     const RigidPlane plane = RigidPlane::make(vec2(0.0, 0.0), vec2(0.1, -1.0));  // obstacle above, tilted
-    const KernelSettings settings{.penalty = 5e2, .master_rows = false, .need_tangent = true};
+    const KernelSettings settings{.law = NormalLaw::penalty(5e2), .master_rows = false, .need_tangent = true};
     const Vector N = slave_basis(slave);
     const Index n = 2 * slave.curve.n_control_points();
     auto kernel = [&](const Vector& u) {
@@ -237,7 +237,7 @@ void expect_sphere_tangent_is_derivative(int d)
     if (d == 3)
         center(2) = 0.05;
     const RigidObstacle ball(RigidSphere::make(center, 1.0));
-    const KernelSettings settings{.penalty = 7e2, .master_rows = false, .need_tangent = true};
+    const KernelSettings settings{.law = NormalLaw::penalty(7e2), .master_rows = false, .need_tangent = true};
     auto kernel = [&](const Vector& u) {
         VecN x = VecN::Zero(d);
         for (Index a = 0; a < 3; ++a)
@@ -312,12 +312,13 @@ TEST(Kernel, MultiplierKeepsAnOpenPointActiveWithTheAugmentedPressure)
         u(2 * a + 1) = 0.1;  // lift the slave just above the arch: a small open gap
     Projection p;
     const KernelResult penalty_only =
-        evaluate_kernel(slave, master, u, {.penalty = 1e3, .master_rows = true, .need_tangent = true}, &p);
+        evaluate_kernel(slave, master, u, {.law = NormalLaw::penalty(1e3), .master_rows = true, .need_tangent = true}, &p);
     ASSERT_TRUE(p.gap < -1e-3 && p.gap > -0.05) << "a small open gap, g_N = " << p.gap;
     EXPECT_EQ(penalty_only.pressure, 0.0) << "penalty alone: an open gap carries nothing";
 
     const double eps = 1e3, lambda = 60.0;  // lambda + eps g_N > 0 at g_N > -0.06
-    const KernelSettings settings{.penalty = eps, .multiplier = lambda, .master_rows = true, .need_tangent = true};
+    const KernelSettings settings{
+        .law = NormalLaw::penalty(eps), .multiplier = lambda, .master_rows = true, .need_tangent = true};
     const KernelResult k = evaluate_kernel(slave, master, u, settings);
     ASSERT_TRUE(k.ok);
     EXPECT_TRUE(test::near_rel(k.pressure, lambda + eps * p.gap, round_off)) << "p = <lambda + eps g_N>";
@@ -341,10 +342,91 @@ TEST(Kernel, RigidKernelUsesTheAugmentedPressure)
     normal << 0.0, 1.0;
     const double eps = 5e2, lambda = 3.0, gap = -2e-3;  // open, yet lambda + eps g = 2 > 0
     const KernelResult k =
-        gpts_rigid_kernel(N, slave.W, normal, gap, {.penalty = eps, .multiplier = lambda, .need_tangent = true});
+        gpts_rigid_kernel(N, slave.W, normal, gap,
+                          {.law = NormalLaw::penalty(eps), .multiplier = lambda, .need_tangent = true});
     EXPECT_TRUE(test::near_rel(k.pressure, lambda + eps * gap, round_off));
     EXPECT_TRUE(test::near_rel(k.residual.norm(), k.pressure * slave.W * N.norm(), round_off));
     EXPECT_TRUE(test::near_rel(k.tangent.norm(), eps * slave.W * N.squaredNorm(), round_off));
+}
+
+}  // namespace
+}  // namespace iga::contact
+
+namespace iga::contact {
+namespace {
+
+// The exponential (softened) law presses inside its clearance, at an open gap, and
+// continues linearly beyond touch: on both branches the kernel's tangent, with
+// dp/dg in place of eps, is the derivative of its residual (single pass and half
+// pass). The slave is lifted 0.1 off its ~0.08 penetration for the open case.
+constexpr double softened_clearance = 0.05, softened_pressure = 50.0;
+
+TEST(Kernel, ExponentialLawTangentIsDerivative)
+{
+    const Slave slave = quadratic_slave();
+    const nurbs::Patch master = test::rational_arch();
+    const NormalLaw law = NormalLaw::exponential(softened_clearance, softened_pressure);
+    const Index n_s = 2 * slave.curve.n_control_points();
+    const Index n = n_s + 2 * master.n_control_points();
+    for (const double lift : {0.1, 0.0}) {
+        SCOPED_TRACE(lift > 0.0 ? "open gap inside the clearance" : "penetrating: the linear branch");
+        Vector u = random_state(n, 21);
+        for (Index a = 0; a < slave.curve.n_control_points(); ++a)
+            u(2 * a + 1) += lift;
+        for (const bool master_rows : {true, false}) {
+            const KernelSettings settings{.law = law, .master_rows = master_rows, .need_tangent = true};
+            Projection p;
+            const KernelResult k = evaluate_kernel(slave, master, u, settings, &p);
+            ASSERT_TRUE(k.ok);
+            if (lift > 0.0)
+                ASSERT_TRUE(p.gap < -0.2 * softened_clearance && p.gap > -0.8 * softened_clearance) << p.gap;
+            else
+                ASSERT_GT(p.gap, 0.02);
+            EXPECT_TRUE(test::near_rel(k.pressure, law.response(p.gap, 0.0).pressure, round_off));
+            ASSERT_GT(k.pressure, 0.0);
+            const Index rows = master_rows ? n : n_s;
+            const Matrix K_fd = test::central_difference_jacobian(
+                [&](const Vector& v) { return evaluate_kernel(slave, master, v, settings).residual; }, u, fd_step);
+            EXPECT_TRUE(test::at_most(relative_error(k.tangent.topRows(rows), K_fd.topRows(rows)), fd_tolerance))
+                << "master rows " << master_rows;
+        }
+    }
+}
+
+// The same for a rigid plane, where the kernel is p W N n and p' W Nn Nn^T.
+TEST(Kernel, ExponentialLawRigidTangentIsDerivative)
+{
+    const Slave slave = quadratic_slave();
+    const NormalLaw law = NormalLaw::exponential(softened_clearance, softened_pressure);
+    const KernelSettings settings{.law = law, .master_rows = false, .need_tangent = true};
+    const Vector N = slave_basis(slave);
+    const Index n = 2 * slave.curve.n_control_points();
+    // The slave's Gauss point sits at y ~ 0.17: planes (outward normal down) just above
+    // it and just below it give an open gap inside the clearance and a penetration.
+    for (const double height : {0.2, 0.15}) {
+        const RigidPlane plane = RigidPlane::make(vec2(1.185, height), vec2(0.1, -1.0));
+        auto kernel = [&](const Vector& u) {
+            VecN x = VecN::Zero(2);
+            for (Index a = 0; a < slave.curve.n_control_points(); ++a)
+                x += N(a) * (slave.curve.control_points().row(a).transpose() + u.segment(2 * a, 2));
+            return gpts_rigid_kernel(N, slave.W, plane.normal, plane.gap(x), settings);
+        };
+        const Vector u = random_state(n, 22);
+        VecN x = VecN::Zero(2);
+        for (Index a = 0; a < slave.curve.n_control_points(); ++a)
+            x += N(a) * (slave.curve.control_points().row(a).transpose() + u.segment(2 * a, 2));
+        const double gap = plane.gap(x);
+        if (height > 0.17)
+            ASSERT_TRUE(gap < 0.0 && gap > -softened_clearance) << gap;
+        else
+            ASSERT_GT(gap, 0.0);
+        const KernelResult k = kernel(u);
+        ASSERT_GT(k.pressure, 0.0);
+        EXPECT_TRUE(test::near_rel(k.slope, law.response(gap, 0.0).slope, round_off));
+        const Matrix K_fd = test::central_difference_jacobian([&](const Vector& v) { return kernel(v).residual; }, u,
+                                                              fd_step);
+        EXPECT_TRUE(test::at_most(relative_error(k.tangent, K_fd), fd_tolerance)) << "gap " << gap;
+    }
 }
 
 }  // namespace

@@ -153,7 +153,8 @@ Counts check_against_closed_form(const ContactPair& pair, double shift)
             EXPECT_TRUE(test::near(c.gap(g), gap, gap_tolerance));
             if (gap > 0.0) {
                 ++counts.active;
-                EXPECT_TRUE(test::near(c.pressure(g), pair.settings().penalty * gap, gap_tolerance * pair.settings().penalty));
+                const double eps = pair.settings().law.stiffness();
+                EXPECT_TRUE(test::near(c.pressure(g), eps * gap, gap_tolerance * eps));
                 if (past > 0.0 && past < just_past)
                     ++counts.just_past_active;
             }
@@ -167,7 +168,7 @@ TEST(MultiPatchPair, FeetJustPastAPatchEndAreProjectedOnTheNeighbour)
     const Scene s = make_scene();
     ASSERT_EQ(s.upper.pieces.size(), 2u);
     ASSERT_EQ(s.lower.pieces.size(), 2u);
-    const ContactPair pair(PairSettings{.formulation = Formulation::two_half_pass, .penalty = 1.0e3}, s.upper, s.lower);
+    const ContactPair pair(PairSettings{.formulation = Formulation::two_half_pass, .law = NormalLaw::penalty(1.0e3)}, s.upper, s.lower);
     // The two glued pieces share one control point at their interface.
     EXPECT_EQ(pair.n_control_points(0), s.upper.pieces[0].side.patch.n_control_points() +
                                             s.upper.pieces[1].side.patch.n_control_points() - 1);

@@ -45,7 +45,7 @@ TEST(PressureRecovery, UniformPressureIsRecoveredExactly)
     const DeformableSide top = DeformableSide::make(flat_top_block(), Side::v1);
     const double delta = 0.01, eps = 2e3;
     const RigidPlane lid = RigidPlane::make(vec2(0.0, 1.0 - delta), vec2(0.0, -1.0));  // obstacle above
-    const ContactPair pair({.penalty = eps}, top, lid);
+    const ContactPair pair({.law = NormalLaw::penalty(eps)}, top, lid);
     const RowMatrix u = RowMatrix::Zero(pair.n_control_points(0), 2);
     const PairEvaluation ev = pair.evaluate(u, RowMatrix(0, 2), false);
     ASSERT_TRUE(ev.ok);
@@ -79,7 +79,7 @@ TEST(PressureRecovery, UniformPressureIsRecoveredExactly)
 struct DiscOnFloor {
     DeformableSide disc = DeformableSide::make(test::refined_half_disc(16), Side::v0);
     RigidPlane floor = RigidPlane::make(vec2(0.0, 0.0), vec2(0.0, 1.0));
-    ContactPair pair{{.penalty = 1e4}, disc, floor};
+    ContactPair pair{{.law = NormalLaw::penalty(1e4)}, disc, floor};
     RowMatrix u;
     PairEvaluation ev;
 

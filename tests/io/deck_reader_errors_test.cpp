@@ -532,6 +532,44 @@ TEST(DeckReaderErrors, EnforcementAndAutoPenalty)
               "augmented_lagrangian only (the pair's enforcement is penalty)");
 }
 
+// contact.<pair>.law: the exponential (softened) law takes clearance and pressure, both
+// required, finite and > 0, and refuses a penalty and the augmented Lagrangian beside it.
+TEST(DeckReaderErrors, ContactLaw)
+{
+    struct Row {
+        const char* name;
+        std::string replacement;  ///< for `penalty: 1.0e4` of the minimal deck
+        std::string expected;
+    };
+    const std::string exponential = "law: {type: exponential, clearance: 0.01, pressure: 5.0}";
+    const std::vector<Row> rows = {
+        {"the spec's spelling reads", exponential, ""},
+        {"a penalty beside it", "penalty: 1.0e4\n    " + exponential, "hertz.yaml:21:14: error: contact.block_floor.penalty: does not apply with law: exponential (its "
+         "stiffness is set by the law's clearance and pressure)"},
+        {"the augmented Lagrangian beside it", "enforcement: augmented_lagrangian\n    " + exponential, "hertz.yaml:21:18: error: contact.block_floor.enforcement = augmented_lagrangian: the exponential law has "
+         "no multipliers; use enforcement: penalty or leave it out with law: exponential"},
+        {"no clearance", "law: {type: exponential, pressure: 5.0}", "hertz.yaml:21:10: error: contact.block_floor.law: missing required key 'clearance'"},
+        {"clearance zero", "law: {type: exponential, clearance: 0, pressure: 5.0}", "hertz.yaml:21:41: error: contact.block_floor.law.clearance = 0: must be > 0"},
+        {"pressure negative", "law: {type: exponential, clearance: 0.01, pressure: -5}", "hertz.yaml:21:57: error: contact.block_floor.law.pressure = -5: must be > 0"},
+        {"pressure NaN", "law: {type: exponential, clearance: 0.01, pressure: .nan}", "hertz.yaml:21:57: error: contact.block_floor.law.pressure = .nan: must be a finite number"},
+        {"clearance infinite", "law: {type: exponential, clearance: .inf, pressure: 5.0}", "hertz.yaml:21:41: error: contact.block_floor.law.clearance = .inf: must be a finite number"},
+        {"an unknown type", "law: {type: softened, clearance: 0.01, pressure: 5.0}", "hertz.yaml:21:17: error: contact.block_floor.law.type = softened: expected one of penalty, exponential"},
+        {"no type", "law: {clearance: 0.01, pressure: 5.0}", "hertz.yaml:21:10: error: contact.block_floor.law: missing required key 'type'"},
+        {"an unknown key", "law: {type: exponential, clearance: 0.01, pressure: 5.0, slope: 2}", "hertz.yaml:21:62: error: contact.block_floor.law: unknown key 'slope' (known keys: type, clearance, "
+         "pressure)"},
+        {"clearance with the penalty law", "penalty: 1.0e4\n    law: {type: penalty, clearance: 0.01}", "hertz.yaml:22:37: error: contact.block_floor.law.clearance: applies with type: exponential only"},
+        {"a word instead of a map", "penalty: 1.0e4\n    law: exponential", "hertz.yaml:22:10: error: contact.block_floor.law = exponential: expected a map of keys"},
+    };
+    for (const Row& row : rows) {
+        SCOPED_TRACE(row.name);
+        const std::string deck = replaced(minimal_deck, "penalty: 1.0e4", row.replacement);
+        if (row.expected.empty())
+            EXPECT_EQ(read(deck).contact.front().law.type, LawType::exponential);
+        else
+            EXPECT_EQ(issue_of(deck), row.expected);
+    }
+}
+
 TEST(DeckReaderErrors, OutputReference)
 {
     const auto reference = [](const std::string& text) {

@@ -92,6 +92,9 @@ contact:
     between: [disc.v0, ball]
     penalty: auto
     friction: {coefficient: 0.3, tangential_penalty: 1.0e3}
+  - name: plate_floor
+    between: [plate.v0, floor]
+    law: {type: exponential, clearance: 0.01, pressure: 5.0}
 steps: {count: 4, adaptive: false, max_cutbacks: 2}
 newton: {tolerance: 1.0e-8, max_iterations: 12, line_search: false}
 solver: {backend: petsc, type: iterative, options: "-ksp_monitor"}
