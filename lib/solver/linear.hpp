@@ -140,7 +140,4 @@ std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverPolicy& polic
 /// Whether this build has the PETSc backend.
 bool petsc_available();
 
-const char* backend_name(Backend backend);
-const char* method_name(Method method);
-
 }  // namespace iga::solver

@@ -33,16 +33,6 @@ const char* status_name(LinearStatus status)
     return "unknown";
 }
 
-const char* backend_name(Backend backend)
-{
-    return backend == Backend::petsc ? "petsc" : "suitesparse";
-}
-
-const char* method_name(Method method)
-{
-    return method == Method::iterative ? "iterative" : "direct";
-}
-
 bool petsc_available()
 {
 #ifdef IGACONTACT_HAVE_PETSC
