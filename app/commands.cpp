@@ -76,8 +76,8 @@ int run_command(int argc, char** argv, const Communicator& comm)
                "  igacontact study DECK [--levels N] [--jobs J]  refinement study: error estimates and their cost\n"
                "Exit codes: 0 success, 1 the solve failed, 2 bad input or usage, 3 internal error.");
     // The backends a build has: scripts (and users) ask this before a `solver.backend: petsc` run.
-    cli.set_version_flag("--version", fmt::format("igacontact {} (linear solvers: suitesparse{})", program_version,
-                                                  solver::petsc_available() ? ", petsc" : ""));
+    cli.set_version_flag("--version", fmt::format("igacontact {} (linear solvers: {})", program_version,
+                                                  solver::available_backends()));
 
     std::string deck_path, output, summary;
     std::vector<std::string> overrides;

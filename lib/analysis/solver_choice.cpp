@@ -1,6 +1,10 @@
 #include "analysis/solver_choice.hpp"
 
+#include "core/error.hpp"
+#include "io/deck_names.hpp"
+
 #include <algorithm>
+#include <optional>
 
 namespace iga::analysis {
 
@@ -67,8 +71,11 @@ solver::LinearSolverPolicy linear_solver_policy(const io::Deck& deck, const Scen
                                                 const solver::NonlinearSystem& system, const Communicator& comm)
 {
     solver::LinearSolverPolicy policy;
-    policy.backend = deck.solver.backend == io::SolverBackend::petsc || comm.parallel() ? solver::Backend::petsc
-                                                                                         : solver::Backend::suitesparse;
+    // The deck's backend by its spelling in the table (solver/backends.hpp); on several
+    // ranks one that is not distributed gives way to the one that is.
+    const std::optional<solver::Backend> named = solver::backend_named(io::deck_name(deck.solver.backend));
+    IGA_CHECK(named.has_value(), "linear_solver_policy: solver.backend has no row in solver/backends.cpp");
+    policy.backend = comm.parallel() && !solver::backend_distributed(*named) ? solver::distributed_backend() : *named;
     policy.method = deck.solver.type == io::SolverType::iterative ? solver::Method::iterative : solver::Method::direct;
     policy.options = deck.solver.options;
     policy.symmetric = system.symmetric;
@@ -98,7 +105,7 @@ solver::LinearSolverPolicy linear_solver_policy(const io::Deck& deck, const Scen
             policy.penalty_ratio = std::max(policy.penalty_ratio,
                                             pair.pair.settings().law.stiffness() * pair.rule.element_size /
                                                 pair.rule.modulus);
-    if (policy.backend == solver::Backend::petsc && policy.method == solver::Method::iterative) {
+    if (policy.method == solver::Method::iterative) {  // multigrid: the near-null space, point blocks
         policy.rigid_body_modes = rigid_body_modes(scene);
         policy.block_size = point_block_size(scene);
     }

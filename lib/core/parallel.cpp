@@ -1,6 +1,5 @@
 #include "core/parallel.hpp"
 
-#include <algorithm>
 #include <cstdlib>
 #include <vector>
 
@@ -35,17 +34,6 @@ Communicator Communicator::world()
     }
 #endif
     return c;
-}
-
-int Communicator::block_owner(Index k, Index n) const
-{
-    // The first rank r with n (r + 1) / size > k.
-    int r = static_cast<int>((k * size_) / std::max<Index>(n, 1));
-    while (r > 0 && n * r / size_ > k)
-        --r;
-    while (r + 1 < size_ && n * (r + 1) / size_ <= k)
-        ++r;
-    return r;
 }
 
 void Communicator::sum(Vector& v) const
@@ -115,31 +103,7 @@ std::string Communicator::first_message(const std::string& text) const
     return text;
 }
 
-std::string Communicator::broadcast(const std::string& text) const
-{
-#ifdef IGACONTACT_HAVE_MPI
-    if (size_ > 1) {
-        long long n = static_cast<long long>(text.size());
-        MPI_Bcast(&n, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
-        std::string out = root() ? text : std::string(static_cast<std::size_t>(n), '\0');
-        if (n > 0)
-            MPI_Bcast(out.data(), static_cast<int>(n), MPI_CHAR, 0, MPI_COMM_WORLD);
-        return out;
-    }
-#endif
-    return text;
-}
-
 namespace parallel {
-
-bool available()
-{
-#ifdef IGACONTACT_HAVE_MPI
-    return true;
-#else
-    return false;
-#endif
-}
 
 bool launched_by_mpi()
 {

@@ -46,14 +46,9 @@ public:
     {
         return {n * rank_ / size_, n * (rank_ + 1) / size_};
     }
-    /// The rank whose block_range(n) holds item k.
-    int block_owner(Index k, Index n) const;
 
     /// On every rank: the text of the lowest rank whose text is not empty ("" if none).
     std::string first_message(const std::string& text) const;
-
-    /// Rank 0's text on every rank.
-    std::string broadcast(const std::string& text) const;
 
 private:
     int rank_ = 0;
@@ -61,9 +56,6 @@ private:
 };
 
 namespace parallel {
-
-/// Whether this build can run on several MPI ranks (built with PETSc and MPI).
-bool available();
 
 /// Whether this process was started by an MPI launcher (mpirun, srun): the
 /// launchers' environment variables say so before MPI_Init.

@@ -1,14 +1,13 @@
 #pragma once
 // LinearSolver: K x = b for Newton's steps, behind one interface (the shape of
-// polysolve's linear::Solver and MFEM's PETSc wrappers). Two backends:
-//   - SuiteSparseSolver (solver/suitesparse_solver.hpp): CHOLMOD / UMFPACK, with
-//     Woodbury updates; serial, embedded, the default;
-//   - PetscSolver (solver/petsc_solver.hpp): a distributed AIJ matrix with MUMPS
-//     (direct) or a Krylov method with algebraic multigrid (iterative), on the MPI
-//     ranks of the run (core/parallel.hpp); built when PETSc is found.
-// Which one, and how it is configured (symmetric or not, semi-definite or not,
-// updates, ordering, the options of an iterative method), is decided in one place:
-// make_linear_solver() from LinearSolverPolicy (solver/linear_policy.cpp).
+// polysolve's linear::Solver and MFEM's PETSc wrappers). Two backends,
+// SuiteSparseSolver (solver/suitesparse_solver.hpp, the default) and PetscSolver
+// (solver/petsc_solver.hpp, on the MPI ranks of the run, core/parallel.hpp).
+// What each backend and method can do is one table (solver/backends.hpp); which one
+// solves, and how it is configured (symmetric or not, semi-definite or not, updates,
+// ordering, the options of an iterative method), is decided from LinearSolverPolicy
+// by make_linear_solver() (solver/linear_policy.cpp) and the table's rows
+// (solver/backends.cpp).
 //
 // The matrix a rank passes to factorize() is its summand: on one process the whole
 // tangent, on several ranks the terms of the elements and contact couplings that
@@ -19,6 +18,7 @@
 // non-finite x. Shapes: K is n x n (n free dofs), b and x have n entries.
 
 #include "core/types.hpp"
+#include "solver/backends.hpp"
 
 #include <memory>
 #include <string>
@@ -104,11 +104,6 @@ public:
     virtual std::string failure_detail() const { return {}; }
 };
 
-/// The backends a deck can choose (`solver.backend`).
-enum class Backend { suitesparse, petsc };
-/// Direct factorization or a preconditioned Krylov method (`solver.type`).
-enum class Method { direct, iterative };
-
 /// Everything that decides which backend and how it runs: from the deck
 /// (backend, method, options) and from the scene (the rest).
 struct LinearSolverPolicy {
@@ -132,15 +127,11 @@ struct LinearSolverPolicy {
     int block_size = 1;
 };
 
-/// The backend the policy asks for. Throws Error when the backend is not built in
-/// (petsc without PETSc), or when the suitesparse backend is asked for on several
-/// ranks (the caller maps that to the petsc backend first, see linear_policy.cpp).
+/// The solver of the table's row (solver/backends.hpp) the policy asks for. Throws
+/// Error when the backend is not built in (petsc without PETSc), when a backend that
+/// is not distributed is asked for on several ranks (the caller maps that to the
+/// distributed one first, analysis/solver_choice.cpp), or when the backend has no
+/// such method (suitesparse has no iterative one).
 std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverPolicy& policy, const Communicator& comm);
-
-/// Whether this build has the PETSc backend.
-bool petsc_available();
-
-const char* backend_name(Backend backend);
-const char* method_name(Method method);
 
 }  // namespace iga::solver

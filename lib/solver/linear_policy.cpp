@@ -1,24 +1,11 @@
 // make_linear_solver: the one place that decides which backend solves Newton's
-// systems and how (solver/linear.hpp).
-//
-// SuiteSparse (one process):
-//   - Cholesky (CHOLMOD) when every tangent is symmetric, else LU (UMFPACK):
-//     Cholesky reads one triangle and would silently solve the wrong system;
-//   - semi-definite tangents (small strain against rigid planes): a matrix Cholesky
-//     refuses is singular, and the LU that would only say so again is skipped;
-//   - nested dissection (METIS) in 3D, where it fills far less than AMD;
-//   - Woodbury updates where tangents change in a few rows (small strain + contact).
-// PETSc (any number of ranks): see solver/petsc_solver.hpp for its defaults.
+// systems (solver/linear.hpp), by the table of what each one can do
+// (solver/backends.hpp); how each is configured is its row's (solver/backends.cpp).
 
 #include "solver/linear.hpp"
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
-#include "solver/suitesparse_solver.hpp"
-
-#ifdef IGACONTACT_HAVE_PETSC
-#include "solver/petsc_solver.hpp"
-#endif
 
 namespace iga::solver {
 
@@ -33,47 +20,44 @@ const char* status_name(LinearStatus status)
     return "unknown";
 }
 
-const char* backend_name(Backend backend)
+namespace {
+
+/// A row of the backend's, for what the table says of the backend as a whole.
+const LinearMethod& any_row(Backend backend)
 {
-    return backend == Backend::petsc ? "petsc" : "suitesparse";
+    for (const LinearMethod& m : linear_methods())
+        if (m.backend == backend)
+            return m;
+    throw Error("make_linear_solver: a backend without a row in solver/backends.cpp");
 }
 
-const char* method_name(Method method)
+/// The first backend that has the method.
+std::string backend_with(Method method)
 {
-    return method == Method::iterative ? "iterative" : "direct";
+    for (const LinearMethod& m : linear_methods())
+        if (m.method == method)
+            return std::string(m.backend_name);
+    return "?";
 }
 
-bool petsc_available()
-{
-#ifdef IGACONTACT_HAVE_PETSC
-    return true;
-#else
-    return false;
-#endif
-}
+}  // namespace
 
 std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverPolicy& policy, const Communicator& comm)
 {
-    if (policy.backend == Backend::petsc) {
-#ifdef IGACONTACT_HAVE_PETSC
-        return std::make_unique<PetscSolver>(policy, comm);
-#else
-        throw Error("the petsc backend is not built into this igacontact (PETSc was not found at build time; "
-                    "scripts/setup.sh installs it)");
-#endif
-    }
-    if (comm.parallel())
-        throw Error("the suitesparse backend runs on one process; use the petsc backend on several ranks");
-    if (policy.method == Method::iterative)
-        throw Error("the suitesparse backend is direct only; an iterative method needs the petsc backend");
-    auto solver = std::make_unique<SuiteSparseSolver>(policy.symmetric ? SuiteSparseSolver::Kind::cholesky
-                                                                       : SuiteSparseSolver::Kind::lu);
-    if (policy.dim == 3)
-        solver->set_ordering(SuiteSparseSolver::Ordering::nested_dissection);
-    solver->set_semidefinite(policy.symmetric && policy.semidefinite);
-    if (policy.updates)
-        solver->set_updates(true);
-    return solver;
+    const std::string backend(backend_name(policy.backend));
+    if (!backend_available(policy.backend))
+        throw Error("the " + backend + " backend is not built into this igacontact (" +
+                    std::string(any_row(policy.backend).build_hint) + ")");
+    if (comm.parallel() && !backend_distributed(policy.backend))
+        throw Error("the " + backend + " backend runs on one process; use the " +
+                    std::string(backend_name(distributed_backend())) + " backend on several ranks");
+    const LinearMethod* method = find_linear_method(policy.backend, policy.method, policy.symmetric);
+    if (!method)
+        throw Error("the " + backend + " backend is " +
+                    (policy.method == Method::iterative ? "direct only; an iterative method"
+                                                        : "iterative only; a direct method") +
+                    " needs the " + backend_with(policy.method) + " backend");
+    return method->make(policy, comm);
 }
 
 }  // namespace iga::solver

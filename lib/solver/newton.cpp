@@ -190,20 +190,63 @@ LinearFailure linear_failure(LinearStatus status, const LinearSolver& solver)
     return {NewtonStatus::singular, "the tangent is singular" + seen};
 }
 
-}  // namespace
+/// What a step of Newton hands back: go on, or the solve has finished (its report is final).
+enum class Progress { going_on, finished };
 
-const char* status_name(NewtonStatus status)
-{
-    switch (status) {
-    case NewtonStatus::converged: return "converged";
-    case NewtonStatus::max_iterations: return "max_iterations";
-    case NewtonStatus::diverged: return "diverged";
-    case NewtonStatus::singular: return "singular";
-    case NewtonStatus::linear_solver_not_converged: return "linear_solver_not_converged";
-    case NewtonStatus::evaluation_failed: return "evaluation_failed";
+/// The line search along a Newton direction du from u (the header's "Line search"):
+/// the full step when it lowers ||r|| enough, else the root of the directional
+/// residual (slope_root), else backtracking on ||r|| (backtrack). `trial` holds the
+/// evaluation at u + du, with the tangent; `probe` is the storage for shorter steps.
+class LineSearch {
+public:
+    struct Result {
+        double alpha = 1.0;
+        Evaluation* chosen = nullptr;  ///< the evaluation at u + alpha du: &trial or &probe
+        bool chosen_has_tangent = true;
+        /// No acceptable state along du: how Newton ends, and why.
+        bool failed = false;
+        NewtonStatus status = NewtonStatus::converged;
+        std::string message;
+    };
+
+    LineSearch(const NonlinearSystem& system, double load_factor, const NewtonSettings& settings,
+               RunContext* context, NewtonReport& report)
+        : system_(system), load_factor_(load_factor), settings_(settings), context_(context), report_(report)
+    {
     }
-    return "unknown";
-}
+
+    /// r_norm: ||r(u)||; new_norm: ||r(u + du)|| (infinite when not finite or not admissible).
+    Result search(const Vector& u, const Vector& du, double r_norm, double new_norm, const Evaluation& current,
+                  Evaluation& trial, Evaluation& probe, int iteration) const
+    {
+        Result result;
+        result.chosen = &trial;
+        if (new_norm <= (1.0 - armijo) * r_norm)
+            return result;  // the full step
+        if (slope_root(u, du, current, trial, probe, result.alpha)) {
+            // The root of s(alpha) = du . r(u + alpha du) was found (or the full step is still
+            // downhill): the step length that balances the forces along du.
+            if (result.alpha != 1.0) {
+                result.chosen = &probe;
+                result.chosen_has_tangent = false;
+            }
+            return result;
+        }
+        return backtrack(u, du, r_norm, new_norm, trial, probe, iteration);
+    }
+
+private:
+    bool slope_root(const Vector& u, const Vector& du, const Evaluation& current, const Evaluation& trial,
+                    Evaluation& probe, double& alpha) const;
+    Result backtrack(const Vector& u, const Vector& du, double r_norm, double new_norm, Evaluation& trial,
+                     Evaluation& probe, int iteration) const;
+
+    const NonlinearSystem& system_;
+    double load_factor_;
+    const NewtonSettings& settings_;
+    RunContext* context_;
+    NewtonReport& report_;  ///< counts the evaluations (line_search_cuts) and the inadmissible trials
+};
 
 /// Line search on the directional residual s(alpha) = du . r(u + alpha du)
 /// (Crisfield, "Non-linear Finite Element Analysis of Solids and Structures",
@@ -215,12 +258,11 @@ const char* status_name(NewtonStatus status)
 /// balance the load along du. Regula falsi with the Illinois modification and a
 /// bisection safeguard, within settings.max_backtracks evaluations; accepts
 /// |s(alpha)| <= 0.1 |s(0)|.
-/// Returns false (caller falls back to backtracking on ||r||) when du is not a
+/// Returns false (the caller falls back to backtracking on ||r||) when du is not a
 /// descent direction (s(0) >= 0) or s(1) is not finite. On success `alpha` is set
 /// and, when alpha != 1, `probe` holds the evaluation at u + alpha du.
-static bool directional_search(const NonlinearSystem& system, const Vector& u, const Vector& du, double load_factor,
-                        const Evaluation& current, const Evaluation& trial, Evaluation& probe,
-                        const NewtonSettings& settings, RunContext* context, NewtonReport& report, double& alpha)
+bool LineSearch::slope_root(const Vector& u, const Vector& du, const Evaluation& current, const Evaluation& trial,
+                            Evaluation& probe, double& alpha) const
 {
     const double s0 = du.dot(current.residual);
     if (!(s0 < 0.0) || !trial.ok || !trial.residual.allFinite())
@@ -239,7 +281,7 @@ static bool directional_search(const NonlinearSystem& system, const Vector& u, c
     double a = 0.0, sa = s0, b = 1.0, sb = s1;
     int retained = 0;  // which end was kept last: -1 left, +1 right
     std::vector<double> width{b - a};  // the bracket's width after each step
-    for (int k = 0; k < settings.max_backtracks; ++k) {
+    for (int k = 0; k < settings_.max_backtracks; ++k) {
         double c = b - sb * (b - a) / (sb - sa);
         // Regula falsi creeps from one end when s is strongly curved (a penalty that
         // stiffens by orders of magnitude along the step: s(0) = -1e-2, s(1) = +1e2).
@@ -247,10 +289,10 @@ static bool directional_search(const NonlinearSystem& system, const Vector& u, c
         // it spans decades, as the root of a first touch may lie anywhere in 1e-4..1.
         if (width.size() >= 3 && b - a > 0.5 * width[width.size() - 3])
             c = (a > 0.0 && b > 4.0 * a) ? std::sqrt(a * b) : 0.5 * (a + b);
-        ++report.line_search_cuts;
-        evaluate(system, u + c * du, load_factor, false, probe, context);
+        ++report_.line_search_cuts;
+        evaluate(system_, u + c * du, load_factor_, false, probe, context_);
         if (!probe.ok || !probe.residual.allFinite()) {
-            ++report.inadmissible_trials;
+            ++report_.inadmissible_trials;
             return false;
         }
         const double sc = du.dot(probe.residual);
@@ -276,6 +318,399 @@ static bool directional_search(const NonlinearSystem& system, const Vector& u, c
     return false;
 }
 
+/// Armijo backtracking on ||r||: halve alpha until ||r(u + alpha du)|| <= (1 - 1e-4 alpha)
+/// ||r(u)||, at most max_backtracks times; if none passes, the finite trial with the
+/// smallest ||r|| (ties to the longer step). Fails when no trial is finite.
+LineSearch::Result LineSearch::backtrack(const Vector& u, const Vector& du, double r_norm, double new_norm,
+                                         Evaluation& trial, Evaluation& probe, int iteration) const
+{
+    double alpha = 1.0;
+    double best_alpha = std::isfinite(new_norm) ? 1.0 : 0.0;
+    double best_norm = new_norm;
+    bool best_is_probe = false;  // the best trial is the one held in `probe`
+    bool accepted = false;
+    std::string failure_message = trial.ok ? std::string() : trial.message;
+    for (int cut = 1; cut <= settings_.max_backtracks; ++cut) {
+        alpha *= 0.5;
+        ++report_.line_search_cuts;
+        evaluate(system_, u + alpha * du, load_factor_, false, probe, context_);
+        if (!probe.ok) {
+            failure_message = probe.message;
+            ++report_.inadmissible_trials;
+        }
+        const double probe_norm = finite_norm_or_inf(probe);
+        if (probe_norm <= (1.0 - armijo * alpha) * r_norm) {
+            accepted = true;
+            best_alpha = alpha;
+            best_norm = probe_norm;
+            best_is_probe = true;
+            break;
+        }
+        if (probe_norm < best_norm) {  // strict: ties keep the longer step
+            best_alpha = alpha;
+            best_norm = probe_norm;
+            best_is_probe = true;
+        } else {
+            best_is_probe = false;  // `probe` now holds a worse trial than the best
+        }
+    }
+
+    Result result;
+    const std::string at = "iteration " + std::to_string(iteration);
+    if (!std::isfinite(best_norm)) {
+        result.failed = true;
+        result.status = failure_message.empty() ? NewtonStatus::diverged : NewtonStatus::evaluation_failed;
+        result.message = failure_message.empty()
+                             ? at + ": no finite residual along the Newton direction"
+                             : at + ": evaluation failed along the whole line search: " + failure_message;
+        return result;
+    }
+    result.alpha = best_alpha;
+    if (best_alpha == 1.0) {
+        result.chosen = &trial;
+        return result;
+    }
+    result.chosen = &probe;
+    result.chosen_has_tangent = false;
+    if (!accepted && !best_is_probe) {  // `probe` holds a later, worse trial: evaluate the best again
+        evaluate(system_, u + best_alpha * du, load_factor_, false, probe, context_);
+        if (!probe.ok) {  // it evaluated fine a moment ago: a non-deterministic evaluate
+            result.failed = true;
+            result.status = NewtonStatus::evaluation_failed;
+            result.message = at + ": evaluation failed: " + probe.message;
+        }
+    }
+    return result;
+}
+
+/// One call of solve_newton: the state of the iteration, and its steps as members.
+class NewtonSolve {
+public:
+    NewtonSolve(const NonlinearSystem& system, double load_factor, Vector& u, const NewtonSettings& settings,
+                LinearSolver& solver, RunContext* context)
+        : system_(system),
+          load_factor_(load_factor),
+          u_(u),
+          u_start_(u),
+          settings_(settings),
+          solver_(solver),
+          context_(context),
+          line_search_(system, load_factor, settings, context, report_)
+    {
+    }
+
+    /// Newton's method: from the start state, one solve for an affine system, else
+    /// iterations until the convergence test passes or a step fails.
+    NewtonReport run()
+    {
+        if (evaluate_start() == Progress::finished)
+            return report_;
+        if (system_.linear) {
+            solve_affine();
+            return report_;
+        }
+        for (int iteration = 1; iteration <= settings_.max_iterations; ++iteration)
+            if (iterate(iteration) == Progress::finished)
+                return report_;
+        finish(NewtonStatus::max_iterations, "no convergence in " + std::to_string(settings_.max_iterations) +
+                                                 " iterations; last relative residual " + format_g(rel_) +
+                                                 tolerance_text());
+        return report_;
+    }
+
+private:
+    Progress evaluate_start();
+    void solve_affine();
+    Progress iterate(int iteration);
+    Progress evaluate_tangent(int iteration);
+    StepResult solve_step(Vector& du);
+    void cap_step(Vector& du) const;
+    Progress try_full_step(const Vector& du, int iteration, double& new_norm);
+    void accept(const LineSearch::Result& line, Vector u_new);
+    void record_residual(const Evaluation& e, double rel);
+    void log_iteration(int iteration, double step_size, double alpha, const StepResult& step) const;
+    Progress test_convergence(int iteration, double correction);
+    Progress finish(NewtonStatus status, std::string message);
+    std::string tolerance_text() const { return " (tolerance " + format_g(settings_.tolerance) + ")"; }
+
+    const NonlinearSystem& system_;
+    double load_factor_;
+    Vector& u_;
+    const Vector u_start_;  ///< restored on failure
+    const NewtonSettings& settings_;
+    LinearSolver& solver_;
+    RunContext* context_;
+    NewtonReport report_;
+    LineSearch line_search_;
+
+    Evaluation current_;  ///< at u_
+    Evaluation trial_;    ///< at the full step u_ + du, with the tangent
+    Evaluation probe_;    ///< at a shorter step, without
+    double r_norm_ = 0;   ///< ||r(u_)||
+    double rel_ = 0;      ///< ||r(u_)|| / force scale
+    double r_initial_ = 0;
+    bool have_tangent_ = true;        ///< current_ holds the tangent at u_
+    bool previous_at_floor_ = false;  ///< the last iteration ended at the round-off floor
+};
+
+Progress NewtonSolve::finish(NewtonStatus status, std::string message)
+{
+    if (status != NewtonStatus::converged)
+        u_ = u_start_;
+    report_.status = status;
+    if (!system_.linear && status == NewtonStatus::max_iterations)
+        message += "; " + cause_text(report_);
+    report_.message = std::move(message);
+    return Progress::finished;
+}
+
+void NewtonSolve::record_residual(const Evaluation& e, double rel)
+{
+    report_.residual_history.push_back(rel);
+    report_.floor_history.push_back(relative(e.residual_floor, e.force_scale));
+    report_.residual_norm = rel;
+}
+
+/// The residual and tangent at the start state; finished when it fails or already converged.
+Progress NewtonSolve::evaluate_start()
+{
+    evaluate(system_, u_, load_factor_, true, current_, context_);
+    if (!current_.ok)
+        return finish(NewtonStatus::evaluation_failed, "evaluation failed at the start state: " + current_.message);
+    r_norm_ = current_.residual.norm();
+    if (!std::isfinite(r_norm_))
+        return finish(NewtonStatus::diverged, "residual is not finite at the start state");
+    rel_ = relative(r_norm_, current_.force_scale);
+    record_residual(current_, rel_);
+    if (rel_ <= settings_.tolerance)
+        return finish(NewtonStatus::converged,
+                      "converged at the start state (relative residual " + format_g(rel_) + ")");
+    r_initial_ = r_norm_;
+    return Progress::going_on;
+}
+
+/// An affine system: r(u + du) = r(u) + K du, so the refinement below needs the
+/// system's residuals, not K; the tangent is handed to the solver (a copying
+/// backend would otherwise hold it twice while it factorizes).
+/// An iterative solver is asked for what the tolerance needs in one solve, not
+/// for its own 1e-8 and a refinement solve, which would restart its Krylov method.
+void NewtonSolve::solve_affine()
+{
+    Vector du;
+    const StepResult step = newton_step(current_.tangent, current_.residual, solver_, context_, du, true, false,
+                                        accuracy_needed(settings_.tolerance, r_norm_, current_.force_scale));
+    if (step.status != LinearStatus::ok) {
+        const LinearFailure failure = linear_failure(step.status, solver_);
+        finish(failure.status, failure.text + ", even with regularization up to mu = " + format_g(largest_mu()));
+        return;
+    }
+    report_.regularized_iterations = step.regularized ? 1 : 0;
+    report_.last_step_regularized = step.regularized;
+    report_.krylov_stopped = step.krylov_stopped;
+    auto residual_at = [&](const Vector& state) {
+        evaluate(system_, state, load_factor_, false, trial_, context_);
+        return trial_.ok ? relative(trial_.residual.norm(), trial_.force_scale) : NAN;
+    };
+    u_ += du;
+    double rel = residual_at(u_);
+    for (int k = 0; k < max_refinements && trial_.ok && !(rel <= settings_.tolerance); ++k) {
+        Vector correction;
+        {
+            ScopedTimer timer(context_, "linear_solve");
+            if (solver_.solve_to(-trial_.residual, correction,
+                                 accuracy_needed(settings_.tolerance, trial_.residual.norm(), trial_.force_scale)) !=
+                LinearStatus::ok)
+                break;
+        }
+        u_ += correction;
+        rel = residual_at(u_);
+    }
+    if (!trial_.ok) {
+        finish(NewtonStatus::evaluation_failed, "evaluation failed after the linear solve: " + trial_.message);
+        return;
+    }
+    report_.iterations = 1;
+    if (context_)
+        context_->add_count("newton_iterations", 1);
+    record_residual(trial_, rel);
+    if (rel <= settings_.tolerance)
+        finish(NewtonStatus::converged, "linear solve, relative residual " + format_g(rel));
+    else if (trial_.residual_floor > 0 && trial_.residual.norm() <= round_off_margin * trial_.residual_floor)
+        finish(NewtonStatus::converged, "linear solve, relative residual " + format_g(rel) +
+                                            " at its round-off floor " + format_g(report_.floor_history.back()) +
+                                            tolerance_text());
+    else if (step.krylov_stopped)  // the shift was what it could solve, not what the system is
+        finish(NewtonStatus::linear_solver_not_converged,
+               "the linear solver did not converge" +
+                   (step.krylov_detail.empty() ? std::string() : " (" + step.krylov_detail + ")") +
+                   "; on the tangent shifted by mu = " + format_g(step.mu) + " it did, but that leaves a relative residual " +
+                   format_g(rel) + tolerance_text());
+    else
+        finish(NewtonStatus::max_iterations, "linear solve left a relative residual " + format_g(rel) +
+                                                 tolerance_text() + ": the tangent is singular or ill-conditioned");
+}
+
+/// One Newton iteration: the tangent, the step K du = -r solved to the accuracy it
+/// needs, the trust-radius cap, the line search, and the convergence test.
+Progress NewtonSolve::iterate(int iteration)
+{
+    if (!have_tangent_ && evaluate_tangent(iteration) == Progress::finished)
+        return Progress::finished;
+
+    Vector du;
+    const StepResult step = solve_step(du);
+    if (step.status != LinearStatus::ok) {
+        const LinearFailure failure = linear_failure(step.status, solver_);
+        return finish(failure.status, "iteration " + std::to_string(iteration) + ": " + failure.text +
+                                          ", even with regularization up to mu = " + format_g(largest_mu()) +
+                                          "; last relative residual " + format_g(rel_) + tolerance_text());
+    }
+    if (step.regularized)
+        ++report_.regularized_iterations;
+    report_.last_step_regularized = step.regularized;
+    report_.krylov_stopped = step.krylov_stopped;
+    cap_step(du);
+
+    double new_norm = 0;
+    if (try_full_step(du, iteration, new_norm) == Progress::finished)
+        return Progress::finished;
+    LineSearch::Result line;
+    line.chosen = &trial_;
+    if (settings_.line_search) {
+        line = line_search_.search(u_, du, r_norm_, new_norm, current_, trial_, probe_, iteration);
+        if (line.failed)
+            return finish(line.status, std::move(line.message));
+    }
+
+    const double correction = du.lpNorm<Eigen::Infinity>();  // the full Newton correction (capped)
+    const double step_size = line.alpha * correction;
+    accept(line, u_ + line.alpha * du);
+    report_.iterations = iteration;
+    if (context_)
+        context_->add_count("newton_iterations", 1);
+    log_iteration(iteration, step_size, line.alpha, step);
+    return test_convergence(iteration, correction);
+}
+
+/// The tangent at u_, when the accepted state came without it (a shortened step).
+Progress NewtonSolve::evaluate_tangent(int iteration)
+{
+    current_.tangent.swap(trial_.tangent);  // the rejected full step's tangent: its storage, not a second one
+    evaluate(system_, u_, load_factor_, true, current_, context_);
+    if (!current_.ok)
+        return finish(NewtonStatus::evaluation_failed,
+                      "iteration " + std::to_string(iteration) + ": evaluation failed: " + current_.message);
+    have_tangent_ = true;
+    return Progress::going_on;
+}
+
+/// K du = -r, to the accuracy the tolerance asks of this step (or newton_linear_accuracy).
+/// The tangent is handed to the solver: neither Newton nor the trial needs it, and a
+/// copying solver would hold it twice while it factorizes.
+StepResult NewtonSolve::solve_step(Vector& du)
+{
+    const double needed = accuracy_needed(settings_.tolerance, r_norm_, current_.force_scale);
+    const double accuracy = needed * last_step_reach >= newton_linear_accuracy ? needed : newton_linear_accuracy;
+    return newton_step(current_.tangent, current_.residual, solver_, context_, du, true, current_.singular_tangent,
+                       accuracy);
+}
+
+/// The trust radius: ||du||_inf <= system.max_step.
+void NewtonSolve::cap_step(Vector& du) const
+{
+    if (system_.max_step > 0) {
+        const double size = du.lpNorm<Eigen::Infinity>();
+        if (size > system_.max_step)
+            du *= system_.max_step / size;
+    }
+}
+
+/// The full step, with the tangent: it is accepted most of the time, and then the next
+/// iteration needs no second assembly. Without a line search an inadmissible or
+/// non-finite full step ends the solve.
+Progress NewtonSolve::try_full_step(const Vector& du, int iteration, double& new_norm)
+{
+    evaluate(system_, u_ + du, load_factor_, true, trial_, context_);
+    new_norm = finite_norm_or_inf(trial_);
+    if (!trial_.ok) {
+        ++report_.inadmissible_trials;
+        if (context_ && settings_.line_search)
+            context_->log(Verbosity::verbose, "  newton " + std::to_string(iteration) +
+                                                  ": full step inadmissible, backing off (" + trial_.message + ")");
+    }
+    if (settings_.line_search)
+        return Progress::going_on;
+    if (!trial_.ok)
+        return finish(NewtonStatus::evaluation_failed,
+                      "iteration " + std::to_string(iteration) + ": evaluation failed: " + trial_.message);
+    if (!std::isfinite(new_norm))
+        return finish(NewtonStatus::diverged, "iteration " + std::to_string(iteration) + ": residual is not finite");
+    return Progress::going_on;
+}
+
+/// Moves to the state the line search chose and records its residual.
+void NewtonSolve::accept(const LineSearch::Result& line, Vector u_new)
+{
+    u_ = std::move(u_new);
+    swap(current_, *line.chosen);  // member-wise (newton.hpp)
+    have_tangent_ = line.chosen_has_tangent;
+    r_norm_ = current_.residual.norm();
+    rel_ = relative(r_norm_, current_.force_scale);
+    record_residual(current_, rel_);
+    report_.norm_ratio = r_norm_ / r_initial_;
+}
+
+void NewtonSolve::log_iteration(int iteration, double step_size, double alpha, const StepResult& step) const
+{
+    if (context_)
+        context_->log(Verbosity::verbose, "  newton " + std::to_string(iteration) + ": relative residual " +
+                                              format_g(rel_) + " (floor " + format_g(report_.floor_history.back()) +
+                                              "), step " + format_g(step_size) +
+                                              (alpha < 1.0 ? ", alpha " + format_g(alpha) : std::string()) +
+                                              (step.regularized ? ", regularized mu " + format_g(step.mu)
+                                                                : std::string()));
+}
+
+/// Divergence, then the convergence tests of the header: the tolerance, or the
+/// round-off floor with a small correction (once, or twice in a row for a stall).
+Progress NewtonSolve::test_convergence(int iteration, double correction)
+{
+    if (!std::isfinite(r_norm_) || r_norm_ > settings_.divergence_factor * r_initial_)
+        return finish(NewtonStatus::diverged, "iteration " + std::to_string(iteration) + ": residual grew to " +
+                                                  format_g(r_norm_ / r_initial_) + " times the initial one");
+    if (rel_ <= settings_.tolerance)
+        return finish(NewtonStatus::converged, "converged in " + std::to_string(iteration) +
+                                                   " iterations, relative residual " + format_g(rel_));
+    const double u_size = u_.lpNorm<Eigen::Infinity>();
+    report_.correction = u_size > 0 ? correction / u_size : std::numeric_limits<double>::infinity();
+    const bool at_floor = r_norm_ <= round_off_margin * current_.residual_floor;
+    const bool stalled = at_floor && previous_at_floor_ && correction <= stalled_correction_tolerance * u_size;
+    previous_at_floor_ = at_floor;
+    if ((at_floor && correction <= correction_tolerance * u_size) || stalled)
+        return finish(NewtonStatus::converged, "converged in " + std::to_string(iteration) +
+                                                   " iterations at round-off: relative residual " + format_g(rel_) +
+                                                   tolerance_text() + " within " + format_g(round_off_margin) +
+                                                   " of its round-off floor " +
+                                                   format_g(report_.floor_history.back()) + ", correction " +
+                                                   format_g(report_.correction) + " of u");
+    return Progress::going_on;
+}
+
+}  // namespace
+
+const char* status_name(NewtonStatus status)
+{
+    switch (status) {
+    case NewtonStatus::converged: return "converged";
+    case NewtonStatus::max_iterations: return "max_iterations";
+    case NewtonStatus::diverged: return "diverged";
+    case NewtonStatus::singular: return "singular";
+    case NewtonStatus::linear_solver_not_converged: return "linear_solver_not_converged";
+    case NewtonStatus::evaluation_failed: return "evaluation_failed";
+    }
+    return "unknown";
+}
+
 NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vector& u,
                           const NewtonSettings& settings, LinearSolver& solver, RunContext* context)
 {
@@ -284,263 +719,7 @@ NewtonReport solve_newton(const NonlinearSystem& system, double load_factor, Vec
                   settings.divergence_factor > 1,
               "solve_newton: settings out of range (tolerance > 0, max_iterations >= 1, "
               "max_backtracks >= 0, divergence_factor > 1)");
-
-    NewtonReport report;
-    const Vector u_start = u;
-    auto finish = [&](NewtonStatus status, std::string message) {
-        if (status != NewtonStatus::converged)
-            u = u_start;
-        report.status = status;
-        if (!system.linear && status == NewtonStatus::max_iterations)
-            message += "; " + cause_text(report);
-        report.message = std::move(message);
-        return report;
-    };
-    auto tolerance_text = [&] { return " (tolerance " + format_g(settings.tolerance) + ")"; };
-
-    Evaluation current, trial, probe;
-    evaluate(system, u, load_factor, true, current, context);
-    if (!current.ok)
-        return finish(NewtonStatus::evaluation_failed, "evaluation failed at the start state: " + current.message);
-    double r_norm = current.residual.norm();
-    if (!std::isfinite(r_norm))
-        return finish(NewtonStatus::diverged, "residual is not finite at the start state");
-    double rel = relative(r_norm, current.force_scale);
-    report.residual_history.push_back(rel);
-    report.floor_history.push_back(relative(current.residual_floor, current.force_scale));
-    report.residual_norm = rel;
-    if (rel <= settings.tolerance)
-        return finish(NewtonStatus::converged, "converged at the start state (relative residual " + format_g(rel) +
-                                                   ")");
-    const double r_initial = r_norm;
-    bool have_tangent = true;
-
-    if (system.linear) {
-        // An affine system: r(u + du) = r(u) + K du, so the refinement below needs the
-        // system's residuals, not K; the tangent is handed to the solver (a copying
-        // backend would otherwise hold it twice while it factorizes).
-        // An iterative solver is asked for what the tolerance needs in one solve, not
-        // for its own 1e-8 and a refinement solve, which would restart its Krylov method.
-        Vector du;
-        const StepResult step = newton_step(current.tangent, current.residual, solver, context, du, true, false,
-                                            accuracy_needed(settings.tolerance, r_norm, current.force_scale));
-        if (step.status != LinearStatus::ok) {
-            const LinearFailure failure = linear_failure(step.status, solver);
-            return finish(failure.status,
-                          failure.text + ", even with regularization up to mu = " + format_g(largest_mu()));
-        }
-        report.regularized_iterations = step.regularized ? 1 : 0;
-        report.last_step_regularized = step.regularized;
-        report.krylov_stopped = step.krylov_stopped;
-        auto residual_at = [&](const Vector& state) {
-            evaluate(system, state, load_factor, false, trial, context);
-            return trial.ok ? relative(trial.residual.norm(), trial.force_scale) : NAN;
-        };
-        u += du;
-        rel = residual_at(u);
-        for (int k = 0; k < max_refinements && trial.ok && !(rel <= settings.tolerance); ++k) {
-            Vector correction;
-            {
-                ScopedTimer timer(context, "linear_solve");
-                if (solver.solve_to(-trial.residual, correction,
-                                    accuracy_needed(settings.tolerance, trial.residual.norm(), trial.force_scale)) !=
-                    LinearStatus::ok)
-                    break;
-            }
-            u += correction;
-            rel = residual_at(u);
-        }
-        if (!trial.ok)
-            return finish(NewtonStatus::evaluation_failed, "evaluation failed after the linear solve: " + trial.message);
-        report.iterations = 1;
-        if (context)
-            context->add_count("newton_iterations", 1);
-        report.residual_history.push_back(rel);
-        report.floor_history.push_back(relative(trial.residual_floor, trial.force_scale));
-        report.residual_norm = rel;
-        if (rel <= settings.tolerance)
-            return finish(NewtonStatus::converged, "linear solve, relative residual " + format_g(rel));
-        if (trial.residual_floor > 0 && trial.residual.norm() <= round_off_margin * trial.residual_floor)
-            return finish(NewtonStatus::converged, "linear solve, relative residual " + format_g(rel) +
-                                                       " at its round-off floor " +
-                                                       format_g(report.floor_history.back()) + tolerance_text());
-        if (step.krylov_stopped)  // the shift was what it could solve, not what the system is
-            return finish(NewtonStatus::linear_solver_not_converged,
-                          "the linear solver did not converge" +
-                              (step.krylov_detail.empty() ? std::string() : " (" + step.krylov_detail + ")") +
-                              "; on the tangent shifted by mu = " + format_g(step.mu) +
-                              " it did, but that leaves a relative residual " + format_g(rel) + tolerance_text());
-        return finish(NewtonStatus::max_iterations, "linear solve left a relative residual " + format_g(rel) +
-                                                        tolerance_text() + ": the tangent is singular or ill-conditioned");
-    }
-
-    bool previous_at_floor = false;  // the last iteration ended at the round-off floor
-    for (int iteration = 1; iteration <= settings.max_iterations; ++iteration) {
-        if (!have_tangent) {
-            current.tangent.swap(trial.tangent);  // the rejected full step's tangent: its storage, not a second one
-            evaluate(system, u, load_factor, true, current, context);
-            if (!current.ok)
-                return finish(NewtonStatus::evaluation_failed,
-                              "iteration " + std::to_string(iteration) + ": evaluation failed: " + current.message);
-            have_tangent = true;
-        }
-
-        Vector du;
-        // The tangent is handed to the solver: neither Newton nor the trial below needs it,
-        // and a copying solver would hold it twice while it factorizes.
-        const double needed = accuracy_needed(settings.tolerance, r_norm, current.force_scale);
-        const double accuracy = needed * last_step_reach >= newton_linear_accuracy ? needed : newton_linear_accuracy;
-        const StepResult step = newton_step(current.tangent, current.residual, solver, context, du, true,
-                                            current.singular_tangent, accuracy);
-        if (step.status != LinearStatus::ok) {
-            const LinearFailure failure = linear_failure(step.status, solver);
-            return finish(failure.status, "iteration " + std::to_string(iteration) + ": " + failure.text +
-                                              ", even with regularization up to mu = " + format_g(largest_mu()) +
-                                              "; last relative residual " + format_g(rel) + tolerance_text());
-        }
-        if (step.regularized)
-            ++report.regularized_iterations;
-        report.last_step_regularized = step.regularized;
-        report.krylov_stopped = step.krylov_stopped;
-        if (system.max_step > 0) {
-            const double size = du.lpNorm<Eigen::Infinity>();
-            if (size > system.max_step)
-                du *= system.max_step / size;
-        }
-
-        // Full step, with the tangent: it is accepted most of the time, and then
-        // the next iteration needs no second assembly.
-        double alpha = 1.0;
-        Vector u_new = u + du;
-        evaluate(system, u_new, load_factor, true, trial, context);
-        double new_norm = finite_norm_or_inf(trial);
-        if (!trial.ok) {
-            ++report.inadmissible_trials;
-            if (context && settings.line_search)
-                context->log(Verbosity::verbose, "  newton " + std::to_string(iteration) +
-                                                     ": full step inadmissible, backing off (" + trial.message + ")");
-        }
-        Evaluation* chosen = &trial;
-        bool chosen_has_tangent = true;
-
-        if (!settings.line_search) {
-            if (!trial.ok)
-                return finish(NewtonStatus::evaluation_failed,
-                              "iteration " + std::to_string(iteration) + ": evaluation failed: " + trial.message);
-            if (!std::isfinite(new_norm))
-                return finish(NewtonStatus::diverged,
-                              "iteration " + std::to_string(iteration) + ": residual is not finite");
-        } else if (!(new_norm <= (1.0 - armijo) * r_norm) &&
-                   directional_search(system, u, du, load_factor, current, trial, probe, settings, context,
-                                      report, alpha)) {
-            // The root of s(alpha) = du . r(u + alpha du) was found (or the full step is still
-            // downhill): the step length that balances the forces along du.
-            u_new = u + alpha * du;
-            if (alpha != 1.0) {
-                chosen = &probe;
-                chosen_has_tangent = false;
-            }
-        } else if (!(new_norm <= (1.0 - armijo) * r_norm)) {
-            double best_alpha = std::isfinite(new_norm) ? 1.0 : 0.0;
-            double best_norm = new_norm;
-            bool best_is_probe = false;  // the best trial is the one held in `probe`
-            bool accepted = false;
-            std::string failure_message = trial.ok ? std::string() : trial.message;
-            for (int cut = 1; cut <= settings.max_backtracks; ++cut) {
-                alpha *= 0.5;
-                ++report.line_search_cuts;
-                evaluate(system, u + alpha * du, load_factor, false, probe, context);
-                if (!probe.ok) {
-                    failure_message = probe.message;
-                    ++report.inadmissible_trials;
-                }
-                const double probe_norm = finite_norm_or_inf(probe);
-                if (probe_norm <= (1.0 - armijo * alpha) * r_norm) {
-                    accepted = true;
-                    best_alpha = alpha;
-                    best_norm = probe_norm;
-                    best_is_probe = true;
-                    break;
-                }
-                if (probe_norm < best_norm) {  // strict: ties keep the longer step
-                    best_alpha = alpha;
-                    best_norm = probe_norm;
-                    best_is_probe = true;
-                } else {
-                    best_is_probe = false;  // `probe` now holds a worse trial than the best
-                }
-            }
-            if (!std::isfinite(best_norm)) {
-                if (!failure_message.empty())
-                    return finish(NewtonStatus::evaluation_failed, "iteration " + std::to_string(iteration) +
-                                                                       ": evaluation failed along the whole line "
-                                                                       "search: " +
-                                                                       failure_message);
-                return finish(NewtonStatus::diverged, "iteration " + std::to_string(iteration) +
-                                                          ": no finite residual along the Newton direction");
-            }
-            alpha = best_alpha;
-            u_new = u + alpha * du;
-            if (alpha == 1.0) {
-                chosen = &trial;
-            } else if (accepted || best_is_probe) {
-                chosen = &probe;
-                chosen_has_tangent = false;
-            } else {
-                evaluate(system, u_new, load_factor, false, probe, context);
-                chosen = &probe;
-                chosen_has_tangent = false;
-                if (!probe.ok)  // it evaluated fine a moment ago: a non-deterministic evaluate
-                    return finish(NewtonStatus::evaluation_failed, "iteration " + std::to_string(iteration) +
-                                                                       ": evaluation failed: " + probe.message);
-            }
-        }
-
-        const double correction = du.lpNorm<Eigen::Infinity>();  // the full Newton correction (capped)
-        const double step_size = alpha * correction;
-        u = std::move(u_new);
-        swap(current, *chosen);  // member-wise (newton.hpp)
-        have_tangent = chosen_has_tangent;
-        report.iterations = iteration;
-        if (context)
-            context->add_count("newton_iterations", 1);
-
-        r_norm = current.residual.norm();
-        rel = relative(r_norm, current.force_scale);
-        report.residual_history.push_back(rel);
-        report.floor_history.push_back(relative(current.residual_floor, current.force_scale));
-        report.norm_ratio = r_norm / r_initial;
-        report.residual_norm = rel;
-        if (context)
-            context->log(Verbosity::verbose, "  newton " + std::to_string(iteration) + ": relative residual " +
-                                                 format_g(rel) + " (floor " + format_g(report.floor_history.back()) +
-                                                 "), step " + format_g(step_size) +
-                                                 (alpha < 1.0 ? ", alpha " + format_g(alpha) : std::string()) +
-                                                 (step.regularized ? ", regularized mu " + format_g(step.mu)
-                                                                   : std::string()));
-
-        if (!std::isfinite(r_norm) || r_norm > settings.divergence_factor * r_initial)
-            return finish(NewtonStatus::diverged, "iteration " + std::to_string(iteration) + ": residual grew to " +
-                                                      format_g(r_norm / r_initial) + " times the initial one");
-        if (rel <= settings.tolerance)
-            return finish(NewtonStatus::converged, "converged in " + std::to_string(iteration) +
-                                                       " iterations, relative residual " + format_g(rel));
-        const double u_size = u.lpNorm<Eigen::Infinity>();
-        report.correction = u_size > 0 ? correction / u_size : std::numeric_limits<double>::infinity();
-        const bool at_floor = r_norm <= round_off_margin * current.residual_floor;
-        const bool stalled = at_floor && previous_at_floor && correction <= stalled_correction_tolerance * u_size;
-        previous_at_floor = at_floor;
-        if ((at_floor && correction <= correction_tolerance * u_size) || stalled)
-            return finish(NewtonStatus::converged, "converged in " + std::to_string(iteration) +
-                                                       " iterations at round-off: relative residual " + format_g(rel) +
-                                                       tolerance_text() + " within " + format_g(round_off_margin) +
-                                                       " of its round-off floor " +
-                                                       format_g(report.floor_history.back()) + ", correction " +
-                                                       format_g(report.correction) + " of u");
-    }
-    return finish(NewtonStatus::max_iterations, "no convergence in " + std::to_string(settings.max_iterations) +
-                                                    " iterations; last relative residual " + format_g(rel) +
-                                                    tolerance_text());
+    return NewtonSolve(system, load_factor, u, settings, solver, context).run();
 }
 
 }  // namespace iga::solver

@@ -171,6 +171,69 @@ struct PetscSolver::State {
     }
     Mat operator_matrix() const { return op ? op : A; }
 
+    // A new matrix for the pattern of M (this rank's summand, compressed), rows
+    // [first_row, last_row) owned here, in blocks of bs; the vectors and the scatter
+    // that gathers a solution on every rank.
+    void create_matrix(const SparseMatrix& M, PetscInt bs, PetscInt first_row, PetscInt last_row, bool by_rows)
+    {
+        n = static_cast<PetscInt>(M.rows());
+        const Index nnz = M.nonZeros();
+        first = first_row;
+        last = last_row;
+        outer.assign(M.outerIndexPtr(), M.outerIndexPtr() + n + 1);
+        inner.assign(M.innerIndexPtr(), M.innerIndexPtr() + nnz);
+        // COO: the summand's entries, then every owned diagonal. A symmetric K's columns
+        // are its rows, so they are listed as rows (by_rows): PETSc's COO set-up sorts
+        // entries given in row order 2.3x faster (118k dofs: 1.9 against 4.5 s). (What
+        // PETSc then holds is the summand's transpose, equal to it where K is symmetric.)
+        const PetscCount n_coo = static_cast<PetscCount>(nnz) + (last - first);
+        std::vector<PetscInt> rows(static_cast<std::size_t>(n_coo)), cols(static_cast<std::size_t>(n_coo));
+        std::size_t k = 0;
+        for (PetscInt j = 0; j < n; ++j)
+            for (int p = outer[static_cast<std::size_t>(j)]; p < outer[static_cast<std::size_t>(j) + 1]; ++p, ++k) {
+                rows[k] = by_rows ? j : inner[static_cast<std::size_t>(p)];
+                cols[k] = by_rows ? inner[static_cast<std::size_t>(p)] : j;
+            }
+        for (PetscInt i = first; i < last; ++i, ++k)
+            rows[k] = cols[k] = i;
+        check(MatCreate(PETSC_COMM_WORLD, &A), "MatCreate");
+        check(MatSetSizes(A, last - first, last - first, n, n), "MatSetSizes");
+        check(MatSetType(A, MATAIJ), "MatSetType");
+        check(MatSetBlockSize(A, bs), "MatSetBlockSize");
+        check(MatSetPreallocationCOO(A, n_coo, rows.data(), cols.data()), "MatSetPreallocationCOO");
+        check(MatCreateVecs(A, &x, &b), "MatCreateVecs");
+        check(VecScatterCreateToAll(x, &to_all, &x_all), "VecScatterCreateToAll");
+    }
+
+    // The near-null space of A (the rigid-body modes, n x m), orthonormalized as PETSc
+    // requires (modified Gram-Schmidt).
+    void set_near_null_space(const Matrix& rigid_body_modes)
+    {
+        const Index m = rigid_body_modes.cols();
+        std::vector<Vec> modes(static_cast<std::size_t>(m));
+        for (Index c = 0; c < m; ++c) {
+            Vec& v = modes[static_cast<std::size_t>(c)];
+            check(VecDuplicate(x, &v), "VecDuplicate");
+            PetscScalar* a = nullptr;
+            check(VecGetArray(v, &a), "VecGetArray");
+            for (PetscInt i = first; i < last; ++i)
+                a[i - first] = rigid_body_modes(i, c);
+            check(VecRestoreArray(v, &a), "VecRestoreArray");
+            for (Index e = 0; e < c; ++e) {
+                PetscScalar dot = 0;
+                check(VecDot(v, modes[static_cast<std::size_t>(e)], &dot), "VecDot");
+                check(VecAXPY(v, -dot, modes[static_cast<std::size_t>(e)]), "VecAXPY");
+            }
+            PetscReal norm = 0;
+            check(VecNormalize(v, &norm), "VecNormalize");
+        }
+        check(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(m), modes.data(), &near_null),
+              "MatNullSpaceCreate");
+        check(MatSetNearNullSpace(A, near_null), "MatSetNearNullSpace");
+        for (Vec& v : modes)
+            VecDestroy(&v);
+    }
+
     // CG's operator for a symmetric K: the upper triangle of A in symmetric blocks of
     // bs (SBAIJ), which CG streams from memory in 2.6x less time than the whole AIJ
     // (118k dofs, degree 2: 36 against 93 ms a product; the solve 8.6 against 20.5 s).
@@ -332,73 +395,21 @@ LinearStatus PetscSolver::load(const SparseMatrix& K)
     const bool same_pattern = s.A && n == s.n && static_cast<Index>(s.inner.size()) == nnz &&
                               std::equal(s.outer.begin(), s.outer.end(), M->outerIndexPtr()) &&
                               std::equal(s.inner.begin(), s.inner.end(), M->innerIndexPtr());
-    if (!comm_.any(!same_pattern) && s.A) {
-        // Same pattern on every rank: the values only.
-    } else {
+    if (comm_.any(!same_pattern) || !s.A) {  // a new pattern on some rank: a new matrix
         s.destroy_matrix();
-        s.n = n;
         // Rows split at point boundaries: PETSc's blocks may not straddle ranks.
         const PetscInt bs = policy_.block_size > 1 && n % policy_.block_size == 0 ? policy_.block_size : 1;
         const auto [first, last] = comm_.block_range(n / bs);
-        s.first = static_cast<PetscInt>(first) * bs;
-        s.last = static_cast<PetscInt>(last) * bs;
-        s.outer.assign(M->outerIndexPtr(), M->outerIndexPtr() + n + 1);
-        s.inner.assign(M->innerIndexPtr(), M->innerIndexPtr() + nnz);
-        // COO: the summand's entries, then every owned diagonal. A symmetric K's columns
-        // are its rows, so they are listed as rows: PETSc's COO set-up sorts entries
-        // given in row order 2.3x faster (118k dofs: 1.9 against 4.5 s). (What PETSc
-        // then holds is the summand's transpose, equal to it where K is symmetric.)
-        const bool by_rows = policy_.symmetric;
-        const PetscCount n_coo = static_cast<PetscCount>(nnz) + (s.last - s.first);
-        std::vector<PetscInt> rows(static_cast<std::size_t>(n_coo)), cols(static_cast<std::size_t>(n_coo));
-        std::size_t k = 0;
-        for (PetscInt j = 0; j < n; ++j)
-            for (int p = s.outer[static_cast<std::size_t>(j)]; p < s.outer[static_cast<std::size_t>(j) + 1]; ++p, ++k) {
-                rows[k] = by_rows ? j : s.inner[static_cast<std::size_t>(p)];
-                cols[k] = by_rows ? s.inner[static_cast<std::size_t>(p)] : j;
-            }
-        for (PetscInt i = s.first; i < s.last; ++i, ++k)
-            rows[k] = cols[k] = i;
-        check(MatCreate(PETSC_COMM_WORLD, &s.A), "MatCreate");
-        check(MatSetSizes(s.A, s.last - s.first, s.last - s.first, n, n), "MatSetSizes");
-        check(MatSetType(s.A, MATAIJ), "MatSetType");
-        check(MatSetBlockSize(s.A, bs), "MatSetBlockSize");
-        check(MatSetPreallocationCOO(s.A, n_coo, rows.data(), cols.data()), "MatSetPreallocationCOO");
-        check(MatCreateVecs(s.A, &s.x, &s.b), "MatCreateVecs");
-        check(VecScatterCreateToAll(s.x, &s.to_all, &s.x_all), "VecScatterCreateToAll");
-        if (policy_.rigid_body_modes.rows() == n && policy_.rigid_body_modes.cols() > 0) {
-            // The near-null space, orthonormalized as PETSc requires (modified Gram-Schmidt).
-            const Index m = policy_.rigid_body_modes.cols();
-            std::vector<Vec> modes(static_cast<std::size_t>(m));
-            for (Index c = 0; c < m; ++c) {
-                Vec& v = modes[static_cast<std::size_t>(c)];
-                check(VecDuplicate(s.x, &v), "VecDuplicate");
-                PetscScalar* a = nullptr;
-                check(VecGetArray(v, &a), "VecGetArray");
-                for (PetscInt i = s.first; i < s.last; ++i)
-                    a[i - s.first] = policy_.rigid_body_modes(i, c);
-                check(VecRestoreArray(v, &a), "VecRestoreArray");
-                for (Index e = 0; e < c; ++e) {
-                    PetscScalar dot = 0;
-                    check(VecDot(v, modes[static_cast<std::size_t>(e)], &dot), "VecDot");
-                    check(VecAXPY(v, -dot, modes[static_cast<std::size_t>(e)]), "VecAXPY");
-                }
-                PetscReal norm = 0;
-                check(VecNormalize(v, &norm), "VecNormalize");
-            }
-            check(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(m), modes.data(),
-                                     &s.near_null),
-                  "MatNullSpaceCreate");
-            check(MatSetNearNullSpace(s.A, s.near_null), "MatSetNearNullSpace");
-            for (Vec& v : modes)
-                VecDestroy(&v);
-        }
+        s.create_matrix(*M, bs, static_cast<PetscInt>(first) * bs, static_cast<PetscInt>(last) * bs,
+                        policy_.symmetric);
+        if (policy_.rigid_body_modes.rows() == n && policy_.rigid_body_modes.cols() > 0)
+            s.set_near_null_space(policy_.rigid_body_modes);
         ++statistics_.symbolic;
         s.set_up = false;
         s.setup_iterations = -1;
     }
-    // The values in the order of the COO lists above: the summand's, then zeros for the
-    // owned diagonal (held only while PETSc copies them).
+    // The values in the order of the COO lists (State::create_matrix): the summand's,
+    // then zeros for the owned diagonal (held only while PETSc copies them).
     std::vector<PetscScalar> values(M->valuePtr(), M->valuePtr() + nnz);
     values.resize(values.size() + static_cast<std::size_t>(s.last - s.first), 0.0);
     check(MatSetValuesCOO(s.A, values.data(), INSERT_VALUES), "MatSetValuesCOO");

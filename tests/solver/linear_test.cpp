@@ -1,5 +1,7 @@
-// Tests for solver/suitesparse_solver.hpp: UMFPACK and CHOLMOD against dense Eigen, status
-// on singular and non-positive-definite input, reuse of the symbolic analysis.
+// Tests for solver/suitesparse_solver.hpp beyond the contract every backend meets
+// (linear_backends_test.cpp): Cholesky's fallback to LU and its back-off, statuses on
+// singular, non-finite and non-positive-definite input, one triangle kept, reuse of the
+// symbolic analysis, orderings, semi-definite matrices.
 
 #include "solver/suitesparse_solver.hpp"
 #include "support/random_matrices.hpp"
@@ -25,37 +27,6 @@ constexpr unsigned seed = 20240611;
 using test::dominant_matrix;
 using test::random_vector;
 using test::relative_error;
-
-TEST(SuiteSparseSolver, CholeskyMatchesDenseOnSpdSystem)
-{
-    SCOPED_TRACE("seed " + std::to_string(seed));
-    std::mt19937 rng(seed);
-    const SparseMatrix K = dominant_matrix(60, true, rng);
-    const Vector b = random_vector(60, rng);
-    const Vector reference = Matrix(K).ldlt().solve(b);
-
-    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
-    ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
-    Vector x;
-    ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
-    EXPECT_TRUE(test::at_most(relative_error(x, reference), solve_tolerance));
-}
-
-TEST(SuiteSparseSolver, LuMatchesDenseOnNonSymmetricSystem)
-{
-    SCOPED_TRACE("seed " + std::to_string(seed));
-    std::mt19937 rng(seed + 1);
-    const SparseMatrix K = dominant_matrix(60, false, rng);
-    ASSERT_GT((Matrix(K) - Matrix(K).transpose()).norm(), 1.0) << "the test matrix should be non-symmetric";
-    const Vector b = random_vector(60, rng);
-    const Vector reference = Matrix(K).partialPivLu().solve(b);
-
-    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
-    ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
-    Vector x;
-    ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
-    EXPECT_TRUE(test::at_most(relative_error(x, reference), solve_tolerance));
-}
 
 TEST(SuiteSparseSolver, SingularMatrixIsReportedNotSolved)
 {

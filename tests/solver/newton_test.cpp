@@ -679,7 +679,7 @@ TEST(Newton, NonSymmetricSystemGetsLuFromThePolicy)
         if (need_tangent)
             out.tangent = sparse(K);
     };
-    // The choice lives in one place (solver/linear_policy.cpp): Cholesky reads one
+    // The choice lives in one place (the table, solver/backends.cpp): Cholesky reads one
     // triangle and would solve another system.
     LinearSolverPolicy policy;
     policy.symmetric = system.symmetric;

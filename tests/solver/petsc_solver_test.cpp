@@ -1,13 +1,11 @@
-// Tests for solver/petsc_solver.hpp on one rank (the MPI runs are verification/mpi):
-// MUMPS and the Krylov methods against dense Eigen, statuses on singular and
-// non-finite input, the Levenberg-Marquardt shift against the SuiteSparse backend's
-// (also of a K known to be singular, without its own factorization),
-// a pattern that grows between factorizations, preconditioner reuse, and Krylov
-// solves to the accuracy a caller asks for.
+// Tests for solver/petsc_solver.hpp on one rank (the MPI runs are verification/mpi)
+// beyond the contract every backend meets (linear_backends_test.cpp): what a Krylov
+// method that stops short reports, a K known to be singular shifted without its own
+// factorization, a pattern that grows between factorizations, preconditioner reuse,
+// and Krylov solves to the accuracy a caller asks for.
 
 #include "core/parallel.hpp"
 #include "solver/petsc_solver.hpp"
-#include "solver/suitesparse_solver.hpp"
 #include "support/random_matrices.hpp"
 #include "support/tolerance.hpp"
 
@@ -15,8 +13,6 @@
 #include <gtest/gtest.h>
 #include <petscsys.h>
 
-#include <cmath>
-#include <limits>
 #include <random>
 #include <string>
 
@@ -57,45 +53,6 @@ const Case cases[] = {
     {"GMRES + GAMG", Method::iterative, false, krylov_tolerance},
 };
 
-TEST(PetscSolver, EachMethodMatchesDenseSolves)
-{
-    for (const Case& c : cases) {
-        std::mt19937 rng(seed);
-        const SparseMatrix K = dominant_matrix(300, c.symmetric, rng);
-        const Vector b = random_vector(300, rng);
-        const Vector reference = Matrix(K).partialPivLu().solve(b);
-        PetscSolver solver(petsc_policy(c.method, c.symmetric), Communicator());
-        ASSERT_EQ(solver.factorize(K), LinearStatus::ok) << c.name;
-        Vector x;
-        ASSERT_EQ(solver.solve(b, x), LinearStatus::ok) << c.name;
-        EXPECT_TRUE(test::at_most(relative_error(x, reference), c.tolerance)) << c.name;
-        if (c.method == Method::iterative) {
-            EXPECT_GT(solver.statistics().iterations, 0) << c.name << ": a Krylov method iterates";
-        }
-    }
-}
-
-TEST(PetscSolver, SingularMatrixIsReportedNotSolved)
-{
-    for (const Case& c : cases) {
-        Matrix dense = Matrix::Identity(4, 4);
-        dense(3, 3) = 0.0;  // a zero row and column: singular, the diagonal entry stored
-        const SparseMatrix K = dense.sparseView(0.0, -1.0);
-        PetscSolver solver(petsc_policy(c.method, c.symmetric), Communicator());
-        LinearStatus status = solver.factorize(K);
-        Vector x;
-        if (status == LinearStatus::ok)
-            status = solver.solve(Vector::Ones(4), x);
-        // A direct method knows; a Krylov method that stops short may only say so.
-        if (c.method == Method::direct) {
-            EXPECT_EQ(status, LinearStatus::singular) << c.name;
-        } else {
-            EXPECT_TRUE(status == LinearStatus::singular || status == LinearStatus::not_converged)
-                << c.name << ": " << status_name(status);
-        }
-    }
-}
-
 TEST(PetscSolver, AKrylovMethodThatStopsShortSaysWhatItSaw)
 {
     // Two iterations cannot reach 1e-8 on a 300 x 300 system: the status says the method
@@ -112,47 +69,6 @@ TEST(PetscSolver, AKrylovMethodThatStopsShortSaysWhatItSaw)
     const std::string detail = solver.failure_detail();
     EXPECT_NE(detail.find("cg + "), std::string::npos) << detail;
     EXPECT_NE(detail.find("after 2 iterations: DIVERGED_ITS"), std::string::npos) << detail;
-}
-
-TEST(PetscSolver, NonFiniteEntryFails)
-{
-    std::mt19937 rng(seed);
-    SparseMatrix K = dominant_matrix(20, true, rng);
-    K.coeffRef(3, 3) = std::numeric_limits<double>::quiet_NaN();
-    PetscSolver solver(petsc_policy(Method::direct, true), Communicator());
-    EXPECT_EQ(solver.factorize(K), LinearStatus::failed);
-}
-
-TEST(PetscSolver, ShiftedFactorizationEqualsTheSuiteSparseShift)
-{
-    // A semi-definite K (a free rigid mode of two springs) whose shift K + mu D both
-    // backends must build from the same D = |diag K| rule (solver/shift.hpp). CG runs on
-    // the upper triangle in symmetric blocks while its preconditioner is built from the
-    // whole matrix: the shift must reach both, or CG would solve the singular K.
-    Matrix dense(3, 3);
-    dense << 1, -1, 0, -1, 2, -1, 0, -1, 1;
-    const SparseMatrix K = dense.sparseView();
-    const Vector b = (Vector(3) << 1, 0, -1).finished();
-    const double mu = 1e-2;
-    for (const Case& c : {cases[1], cases[2]}) {  // MUMPS LU, CG
-        SCOPED_TRACE(c.name);
-        SuiteSparseSolver reference(SuiteSparseSolver::Kind::lu);
-        PetscSolver solver(petsc_policy(c.method, c.symmetric), Communicator());
-        ASSERT_EQ(reference.factorize(K), LinearStatus::singular);
-        solver.factorize(K);
-        ASSERT_EQ(reference.factorize_shifted(mu), LinearStatus::ok);
-        ASSERT_EQ(solver.factorize_shifted(mu), LinearStatus::ok);
-        Vector x_reference, x;
-        ASSERT_EQ(reference.solve(b, x_reference), LinearStatus::ok);
-        ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
-        EXPECT_TRUE(test::at_most(relative_error(x, x_reference), c.tolerance));
-        // The shift is of the last factorize()'s K, not of an earlier shifted one.
-        ASSERT_EQ(solver.factorize_shifted(10 * mu), LinearStatus::ok);
-        ASSERT_EQ(reference.factorize_shifted(10 * mu), LinearStatus::ok);
-        ASSERT_EQ(reference.solve(b, x_reference), LinearStatus::ok);
-        ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
-        EXPECT_TRUE(test::at_most(relative_error(x, x_reference), c.tolerance));
-    }
 }
 
 // A K known to be singular (Newton at a first touch) is shifted without being
