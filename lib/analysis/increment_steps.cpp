@@ -120,9 +120,9 @@ void IncrementSteps::converged(const solver::IncrementRecord& record, const Vect
                                 record.report.residual_history[k], record.load_factor});
     if (m_.writer)
         m_.writer->append_history(history_row(step));
-    if (m_.deck.output.every_step && m_.writer) {
+    if (m_.settings.output.every_step && m_.writer) {
         m_.writer->write_step(step);
-        if (m_.deck.output.paraview)
+        if (m_.settings.output.paraview)
             xdmf_steps_.push_back(xdmf_step(step));
     }
     if (m_.scene.has_contact())
@@ -133,7 +133,7 @@ void IncrementSteps::converged(const solver::IncrementRecord& record, const Vect
 
 io::StepData IncrementSteps::make_step(const solver::IncrementRecord& record, const Vector& state)
 {
-    const io::Output& output = m_.deck.output;
+    const io::Output& output = m_.settings.output;
     io::StepData step = step_data(m_.scene, m_.system, state, record.load_factor, output.samples_per_span);
     step.index = record.index;
     step.newton_iterations = record.report.iterations;
@@ -164,7 +164,7 @@ void IncrementSteps::report_progress(const solver::IncrementRecord& record) cons
     if (!m_.options.progress)
         return;
     std::string line = fmt::format("increment {}/{}: load factor {:.4g}, {} Newton iteration(s)", record.index,
-                                   std::max(m_.deck.steps.count, record.index), record.load_factor,
+                                   std::max(m_.settings.steps.count, record.index), record.load_factor,
                                    record.report.iterations);
     if (record.cutbacks > 0)
         line += fmt::format(", {} cutback(s)", record.cutbacks);
@@ -177,12 +177,12 @@ void IncrementSteps::report_progress(const solver::IncrementRecord& record) cons
 
 void IncrementSteps::write_last_step()
 {
-    if (m_.deck.output.every_step || !last_step_)
+    if (m_.settings.output.every_step || !last_step_)
         return;
     ScopedTimer t(&m_.context, "output");
     if (m_.writer)
         m_.writer->write_step(*last_step_);
-    if (m_.deck.output.paraview)
+    if (m_.settings.output.paraview)
         xdmf_steps_.push_back(xdmf_step(*last_step_));
 }
 

@@ -103,16 +103,12 @@ std::vector<double> to_std(const VecN& v)
 
 }  // namespace
 
-std::vector<io::BodyGeometry> body_geometry(const io::Deck& deck, const Scene& scene)
+std::vector<io::BodyGeometry> body_geometry(const Scene& scene)
 {
     std::vector<io::BodyGeometry> out;
-    for (std::size_t k = 0; k < deck.bodies.size(); ++k) {
-        const int b = scene.body_of_deck[k];
-        if (b < 0)
-            continue;
-        const BodyModel& body = scene.bodies[static_cast<std::size_t>(b)];
+    for (const BodyModel& body : scene.bodies) {
         io::BodyGeometry g;
-        g.name = deck.bodies[k].name;
+        g.name = body.name;
         for (const PatchModel& model : body.patches) {
             const nurbs::Patch& patch = model.patch;
             io::PatchGeometry p;
@@ -133,7 +129,7 @@ std::vector<io::BodyGeometry> body_geometry(const io::Deck& deck, const Scene& s
             }
         }
         // The table `check` prints: extruded shapes have six sides, a mirror swaps u0 and u1.
-        g.side_names = side_meanings(deck.bodies[k]);
+        g.side_names = body.side_names;
         out.push_back(std::move(g));
     }
     return out;
@@ -565,19 +561,19 @@ void add_step_errors(const PlacedLineContact& placed, const io::StepData& step, 
 
 }  // namespace
 
-std::vector<io::ReferenceData> references(const io::Deck& deck, const Scene& scene, const io::StepData* step)
+std::vector<io::ReferenceData> references(const Scene& scene, const io::StepData* step)
 {
     std::vector<io::ReferenceData> out;
-    if (!deck.output.reference)
+    if (!scene.settings.output.reference)
         return out;
-    const io::Reference& ref = *deck.output.reference;
+    const io::Reference& ref = *scene.settings.output.reference;
     const PairModel* model = nullptr;
     for (const PairModel& p : scene.pairs)
         if (p.name == ref.pair)
             model = &p;
     IGA_CHECK(model != nullptr, "the deck reader let a reference to an unknown pair through");
     if (io::is_point_contact(ref.type)) {  // 3D: sphere on a plane, two spheres
-        out.push_back(point_contact_reference(deck, scene, *model, step));
+        out.push_back(point_contact_reference(scene, *model, step));
         return out;
     }
     io::ReferenceData data;

@@ -13,7 +13,7 @@
 
 namespace iga::analysis {
 
-std::vector<io::BodyGeometry> body_geometry(const io::Deck& deck, const Scene& scene);
+std::vector<io::BodyGeometry> body_geometry(const Scene& scene);
 
 /// The reaction of every constrained side from the full residual at a converged
 /// state (scene.reactions order).
@@ -25,6 +25,6 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
 
 /// The Hertz reference of the deck (if any), with the errors of `step` against it.
 /// Errors are measured over reference coordinates (Hertz is a small-strain theory).
-std::vector<io::ReferenceData> references(const io::Deck& deck, const Scene& scene, const io::StepData* step);
+std::vector<io::ReferenceData> references(const Scene& scene, const io::StepData* step);
 
 }  // namespace iga::analysis

@@ -146,10 +146,10 @@ void add_radial_errors(const PlacedPointContact& placed, const RowMatrix& X, con
 
 }  // namespace
 
-io::ReferenceData point_contact_reference(const io::Deck& deck, const Scene& scene, const PairModel& model,
+io::ReferenceData point_contact_reference(const Scene& scene, const PairModel& model,
                                           const io::StepData* step)
 {
-    const io::Reference& ref = *deck.output.reference;
+    const io::Reference& ref = *scene.settings.output.reference;
     io::ReferenceData data;
     data.pair = ref.pair;
     const PlacedPointContact placed = ref.type == io::ReferenceType::hertz_sphere_plane

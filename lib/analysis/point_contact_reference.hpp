@@ -19,7 +19,7 @@ namespace iga::analysis {
 
 /// The reference data of a 3D point-contact reference; `step` (may be null) is the
 /// last converged increment whose errors are measured.
-io::ReferenceData point_contact_reference(const io::Deck& deck, const Scene& scene, const PairModel& model,
+io::ReferenceData point_contact_reference(const Scene& scene, const PairModel& model,
                                           const io::StepData* step);
 
 }  // namespace iga::analysis

@@ -43,7 +43,7 @@ void count_linear_statistics(const RunModel& m)
     m.context.add_count("symbolic_factorizations", statistics.symbolic);
     m.context.add_count("numeric_factorizations", statistics.numeric);
     if (m.scene.kinematics == mechanics::Kinematics::small && m.scene.has_contact() &&
-        m.deck.solver.backend == io::SolverBackend::suitesparse && !m.options.comm.parallel())
+        m.settings.solver.backend == io::SolverBackend::suitesparse && !m.options.comm.parallel())
         m.context.add_count("woodbury_updates", statistics.updates);
     if (statistics.iterations > 0)
         m.context.add_count("linear_iterations", statistics.iterations);
@@ -68,7 +68,7 @@ void warn_at_end(RunModel& m, const IncrementSteps& steps, const Vector& u)
                                                      "result depends on them",
                                                      negligible_spring_energy))});
     }
-    m.warn(contact_warnings(m.deck, m.scene, *last));
+    m.warn(contact_warnings(m.scene, *last));
 }
 
 RunOutcome outcome_of(const RunModel& m, const IncrementSteps& steps, const solver::SteppingResult& result)
@@ -86,7 +86,7 @@ RunOutcome outcome_of(const RunModel& m, const IncrementSteps& steps, const solv
     // Name the cause of a Newton failure, read from its history, and what to change.
     if (!result.completed && !result.stopped && result.last_failure.status != solver::NewtonStatus::converged)
         outcome.message += failure_advice(solver::failure_cause(result.last_failure), failure_context(m.scene));
-    outcome.results_file = m.deck.output.file;
+    outcome.results_file = m.settings.output.file;
     outcome.increments = static_cast<int>(result.increments.size());
     outcome.newton_iterations = result.total_iterations;
     outcome.cutbacks = result.total_cutbacks;
@@ -125,7 +125,7 @@ io::RunSummary summary_of(RunModel& m, const IncrementSteps& steps, RunOutcome& 
     summary.message = outcome.message;
     for (const std::string& line : m.warnings)
         summary.warnings += (summary.warnings.empty() ? "" : "\n") + line;
-    summary.references = references(m.deck, m.scene, steps.last_step() ? &*steps.last_step() : nullptr);
+    summary.references = references(m.scene, steps.last_step() ? &*steps.last_step() : nullptr);
     for (const io::ReferenceData& r : summary.references)
         for (const auto& [key, value] : r.errors)
             outcome.errors[key] = value;
@@ -161,8 +161,8 @@ void write_xdmf_index(const RunModel& m, const IncrementSteps& steps)
     for (const TessellatedBody& t : m.tessellations)
         meshes.push_back({t.mesh.body, t.mesh.points.rows(),
                           static_cast<long long>(t.mesh.cells.size()) / t.mesh.nodes_per_cell, t.mesh.nodes_per_cell,
-                          m.deck.output.fields});
-    const std::string& file = m.deck.output.file;
+                          m.settings.output.fields});
+    const std::string& file = m.settings.output.file;
     const std::size_t slash = file.find_last_of('/');
     const std::string name = slash == std::string::npos ? file : file.substr(slash + 1);
     io::write_xdmf(io::xdmf_path(file), io::xdmf_text(name, meshes, steps.xdmf_steps()));
@@ -179,7 +179,7 @@ RunOutcome finish(RunModel& m, IncrementSteps& steps, const solver::SteppingResu
     const io::RunSummary summary = summary_of(m, steps, outcome, total.elapsed());
     if (m.writer)
         m.writer->finish(summary);
-    if (m.deck.output.paraview && m.writer) {
+    if (m.settings.output.paraview && m.writer) {
         write_xdmf_index(m, steps);
         outcome.numbers["paraview"] = 1;
     }
@@ -206,8 +206,8 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         result.message = *driven_mode;  // not completed, no increment
     else {
         solver::SteppingCallbacks callbacks = steps.callbacks();
-        result = solver::run_load_steps(model.nonlinear, u, stepping_settings(deck.steps, model.scene.path),
-                                        newton_settings(deck.newton), *model.linear, callbacks, &context);
+        result = solver::run_load_steps(model.nonlinear, u, stepping_settings(model.settings.steps, model.scene.path),
+                                        newton_settings(model.settings.newton), *model.linear, callbacks, &context);
     }
     return finish(model, steps, result, u, total);
 }

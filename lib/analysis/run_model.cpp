@@ -39,21 +39,22 @@ Scene timed_scene(const io::Deck& deck, const RunOptions& options, RunContext& c
 
 /// The linear solver of the deck. PETSc reads its options when the solver is made:
 /// a value it rejects (-ksp_rtol abc) is bad input, named where the user gave it.
-std::unique_ptr<solver::LinearSolver> make_solver(const io::Deck& deck, const Scene& scene,
-                                                  const solver::NonlinearSystem& nonlinear, const Communicator& comm)
+std::unique_ptr<solver::LinearSolver> make_solver(const Scene& scene, const solver::NonlinearSystem& nonlinear,
+                                                  const Communicator& comm)
 {
-    const bool petsc = deck.solver.backend == io::SolverBackend::petsc;
+    const RunSettings& settings = scene.settings;
+    const bool petsc = settings.solver.backend == io::SolverBackend::petsc;
     if (petsc && !solver::petsc_available())
-        throw DeckError(io::located_issue(deck.source_file, "solver.backend", "petsc",
+        throw DeckError(io::located_issue(settings.source_file, "solver.backend", "petsc",
                                           "this igacontact was built without PETSc (scripts/setup.sh installs it, "
                                           "then rebuild); the suitesparse backend needs nothing else"));
     try {
-        return solver::make_linear_solver(linear_solver_policy(deck, scene, nonlinear, comm), comm);
+        return solver::make_linear_solver(linear_solver_policy(scene, nonlinear, comm), comm);
     } catch (const Error& e) {
         const char* env = petsc ? std::getenv("PETSC_OPTIONS") : nullptr;
         const std::string reason = std::string("PETSc could not set up the solver with these options: ") + e.what();
-        if (petsc && !deck.solver.options.empty())
-            throw DeckError(io::located_issue(deck.source_file, "solver.options", deck.solver.options, reason));
+        if (petsc && !settings.solver.options.empty())
+            throw DeckError(io::located_issue(settings.source_file, "solver.options", settings.solver.options, reason));
         if (env && *env) {
             DeckIssue issue;
             issue.where.file = "environment";
@@ -77,12 +78,13 @@ void log_solver(RunContext& context, const solver::LinearSolver& linear)
 }
 
 /// " (loads.0 and loads.2 act on it)": the deck's load items on the bodies of a group.
-std::string load_items_text(const io::Deck& deck, const Scene& scene, const FreeModeGroup& group)
+std::string load_items_text(const Scene& scene, const FreeModeGroup& group)
 {
     std::vector<std::string> items;
-    for (std::size_t k = 0; k < deck.loads.size(); ++k)
+    const std::vector<std::string>& load_body = scene.settings.load_body;
+    for (std::size_t k = 0; k < load_body.size(); ++k)
         for (int b : group.bodies)
-            if (deck.loads[k].body == scene.bodies[static_cast<std::size_t>(b)].name)
+            if (load_body[k] == scene.bodies[static_cast<std::size_t>(b)].name)
                 items.push_back(fmt::format("loads.{}", k));
     std::string out;
     for (std::size_t k = 0; k < items.size(); ++k)
@@ -92,9 +94,10 @@ std::string load_items_text(const io::Deck& deck, const Scene& scene, const Free
 
 }  // namespace
 
-RunModel::RunModel(const io::Deck& deck_, const RunOptions& options_, RunContext& context_)
-    : deck(deck_), options(options_), context(context_), stop(collective_stop(context_, options_.comm)),
-      scene(timed_scene(deck_, options_, context_)), system(scene, context_, options_.threads, options_.comm)
+RunModel::RunModel(const io::Deck& deck, const RunOptions& options_, RunContext& context_)
+    : options(options_), context(context_), stop(collective_stop(context_, options_.comm)),
+      scene(timed_scene(deck, options_, context_)), settings(scene.settings),
+      system(scene, context_, options_.threads, options_.comm)
 {
     system.set_collective_stop(stop);
     // The factorizations' BLAS gets the assembly's cores; under MPI the ranks hold them.
@@ -105,14 +108,14 @@ RunModel::RunModel(const io::Deck& deck_, const RunOptions& options_, RunContext
         release_element_geometry(scene, [](int) { return false; });
     }
     nonlinear = system.nonlinear_system();
-    linear = make_solver(deck, scene, nonlinear, options.comm);
+    linear = make_solver(scene, nonlinear, options.comm);
     log_solver(context, *linear);
     open_results();
     write_geometry();
     warn(duplicate_pair_warnings(scene));
     // An initial overlap is pushed out by the first increment; should that need a
     // cutback, the overlap is released gradually over the first planned increment.
-    warn(release_initial_overclosure(scene, system, scene.path.end / std::max(deck.steps.count, 1)));
+    warn(release_initial_overclosure(scene, system, scene.path.end / std::max(settings.steps.count, 1)));
 }
 
 void RunModel::warn(const std::vector<std::string>& lines)
@@ -129,14 +132,14 @@ void RunModel::open_results()
     std::string open_error;
     if (options.comm.root()) {
         try {
-            writer.emplace(deck.output.file, program_version, deck.resolved_yaml);
+            writer.emplace(settings.output.file, program_version, settings.resolved_yaml);
         } catch (const Error& e) {
             open_error = e.what();
         }
     }
     open_error = options.comm.first_message(open_error);  // every rank leaves with rank 0's error
     if (!open_error.empty())
-        throw DeckError(io::located_issue(deck.source_file, "output.file", deck.output.file, open_error));
+        throw DeckError(io::located_issue(settings.source_file, "output.file", settings.output.file, open_error));
 }
 
 void RunModel::write_geometry()
@@ -145,11 +148,11 @@ void RunModel::write_geometry()
     constexpr int tessellation_cells_per_span = 4;
     ScopedTimer t(&context, "output");
     if (writer)
-        writer->write_bodies(body_geometry(deck, scene));
-    if (deck.output.paraview || deck.output.fields)  // fields live on the tessellation points
+        writer->write_bodies(body_geometry(scene));
+    if (settings.output.paraview || settings.output.fields)  // fields live on the tessellation points
         for (const BodyModel& body : scene.bodies)
             tessellations.push_back(tessellate(body, tessellation_cells_per_span));
-    if (deck.output.paraview && writer) {
+    if (settings.output.paraview && writer) {
         std::vector<io::Tessellation> meshes;
         for (const TessellatedBody& body : tessellations)
             meshes.push_back(body.mesh);
@@ -173,7 +176,7 @@ std::optional<std::string> RunModel::hold_free_modes()
     if (driven_mode) {
         for (const FreeModeGroup& group : free_modes)
             if (driven_mode->find(group.label + " can") != std::string::npos) {
-                *driven_mode += load_items_text(deck, scene, group);
+                *driven_mode += load_items_text(scene, group);
                 break;
             }
     } else {

@@ -3,7 +3,8 @@
 // system of terms, the linear solver, the results file (rank 0's), the tessellations
 // that ParaView and the stress fields are written on, and the warnings so far.
 //
-// Set-up order: the scene (every deck key is read here), the system, K0 under small
+// Set-up order: the scene (every deck key is read here: nothing after reads the deck,
+// only scene.settings), the system, K0 under small
 // kinematics, the linear solver, then the results file: a backend that starts MPI
 // (PETSc in a plain run starts a one-rank world, whose helper process inherits open
 // files) must not hold the results file open after the run.
@@ -37,11 +38,11 @@ public:
     /// Keeps warning lines and passes each to RunOptions::warning at once.
     void warn(const std::vector<std::string>& lines);
 
-    const io::Deck& deck;
     const RunOptions& options;
     RunContext& context;
     StopRequest stop;  ///< the run's stop request (under MPI polled by all ranks together)
     Scene scene;
+    const RunSettings& settings;  ///< scene.settings: all the run reads of the deck
     SceneSystem system;
     solver::NonlinearSystem nonlinear;
     std::unique_ptr<solver::LinearSolver> linear;

@@ -15,6 +15,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace iga::analysis {
 
@@ -200,6 +201,7 @@ BodyModel body_model(const io::Deck& deck, const io::Body& body, int refine_leve
     const io::Material* material = deck.find_material(body.material);
     IGA_CHECK(material != nullptr, "the deck reader let an unknown material through");
     model.material = to_material(*material, deck.analysis);
+    model.side_names = side_meanings(body);
     return model;
 }
 
@@ -509,12 +511,39 @@ void make_pattern(const Communicator& comm, Scene& scene, std::vector<std::vecto
         release_element_geometry(scene, [&](int block) { return scene.partition.owns(block); });
 }
 
+/// The run's settings: what the run needs of the deck beyond the model.
+RunSettings run_settings(const io::Deck& deck)
+{
+    RunSettings s;
+    s.source_file = deck.source_file;
+    s.resolved_yaml = deck.resolved_yaml;
+    s.output = deck.output;
+    s.steps = deck.steps;
+    s.newton = deck.newton;
+    s.solver = deck.solver;
+    for (const io::Load& load : deck.loads)
+        s.load_body.push_back(load.body);
+    auto norm = [](const std::vector<double>& v) {
+        double sum = 0.0;
+        for (double x : v)
+            sum += x * x;
+        return std::sqrt(sum);
+    };
+    for (const io::Constraint& c : deck.constraints)
+        s.imposed_motions.emplace_back(norm(c.value), c.amplitude.value_or(Amplitude()));
+    for (const io::Body& b : deck.bodies)
+        if (b.rigid)
+            s.imposed_motions.emplace_back(norm(b.motion), b.amplitude.value_or(Amplitude()));
+    return s;
+}
+
 }  // namespace
 
 Scene build_scene(const io::Deck& deck, int refine_levels, const StopRequest& stop, const Communicator& comm)
 {
     check_size(deck);  // refuse an absurd model before allocating any of it
     Scene scene;
+    scene.settings = run_settings(deck);
     scene.dim = deck.analysis.dimension;
     scene.kinematics = deck.analysis.kinematics;
     add_bodies(deck, refine_levels, stop, scene);

@@ -72,6 +72,8 @@ struct BodyModel {
     int first_block = 0;                         ///< pattern block of elements[0]
 
     std::vector<std::string> patch_names() const;
+    /// (side, meaning) as `check` prints them: what each parametric side is on the shape.
+    std::vector<std::pair<std::string, std::string>> side_names;
 };
 
 /// A follower pressure in finite kinematics (recomputed each evaluation).
@@ -140,7 +142,23 @@ struct Partition {
     }
 };
 
+/// What a run needs of the deck beyond the model, read while the scene is built:
+/// after build_scene nothing reads the deck.
+struct RunSettings {
+    std::string source_file;    ///< the deck, for messages located in it
+    std::string resolved_yaml;  ///< the deck as resolved, stored in the results
+    io::Output output;
+    io::Steps steps;
+    io::Newton newton;
+    io::Solver solver;
+    std::vector<std::string> load_body;  ///< per load item of the deck, the body it acts on
+    /// Prescribed displacements and obstacle motions: full magnitude and amplitude
+    /// (the imposed travel at t is the largest |a(t)| magnitude).
+    std::vector<std::pair<double, Amplitude>> imposed_motions;
+};
+
 struct Scene {
+    RunSettings settings;
     int dim = 2;
     mechanics::Kinematics kinematics = mechanics::Kinematics::small;
     std::vector<BodyModel> bodies;

@@ -67,17 +67,16 @@ int point_block_size(const Scene& scene)
     return d;
 }
 
-solver::LinearSolverPolicy linear_solver_policy(const io::Deck& deck, const Scene& scene,
+solver::LinearSolverPolicy linear_solver_policy(const Scene& scene,
                                                 const solver::NonlinearSystem& system, const Communicator& comm)
 {
     solver::LinearSolverPolicy policy;
     // The deck's backend by its spelling in the table (solver/backends.hpp); on several
     // ranks one that is not distributed gives way to the one that is.
-    const std::optional<solver::Backend> named = solver::backend_named(io::deck_name(deck.solver.backend));
-    IGA_CHECK(named.has_value(), "linear_solver_policy: solver.backend has no row in solver/backends.cpp");
-    policy.backend = comm.parallel() && !solver::backend_distributed(*named) ? solver::distributed_backend() : *named;
-    policy.method = deck.solver.type == io::SolverType::iterative ? solver::Method::iterative : solver::Method::direct;
-    policy.options = deck.solver.options;
+    const solver::Backend named = scene.settings.solver.backend;
+    policy.backend = comm.parallel() && !solver::backend_distributed(named) ? solver::distributed_backend() : named;
+    policy.method = scene.settings.solver.type;
+    policy.options = scene.settings.solver.options;
     policy.symmetric = system.symmetric;
     policy.dim = scene.dim;
     // Small-strain elasticity plus penalty contact against rigid planes (eps N N^T

@@ -14,7 +14,7 @@
 
 namespace iga::analysis {
 
-solver::LinearSolverPolicy linear_solver_policy(const io::Deck& deck, const Scene& scene,
+solver::LinearSolverPolicy linear_solver_policy(const Scene& scene,
                                                 const solver::NonlinearSystem& system, const Communicator& comm);
 
 /// The rigid-body modes of every deformable body on the free dofs (n_free x 3 in

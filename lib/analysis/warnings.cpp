@@ -19,20 +19,11 @@ double body_size(const BodyModel& body)
 
 /// The largest imposed travel at pseudo-time t: prescribed displacements and
 /// obstacle motions, each scaled by its amplitude.
-double imposed_travel(const io::Deck& deck, double t)
+double imposed_travel(const RunSettings& settings, double t)
 {
     double travel = 0.0;
-    auto norm = [](const std::vector<double>& v) {
-        double s = 0.0;
-        for (double x : v)
-            s += x * x;
-        return std::sqrt(s);
-    };
-    auto at = [t](const std::optional<Amplitude>& a) { return std::abs(a.value_or(Amplitude())(t)); };
-    for (const io::Constraint& c : deck.constraints)
-        travel = std::max(travel, at(c.amplitude) * norm(c.value));
-    for (const io::Body& b : deck.bodies)
-        travel = std::max(travel, at(b.amplitude) * norm(b.motion));
+    for (const auto& [magnitude, amplitude] : settings.imposed_motions)
+        travel = std::max(travel, std::abs(amplitude(t)) * magnitude);
     return travel;
 }
 
@@ -188,10 +179,10 @@ std::string half_pass_cause(const PairModel& model, const io::ContactPairResult&
 
 }  // namespace
 
-std::vector<std::string> contact_warnings(const io::Deck& deck, const Scene& scene, const io::StepData& step)
+std::vector<std::string> contact_warnings(const Scene& scene, const io::StepData& step)
 {
     std::vector<std::string> out;
-    const double travel = imposed_travel(deck, step.load_factor);
+    const double travel = imposed_travel(scene.settings, step.load_factor);
     const int d = scene.dim;
     for (std::size_t p = 0; p < step.contact.size() && p < scene.pairs.size(); ++p) {
         const io::ContactPairResult& pair = step.contact[p];

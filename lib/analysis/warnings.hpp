@@ -67,6 +67,6 @@ std::vector<std::string> duplicate_pair_warnings(const Scene& scene);
 std::vector<std::string> release_initial_overclosure(Scene& scene, SceneSystem& system, double release_end);
 
 /// Warnings about the contact state of a converged increment (the last one).
-std::vector<std::string> contact_warnings(const io::Deck& deck, const Scene& scene, const io::StepData& step);
+std::vector<std::string> contact_warnings(const Scene& scene, const io::StepData& step);
 
 }  // namespace iga::analysis

@@ -14,5 +14,10 @@ enum class PlaneMode { strain, stress, none };
 /// Contact: both sides carry Gauss points (each half pass its own rows), or the first
 /// side alone with slave and master rows (contact/contact_pair.hpp).
 enum class Formulation { two_half_pass, single_pass };
+/// The linear-solver backends a deck can choose (`solver.backend`; solver/backends.hpp
+/// says what each can do).
+enum class SolverBackend { suitesparse, petsc };
+/// Direct factorization or a preconditioned Krylov method (`solver.type`).
+enum class SolverType { direct, iterative };
 
 }  // namespace iga

@@ -4,11 +4,13 @@
 // is direct, whether it serves a changed tangent by a low-rank (Woodbury) update,
 // whether it factorizes K + mu D, and whether this build has it. Everything else asks
 // this table: make_linear_solver (solver/linear_policy.cpp) checks a policy against it
-// and makes the row's solver, the app's --version lists its backends, the analysis maps
-// the deck's solver.backend onto it by name (analysis/solver_choice.cpp), and
+// and makes the row's solver, the app's --version lists its backends, the deck's solver.backend
+// and solver.type are these enums themselves (core/model_options.hpp), and
 // tests/solver/linear_backends_test.cpp runs one contract over every row this build
 // has. The deck reader (io/deck_reader.cpp) may not link solver/: that test checks its
 // spellings and its rule "iterative needs petsc" against this table.
+
+#include "core/model_options.hpp"
 
 #include <memory>
 #include <optional>
@@ -25,10 +27,9 @@ namespace iga::solver {
 class LinearSolver;
 struct LinearSolverPolicy;
 
-/// The backends a deck can choose (`solver.backend`).
-enum class Backend { suitesparse, petsc };
-/// Direct factorization or a preconditioned Krylov method (`solver.type`).
-enum class Method { direct, iterative };
+/// The backends a deck can choose and their methods (core/model_options.hpp).
+using Backend = iga::SolverBackend;
+using Method = iga::SolverType;
 
 /// One method of one backend (a row of the table).
 struct LinearMethod {
