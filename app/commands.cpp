@@ -223,7 +223,8 @@ int check_command(int argc, char** argv)
 int compare_command(int argc, char** argv)
 {
     CLI::App cli{"Compare a results file with a reference: every dataset and attribute of REF must be in NEW and\n"
-                 "agree to |new - ref| <= atol + rtol |ref|. Timings, versions and wall times are ignored unless --all.",
+                 "agree to |new - ref| <= atol + rtol |ref|. Timings, versions, counters and solver statistics are ignored "
+                 "unless --all.",
                  "igacontact compare"};
     std::string reference, candidate;
     io::CompareOptions options;
@@ -241,7 +242,7 @@ int compare_command(int argc, char** argv)
     cli.add_option("--atol", options.atol, "absolute tolerance")->capture_default_str()->check(non_negative);
     cli.add_option("--only", options.only, "compare only paths starting with PATH; repeatable")
         ->allow_extra_args(false);
-    cli.add_flag("--all", options.include_volatile, "also compare timings, versions and wall times");
+    cli.add_flag("--all", options.include_volatile, "also compare timings, versions, counters and solver statistics");
     cli.add_flag("-v,--verbose", verbose, "list every compared item");
     if (const int code = parse_command_line(cli, argc, argv); code >= 0)
         return code;

@@ -131,15 +131,27 @@ private:
         return false;
     }
 
+    /// Items that say how a run went, not what it found: timings, versions, counters and
+    /// the solvers' statistics (Newton's residual history, iterations and cutbacks per
+    /// increment, the linear solver and the ranks). A serial and a parallel run, or a
+    /// direct and an iterative one, that reach the same state differ in these alone.
     bool is_volatile(const std::string& path, const std::string& name) const
     {
         if (options_.include_volatile)
             return false;
         // /deck holds the resolved deck text, whose output path legitimately differs
         // between a run and its stored reference; the results it produced are compared.
-        if (within(path, "/timings") || path == "/@program_version" || path == "/deck" || name == "wall_s")
+        for (const char* group : {"/timings", "/counters", "/convergence", "/parallel"})
+            if (within(path, group))
+                return true;
+        for (const char* root : {"/@program_version", "/@linear_solver", "/@ranks"})
+            if (path == root)
+                return true;
+        if (path == "/deck")
             return true;
-        return within(path, "/counters") && ends_with(name, "_s");
+        const bool attribute = path.find('@') != std::string::npos;
+        return attribute && (name == "wall_s" || name == "newton_iterations" || name == "residual_norm" ||
+                             name == "cutbacks");
     }
 
     void add(CompareEntry entry)
