@@ -1,7 +1,11 @@
 #include "analysis/contact_term.hpp"
 
+#include "analysis/output.hpp"
+#include "analysis/warnings.hpp"
+
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -42,7 +46,7 @@ RowMatrix side_displacement(const Scene& scene, const PairModel& pair, const Vec
 }
 
 ContactTerm::ContactTerm(Scene& scene, int pair)
-    : scene_(scene), model_(scene.pairs[static_cast<std::size_t>(pair)])
+    : scene_(scene), index_(pair), model_(scene.pairs[static_cast<std::size_t>(pair)])
 {
 }
 
@@ -86,6 +90,19 @@ void ContactTerm::commit()
 void ContactTerm::rollback()
 {
     model_.pair.rollback();
+}
+
+void ContactTerm::report(const ModelAssembly& a, int samples_per_span, io::StepData& step) const
+{
+    step.contact.push_back(pair_result(scene_, index_, evaluation_, a.u_full, a.t, samples_per_span));
+}
+
+std::vector<std::string> ContactTerm::warnings(const io::StepData& step) const
+{
+    const auto result = std::find_if(step.contact.begin(), step.contact.end(),
+                                     [&](const io::ContactPairResult& r) { return r.name == model_.name; });
+    return result == step.contact.end() ? std::vector<std::string>{}
+                                        : pair_warnings(scene_, model_, *result, step.load_factor);
 }
 
 void ContactTerm::register_couplings(RunContext* context)

@@ -30,15 +30,20 @@ public:
     void add_to(ModelAssembly& a) override;
     void commit() override;
     void rollback() override;
+    /// The pair's part of the step: its sides' Gauss points, recovered pressure, forces.
+    void report(const ModelAssembly& a, int samples_per_span, io::StepData& step) const override;
+    /// Penetration too deep for the penalty, two half passes that disagree.
+    std::vector<std::string> warnings(const io::StepData& step) const override;
 
-    /// The evaluation of the last prepare(), handed over (for output).
-    contact::PairEvaluation take_evaluation() { return std::move(evaluation_); }
+    /// The evaluation of the last prepare().
+    const contact::PairEvaluation& evaluation() const { return evaluation_; }
 
 private:
     /// Extends the pattern by the couplings of the last evaluation that it lacks.
     void register_couplings(RunContext* context);
 
     Scene& scene_;
+    int index_;  ///< the pair's index in the scene (and in a step's contact results)
     PairModel& model_;
     contact::PairEvaluation evaluation_;
 };

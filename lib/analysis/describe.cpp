@@ -1,4 +1,6 @@
 #include "analysis/describe.hpp"
+
+#include "nurbs/coincidence.hpp"
 #include "core/text.hpp"
 #include "io/deck_names.hpp"
 
@@ -20,11 +22,10 @@ std::string generic_side_meaning(Side s)
     return fmt::format("{} = {}", directions[side_direction(s)], side_at_end(s) ? "max" : "min");
 }
 
-/// Control points of a patch coincide when closer than this: round-off of the
-/// shapes' and transforms' arithmetic, relative to the coordinates' size.
+/// Control points of a patch coincide when closer than this (nurbs/coincidence.hpp).
 double coincidence_tolerance(const nurbs::Patch& patch)
 {
-    return 1e-12 * (1.0 + patch.control_points().cwiseAbs().maxCoeff());
+    return nurbs::coincidence_tolerance(patch.control_points());
 }
 
 /// The corners of a side (open knot vectors interpolate them): 2 in 2D, 4 in 3D,

@@ -1,5 +1,7 @@
 #include "analysis/output.hpp"
 
+#include "analysis/contact_term.hpp"
+
 #include "analysis/geometry.hpp"
 #include "analysis/point_contact_reference.hpp"
 #include "io/deck_names.hpp"
@@ -390,23 +392,27 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
     step.load_factor = load_factor;
     const Vector u_full = scene.dofs->expand(u_free, load_factor);
     add_displacements(scene, system, u_full, step);
-    // One evaluation gives the reactions and the contact state of the increment.
-    std::vector<contact::PairEvaluation> states;
-    step.reactions = reactions(scene, system.full_residual(u_free, load_factor, &states));
-    for (std::size_t p = 0; p < scene.pairs.size(); ++p) {
-        const PairModel& model = scene.pairs[p];
-        io::ContactPairResult result;
-        result.name = model.name;
-        add_pair_attributes(scene, model, states[p], result);
-        for (std::size_t c = 0; c < states[p].carriers.size(); ++c) {
-            const contact::CarrierResult& carrier = states[p].carriers[c];
-            result.sides.push_back(side_result(scene, model, static_cast<int>(c), carrier,
-                                               system.side_displacement(u_full, static_cast<int>(p), carrier.surface),
-                                               load_factor, samples_per_span));
-        }
-        step.contact.push_back(std::move(result));
-    }
+    // One evaluation gives the reactions and every term's state at this increment,
+    // which each term then reports (analysis/term.hpp).
+    step.reactions = reactions(scene, system.full_residual(u_free, load_factor));
+    system.report(u_free, load_factor, samples_per_span, step);
     return step;
+}
+
+io::ContactPairResult pair_result(const Scene& scene, int p, const contact::PairEvaluation& state,
+                                  const Vector& u_full, double load_factor, int samples_per_span)
+{
+    const PairModel& model = scene.pairs[static_cast<std::size_t>(p)];
+    io::ContactPairResult result;
+    result.name = model.name;
+    add_pair_attributes(scene, model, state, result);
+    for (std::size_t c = 0; c < state.carriers.size(); ++c) {
+        const contact::CarrierResult& carrier = state.carriers[c];
+        result.sides.push_back(side_result(scene, model, static_cast<int>(c), carrier,
+                                           side_displacement(scene, model, u_full, carrier.surface), load_factor,
+                                           samples_per_span));
+    }
+    return result;
 }
 
 namespace {

@@ -23,6 +23,11 @@ std::vector<io::Reaction> reactions(const Scene& scene, const Vector& r_full);
 io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_free, double load_factor,
                        int samples_per_span);
 
+/// Contact pair p's part of a step (its attributes and carrying sides) from its
+/// evaluation `state` at the converged state u_full, load_factor (ContactTerm::report).
+io::ContactPairResult pair_result(const Scene& scene, int p, const contact::PairEvaluation& state,
+                                  const Vector& u_full, double load_factor, int samples_per_span);
+
 /// The Hertz reference of the deck (if any), with the errors of `step` against it.
 /// Errors are measured over reference coordinates (Hertz is a small-strain theory).
 std::vector<io::ReferenceData> references(const Scene& scene, const io::StepData* step);

@@ -68,7 +68,7 @@ void warn_at_end(RunModel& m, const IncrementSteps& steps, const Vector& u)
                                                      "result depends on them",
                                                      negligible_spring_energy))});
     }
-    m.warn(contact_warnings(m.scene, *last));
+    m.warn(m.system.warnings(*last));
 }
 
 RunOutcome outcome_of(const RunModel& m, const IncrementSteps& steps, const solver::SteppingResult& result)

@@ -98,23 +98,38 @@ void SceneSystem::rollback()
 
 void SceneSystem::evaluate(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out)
 {
-    evaluate_into(u_free, load_factor, need_tangent, out, &context_, nullptr, nullptr);
+    evaluate_into(u_free, load_factor, need_tangent, out, &context_, nullptr);
     // last_active_ counts every pair's Gauss points on every rank: the same verdict on all.
     out.singular_tangent = need_tangent && singular_without_contact_ && last_active_ == 0;
 }
 
-Vector SceneSystem::full_residual(const Vector& u_free, double load_factor,
-                                  std::vector<contact::PairEvaluation>* contact_out)
+Vector SceneSystem::full_residual(const Vector& u_free, double load_factor)
 {
     solver::Evaluation scratch;
     Vector r_full;
-    evaluate_into(u_free, load_factor, false, scratch, nullptr, &r_full, contact_out);
+    evaluate_into(u_free, load_factor, false, scratch, nullptr, &r_full);
     return r_full;
 }
 
+void SceneSystem::report(const Vector& u_free, double load_factor, int samples_per_span, io::StepData& step) const
+{
+    const Vector u_full = scene_.dofs->expand(u_free, load_factor);
+    const ModelAssembly a{.scene = scene_, .u_full = u_full, .t = load_factor};
+    for (const auto& term : terms_)
+        term->report(a, samples_per_span, step);
+}
+
+std::vector<std::string> SceneSystem::warnings(const io::StepData& step) const
+{
+    std::vector<std::string> out;
+    for (const auto& term : terms_)
+        for (std::string& line : term->warnings(step))
+            out.push_back(std::move(line));
+    return out;
+}
+
 void SceneSystem::evaluate_into(const Vector& u_free, double t, bool need_tangent, solver::Evaluation& out,
-                                RunContext* context, Vector* r_full_out,
-                                std::vector<contact::PairEvaluation>* contact_out)
+                                RunContext* context, Vector* r_full_out)
 {
     const assembly::DofMap& dofs = *scene_.dofs;
     const Vector u_full = dofs.expand(u_free, t);
@@ -146,11 +161,6 @@ void SceneSystem::evaluate_into(const Vector& u_free, double t, bool need_tangen
     finish(a, out);
     if (r_full_out)
         *r_full_out = a.r_full;
-    if (contact_out) {
-        contact_out->clear();
-        for (ContactTerm* pair : contact_)
-            contact_out->push_back(pair->take_evaluation());
-    }
 }
 
 void SceneSystem::shape_tangent(bool need_tangent, SparseMatrix& tangent) const
@@ -246,7 +256,7 @@ std::vector<contact::PairEvaluation> SceneSystem::contact_state(const Vector& u_
     std::vector<contact::PairEvaluation> out;
     for (ContactTerm* pair : contact_) {
         pair->prepare(a);
-        out.push_back(pair->take_evaluation());
+        out.push_back(pair->evaluation());
     }
     return out;
 }

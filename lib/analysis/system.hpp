@@ -81,9 +81,12 @@ public:
     /// counters. At equilibrium f_int = f_ext(t) - r_c + R on every dof, so the
     /// constrained entries of r = f_int - f_ext(t) + r_c are the reactions R (the
     /// force each constraint exerts on the body).
-    /// `contact_out`, when given, receives the pairs' evaluations at that state (for output).
-    Vector full_residual(const Vector& u_free, double load_factor,
-                         std::vector<contact::PairEvaluation>* contact_out = nullptr);
+    Vector full_residual(const Vector& u_free, double load_factor);
+    /// Every term's part of the results step at a converged state, right after its
+    /// full_residual (analysis/term.hpp, Term::report).
+    void report(const Vector& u_free, double load_factor, int samples_per_span, io::StepData& step) const;
+    /// What the converged state `step` says is wrong with each term (Term::warnings).
+    std::vector<std::string> warnings(const io::StepData& step) const;
 
     /// Contact evaluation of every pair at a converged state (no tangent, not counted
     /// in the contact timers): for output.
@@ -129,8 +132,7 @@ public:
 
 private:
     void evaluate_into(const Vector& u_free, double load_factor, bool need_tangent, solver::Evaluation& out,
-                       RunContext* context, Vector* r_full_out,
-                       std::vector<contact::PairEvaluation>* contact_out);
+                       RunContext* context, Vector* r_full_out);
     /// Gives the tangent the pattern (keeping its storage) or releases it.
     void shape_tangent(bool need_tangent, SparseMatrix& tangent) const;
     /// Sums the ranks' parts of an evaluation (no-op on one process) and makes

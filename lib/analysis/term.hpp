@@ -11,7 +11,9 @@
 // the tangent has its pattern, every term's add_to() (residual, round-off magnitude
 // and tangent blocks into the ModelAssembly). A term with history (contact: foot
 // points, multipliers, stick/slip) keeps it itself: commit() after a converged
-// increment, rollback() after a failed attempt.
+// increment, rollback() after a failed attempt. At a converged state a term adds what
+// it has to show to the results step (report(): a contact pair its sides, pressures
+// and forces) and names what the state says is wrong with it (warnings()).
 //
 // The order of the terms is the order of the sums (elastic bodies, weak springs,
 // dead loads, follower pressures, contact pairs): it is fixed, so a run's round-off
@@ -25,6 +27,7 @@
 #include "analysis/scene.hpp"
 #include "core/run_context.hpp"
 #include "core/stop.hpp"
+#include "io/results_data.hpp"
 
 #include <string>
 #include <vector>
@@ -87,6 +90,11 @@ public:
     virtual void commit() {}
     /// After a failed attempt: back to the committed state.
     virtual void rollback() {}
+    /// At a converged state, after an evaluation of it (prepare() and add_to()): what
+    /// this term adds to the results step. `samples_per_span`: output.samples_per_span.
+    virtual void report(const ModelAssembly&, int /*samples_per_span*/, io::StepData&) const {}
+    /// What the converged state `step` (reported by every term) says is wrong with this term.
+    virtual std::vector<std::string> warnings(const io::StepData&) const { return {}; }
 };
 
 }  // namespace iga::analysis

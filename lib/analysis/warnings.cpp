@@ -179,51 +179,47 @@ std::string half_pass_cause(const PairModel& model, const io::ContactPairResult&
 
 }  // namespace
 
-std::vector<std::string> contact_warnings(const Scene& scene, const io::StepData& step)
+std::vector<std::string> pair_warnings(const Scene& scene, const PairModel& model, const io::ContactPairResult& pair,
+                                       double load_factor)
 {
     std::vector<std::string> out;
-    const double travel = imposed_travel(scene.settings, step.load_factor);
+    const double travel = imposed_travel(scene.settings, load_factor);
     const int d = scene.dim;
-    for (std::size_t p = 0; p < step.contact.size() && p < scene.pairs.size(); ++p) {
-        const io::ContactPairResult& pair = step.contact[p];
-        const PairModel& model = scene.pairs[p];
-        for (const io::ContactSideResult& side : pair.sides) {
-            const double penetration = attribute(side, "max_penetration");
-            if (!(penetration > 0.0))
-                continue;
-            const double measure = attribute(side, "contact_measure");
-            const double zone = d == 3 ? std::sqrt(measure) : measure;
-            int b = -1;
-            for (int k = 0; k < 2; ++k)
-                if (model.label[static_cast<std::size_t>(k)] == side.side_name)
-                    b = model.body[static_cast<std::size_t>(k)];
-            const double size = b >= 0 ? body_size(scene.bodies[static_cast<std::size_t>(b)]) : 0.0;
-            std::string against;
-            if (zone > 0.0 && penetration > penetration_to_zone * zone)
-                against = fmt::format("{:.0f} % of the contact zone ({:.3g})", 100.0 * penetration / zone, zone);
-            else if (size > 0.0 && penetration > penetration_to_body * size)
-                against = fmt::format("{:.1f} % of the body size ({:.3g})", 100.0 * penetration / size, size);
-            else if (travel > 0.0 && penetration > penetration_to_travel * travel)
-                against = fmt::format("{:.0f} % of the imposed travel ({:.3g})", 100.0 * penetration / travel,
-                                      travel);
-            if (!against.empty() && model.pair.settings().law.as_penalty())  // softened contact: overclosure by design
-                out.push_back(fmt::format(
-                    "contact pair '{}': {} penetrates {:.3g} at load factor {:.3g}, {}: the penalty is too soft "
-                    "for this load; raise contact.{}.penalty (the penetration falls in proportion)",
-                    pair.name, side.side_name, penetration, step.load_factor, against, pair.name));
-        }
-        if (model.formulation == contact::Formulation::two_half_pass && pair.sides.size() == 2) {
-            const double f1 = pair.sides[0].normal_force, f2 = pair.sides[1].normal_force;
-            const double scale = std::max(std::abs(f1), std::abs(f2));
-            // Grazing contact leaves forces at round-off level, whose ratio means nothing.
-            const BodyModel& body = scene.bodies[static_cast<std::size_t>(model.body[0])];
-            const double material_force = body.material.E * std::pow(body_size(body), d - 1);
-            if (scale > negligible_contact_force * material_force && std::abs(f1 - f2) > half_pass_disagreement * scale)
-                out.push_back(fmt::format("contact pair '{}': the two half passes disagree in normal force by {:.1f} % "
-                                          "({}: {:.6g}, {}: {:.6g}); {}",
-                                          pair.name, 100.0 * std::abs(f1 - f2) / scale, pair.sides[0].side_name, f1,
-                                          pair.sides[1].side_name, f2, half_pass_cause(model, pair, d)));
-        }
+    for (const io::ContactSideResult& side : pair.sides) {
+        const double penetration = attribute(side, "max_penetration");
+        if (!(penetration > 0.0))
+            continue;
+        const double measure = attribute(side, "contact_measure");
+        const double zone = d == 3 ? std::sqrt(measure) : measure;
+        int b = -1;
+        for (int k = 0; k < 2; ++k)
+            if (model.label[static_cast<std::size_t>(k)] == side.side_name)
+                b = model.body[static_cast<std::size_t>(k)];
+        const double size = b >= 0 ? body_size(scene.bodies[static_cast<std::size_t>(b)]) : 0.0;
+        std::string against;
+        if (zone > 0.0 && penetration > penetration_to_zone * zone)
+            against = fmt::format("{:.0f} % of the contact zone ({:.3g})", 100.0 * penetration / zone, zone);
+        else if (size > 0.0 && penetration > penetration_to_body * size)
+            against = fmt::format("{:.1f} % of the body size ({:.3g})", 100.0 * penetration / size, size);
+        else if (travel > 0.0 && penetration > penetration_to_travel * travel)
+            against = fmt::format("{:.0f} % of the imposed travel ({:.3g})", 100.0 * penetration / travel, travel);
+        if (!against.empty() && model.pair.settings().law.as_penalty())  // softened contact: overclosure by design
+            out.push_back(fmt::format(
+                "contact pair '{}': {} penetrates {:.3g} at load factor {:.3g}, {}: the penalty is too soft "
+                "for this load; raise contact.{}.penalty (the penetration falls in proportion)",
+                pair.name, side.side_name, penetration, load_factor, against, pair.name));
+    }
+    if (model.formulation == contact::Formulation::two_half_pass && pair.sides.size() == 2) {
+        const double f1 = pair.sides[0].normal_force, f2 = pair.sides[1].normal_force;
+        const double scale = std::max(std::abs(f1), std::abs(f2));
+        // Grazing contact leaves forces at round-off level, whose ratio means nothing.
+        const BodyModel& body = scene.bodies[static_cast<std::size_t>(model.body[0])];
+        const double material_force = body.material.E * std::pow(body_size(body), d - 1);
+        if (scale > negligible_contact_force * material_force && std::abs(f1 - f2) > half_pass_disagreement * scale)
+            out.push_back(fmt::format("contact pair '{}': the two half passes disagree in normal force by {:.1f} % "
+                                      "({}: {:.6g}, {}: {:.6g}); {}",
+                                      pair.name, 100.0 * std::abs(f1 - f2) / scale, pair.sides[0].side_name, f1,
+                                      pair.sides[1].side_name, f2, half_pass_cause(model, pair, d)));
     }
     return out;
 }

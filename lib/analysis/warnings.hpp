@@ -66,7 +66,9 @@ std::vector<std::string> duplicate_pair_warnings(const Scene& scene);
 /// back (ContactPair::release_overlap); one warning per pair that has one.
 std::vector<std::string> release_initial_overclosure(Scene& scene, SceneSystem& system, double release_end);
 
-/// Warnings about the contact state of a converged increment (the last one).
-std::vector<std::string> contact_warnings(const Scene& scene, const io::StepData& step);
+/// What the converged state of one pair says is wrong (ContactTerm::warnings): a
+/// penetration too deep for the penalty, two half passes that disagree.
+std::vector<std::string> pair_warnings(const Scene& scene, const PairModel& model, const io::ContactPairResult& pair,
+                                       double load_factor);
 
 }  // namespace iga::analysis

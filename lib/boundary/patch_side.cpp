@@ -1,5 +1,7 @@
 #include "boundary/patch_side.hpp"
 
+#include "nurbs/coincidence.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -98,7 +100,7 @@ void check_parent(const nurbs::Patch& parent, Side side)
 
 bool is_collapsed_side(const nurbs::Patch& parent, const nurbs::SidePatch& sp)
 {
-    return nurbs::is_collapsed(sp, collapse_relative_tolerance * bounding_diagonal(parent.control_points()));
+    return nurbs::is_collapsed(sp, nurbs::coincidence_tolerance(parent.control_points()));
 }
 
 }  // namespace

@@ -26,8 +26,8 @@
 // orthogonal to dX/dxi_f; a sign change among the samples is a folded parametrization
 // and throws FoldedSide (a fold between samples is not seen).
 //
-// Collapsed side: all its control points coincide to collapse_relative_tolerance times
-// the parent's bounding-box diagonal (the corners of the built-in half_disc, the apex
+// Collapsed side: all its control points coincide (nurbs/coincidence.hpp: 1e-12 of
+// the size of the parent's coordinates) (the corners of the built-in half_disc, the apex
 // of a cone). It has jacobian 0 everywhere, outward_sign() == 0 and a zero normal, flagged
 // `degenerate`; loads and contact reject a force or a contact surface on it. A side that
 // is not collapsed but where no sample decides the sign (zero area everywhere, or the
@@ -52,10 +52,6 @@
 #include <vector>
 
 namespace iga::boundary {
-
-/// Control points of a side closer than this times the parent's bounding-box diagonal
-/// coincide: a few thousand ulps of the coordinates, far below any real side length.
-inline constexpr double collapse_relative_tolerance = 1e-12;
 
 /// A point whose |n_raw| is below this times its element's natural scale (see
 /// PatchSide::evaluate) is degenerate: there the raw normal has lost about half of its
@@ -105,7 +101,7 @@ public:
     /// +1 or -1: sign * n_raw points out of the parent; 0 when the side has no outward
     /// normal (collapsed, or undecided as in the header).
     int outward_sign() const { return sign_; }
-    /// All control points coincide (collapse_relative_tolerance): measure 0, nothing carried.
+    /// All control points coincide (nurbs/coincidence.hpp): measure 0, nothing carried.
     bool collapsed() const { return collapsed_; }
     /// Spatial dimension d of the parent (the side has d - 1 parameters).
     int dim() const { return side_.patch.dim(); }

@@ -1,5 +1,7 @@
 #include "contact/contact_pair.hpp"
 
+#include "nurbs/coincidence.hpp"
+
 #include "boundary/patch_side.hpp"
 #include "contact/gpts_friction.hpp"
 #include "contact/gpts_kernel.hpp"
@@ -26,10 +28,6 @@ namespace {
 /// round-off of the closest-point projection (which is accurate to ~1e-15 of it).
 constexpr double touching_tolerance = 1e-12;
 
-/// Control points closer than this fraction of the coordinates' magnitude count
-/// as coincident (a few hundred ulps): such a side is collapsed.
-constexpr double collapsed_relative_tolerance = 1e-13;
-
 /// Spatial dimension of a surface: d of a deformable side's points, or the obstacle's.
 int surface_dim(const Surface& s)
 {
@@ -50,8 +48,7 @@ void check_surface(const Surface& s, const char* which, int dim)
                 throw Error(std::string("contact: the pieces of a surface live in different dimensions"));
             if (p.n_par() != dim - 1 || (dim != 2 && dim != 3))
                 throw Error(std::string("contact: ") + which + " surface is not a curve in 2D or a surface in 3D");
-            const double scale = std::max(1.0, p.control_points().cwiseAbs().maxCoeff());
-            if (nurbs::is_collapsed(piece.side, collapsed_relative_tolerance * scale))
+            if (nurbs::is_collapsed(piece.side, nurbs::coincidence_tolerance(p.control_points())))
                 throw Error(std::string("contact: ") + which + " surface, side " +
                             std::string(side_name(piece.side.side)) + ", is collapsed to a point");
             IGA_CHECK(piece.outward_sign == 1 || piece.outward_sign == -1, "contact: outward sign must be +1 or -1");

@@ -10,7 +10,7 @@ namespace {
 /// Column of x,ab in second derivatives packed like BasisValues::d2R.
 Index packed(Index a, Index b, Index q)
 {
-    return packed(a, b, q);
+    return nurbs::second_column(static_cast<int>(q), static_cast<int>(a), static_cast<int>(b));
 }
 
 }  // namespace

@@ -31,11 +31,6 @@ h5::Handle open_results(const std::string& path, const char* role)
     }
 }
 
-bool ends_with(const std::string& text, const std::string& suffix)
-{
-    return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 // True if `path` is `prefix` or lies below it (next character '/' or '@').
 bool within(const std::string& path, const std::string& prefix)
 {
