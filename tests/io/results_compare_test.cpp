@@ -262,16 +262,21 @@ TEST_F(ResultsCompareTest, TolerancesCanBeLoosenedAndTightened)
 
 TEST_F(ResultsCompareTest, AbsoluteToleranceCoversValuesNearZero)
 {
-    // A zero reference value has max_rel = inf, so only atol decides.
-    const CompareReport report = compare_changed([](SampleRun& run) {
-        run.summary.convergence(0, 0) = 1e-13;  // reference value 0: only atol (1e-12) can accept this
-    });
+    // A zero reference value has max_rel = inf, so only atol decides. (/convergence, a
+    // solver statistic, is compared under --all: include_volatile.)
+    const CompareReport report = compare_changed(
+        [](SampleRun& run) {
+            run.summary.convergence(0, 0) = 1e-13;  // reference value 0: only atol (1e-12) can accept this
+        },
+        with_volatile());
     const CompareEntry* entry = find_entry(report, "/convergence");
     ASSERT_NE(entry, nullptr);
     EXPECT_EQ(entry->kind, Kind::same) << entry->detail;
     EXPECT_EQ(entry->max_rel, std::numeric_limits<double>::infinity());
 
-    const CompareReport tight = compare_results(reference_path(), path("new.h5"), tolerances(CompareOptions{}.rtol, 0));
+    CompareOptions tight_options = tolerances(CompareOptions{}.rtol, 0);
+    tight_options.include_volatile = true;
+    const CompareReport tight = compare_results(reference_path(), path("new.h5"), tight_options);
     EXPECT_EQ(find_entry(tight, "/convergence")->kind, Kind::different);
 }
 
