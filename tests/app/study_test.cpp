@@ -195,6 +195,18 @@ TEST(Study, SigintKeepsTheFinishedLevels)
         std::this_thread::sleep_for(20ms);
     }
     ASSERT_TRUE(last_level_running) << read_text(err);
+    // ... and has opened its results file (level3.h5.tmp-<pid>, renamed when it ends): a
+    // signal during its set-up would leave no file at all, and on a loaded machine the
+    // set-up takes longer than any fixed wait.
+    auto level3_file_open = [&] {
+        std::error_code ec;
+        for (const auto& entry : fs::directory_iterator(dir / "stretch_study", ec))
+            if (entry.path().filename().string().rfind("level3.h5", 0) == 0)
+                return true;
+        return false;
+    };
+    while (std::chrono::steady_clock::now() < deadline && !level3_file_open())
+        std::this_thread::sleep_for(20ms);
     std::this_thread::sleep_for(200ms);
     ::kill(pid, SIGINT);
     int status = 0;
