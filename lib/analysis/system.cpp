@@ -114,7 +114,7 @@ Vector SceneSystem::full_residual(const Vector& u_free, double load_factor)
 void SceneSystem::report(const Vector& u_free, double load_factor, int samples_per_span, io::StepData& step) const
 {
     const Vector u_full = scene_.dofs->expand(u_free, load_factor);
-    const ModelAssembly a{.scene = scene_, .u_full = u_full, .t = load_factor};
+    const ModelAssembly a(scene_, u_full, load_factor);
     for (const auto& term : terms_)
         term->report(a, samples_per_span, step);
 }
@@ -133,10 +133,9 @@ void SceneSystem::evaluate_into(const Vector& u_free, double t, bool need_tangen
 {
     const assembly::DofMap& dofs = *scene_.dofs;
     const Vector u_full = dofs.expand(u_free, t);
-    ModelAssembly a{.scene = scene_, .u_full = u_full, .t = t, .need_tangent = need_tangent, .context = context,
-                    // One rank alone must not leave on a stop request (see the header): polled in the sum.
-                    .stop = context && !comm_.parallel() ? context->stop() : StopRequest{},
-                    .root = comm_.root()};
+    // One rank alone must not leave on a stop request (see the header): polled in the sum.
+    const StopRequest stop = context && !comm_.parallel() ? context->stop() : StopRequest{};
+    ModelAssembly a(scene_, u_full, t, need_tangent, context, stop, comm_.root());
     // Contact first: a coupling that the pattern lacks extends it before the
     // tangent is shaped, so K has one pattern throughout the evaluation.
     for (const auto& term : terms_)
@@ -252,7 +251,7 @@ double SceneSystem::strain_energy(const Vector& u_free, double load_factor)
 std::vector<contact::PairEvaluation> SceneSystem::contact_state(const Vector& u_free, double load_factor)
 {
     const Vector u_full = scene_.dofs->expand(u_free, load_factor);
-    ModelAssembly a{.scene = scene_, .u_full = u_full, .t = load_factor};
+    ModelAssembly a(scene_, u_full, load_factor);
     std::vector<contact::PairEvaluation> out;
     for (ContactTerm* pair : contact_) {
         pair->prepare(a);

@@ -37,6 +37,14 @@ namespace iga::analysis {
 /// What one evaluation accumulates over the terms. Vectors are over ALL dofs
 /// (n_full); the tangent is over the free dofs, in the scene's pattern.
 struct ModelAssembly {
+    /// An evaluation at u_full and t; `stop` polled per element block and pair.
+    ModelAssembly(const Scene& scene_, const Vector& u_full_, double t_, bool need_tangent_ = false,
+                  RunContext* context_ = nullptr, StopRequest stop_ = {}, bool root_ = true)
+        : scene(scene_), u_full(u_full_), t(t_), need_tangent(need_tangent_), context(context_),
+          stop(std::move(stop_)), root(root_)
+    {
+    }
+
     const Scene& scene;
     const Vector& u_full;  ///< displacements of all dofs at t (prescribed ones included)
     double t = 0.0;        ///< pseudo-time (the load factor without amplitudes)

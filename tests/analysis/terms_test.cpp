@@ -39,7 +39,7 @@ struct TermValue {
 TermValue evaluate_term(Scene& scene, Term& term, const Vector& u_free, double t)
 {
     const Vector u_full = scene.dofs->expand(u_free, t);
-    ModelAssembly a{.scene = scene, .u_full = u_full, .t = t, .need_tangent = true};
+    ModelAssembly a(scene, u_full, t, true);
     term.prepare(a);
     TermValue out;
     scene.pattern->shape(out.tangent);
