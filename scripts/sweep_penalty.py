@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Table and plot of a penalty sweep made by scripts/sweep_penalty.sh.
 
-Usage:  scripts/sweep_penalty.py DIR PAIR V1 V2 ...
+Usage:  scripts/sweep_penalty.py DIR PAIR V1 V2 ...   (a V may be `auto`: the penalty the run chose)
 
 Reads DIR/penalty_<V>.json (the `--summary json` line) and DIR/penalty_<V>.h5 for each
 value V, prints a Markdown table (penalty, status, errors against the analytic
@@ -25,7 +25,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (the backend must be chosen first)
 
 COLUMNS = ["penalty", "status", "l2", "peak", "half_width", "gauss_l2", "max_penetration",
-           "newton_iterations", "cutbacks", "wall_s", "results"]
+           "newton_iterations", "cutbacks", "wall_s", "results", "given"]
 
 
 def max_penetration(h5, pair):
@@ -42,7 +42,10 @@ def max_penetration(h5, pair):
 
 def read_one(directory, pair, value):
     row = {c: float("nan") for c in COLUMNS}
-    row.update(penalty=float(value), status="missing", results=f"penalty_{value}.h5")
+    # `auto` (the deck's documented value) is the penalty the run chose: the pair's
+    # `penalty` attribute in its results, NaN until the run wrote it.
+    row.update(penalty=float("nan") if value == "auto" else float(value), status="missing",
+               results=f"penalty_{value}.h5", given=value)
     summary_path = os.path.join(directory, f"penalty_{value}.json")
     if os.path.exists(summary_path):
         lines = [ln for ln in open(summary_path).read().splitlines() if ln.startswith("{")]
@@ -56,6 +59,9 @@ def read_one(directory, pair, value):
     if os.path.exists(h5_path):
         with h5py.File(h5_path, "r") as f:
             row["max_penetration"] = max_penetration(f, pair)
+            contact = f["results"]["contact"] if "results" in f and "contact" in f["results"] else {}
+            if value == "auto" and pair in contact and "penalty" in contact[pair].attrs:
+                row["penalty"] = float(contact[pair].attrs["penalty"])
             if "reference" in f and pair in f["reference"]:
                 attrs = f["reference"][pair].attrs
                 for k in ("l2", "peak", "half_width", "gauss_l2"):
@@ -75,7 +81,7 @@ def main(argv):
         sys.exit(__doc__)
     directory, pair, values = argv[0], argv[1], argv[2:]
     rows = [read_one(directory, pair, v) for v in values]
-    rows.sort(key=lambda r: r["penalty"])
+    rows.sort(key=lambda r: (math.isnan(r["penalty"]), r["penalty"]))  # an auto run that wrote nothing: last
     has_reference = any(not math.isnan(r["l2"]) for r in rows)
 
     print(f"\nPenalty sweep of pair {pair} ({directory}); errors in % against /reference/{pair}"
@@ -84,7 +90,8 @@ def main(argv):
     print("|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         pct = {k: 100 * r[k] for k in ("l2", "peak", "half_width", "gauss_l2")}
-        print(f"| {r['penalty']:.0e} | {r['status']} | {cell(pct['l2'], '.2f')} | {cell(pct['peak'], '+.2f')} | "
+        label = f"{r['penalty']:.2e} (auto)" if r["given"] == "auto" else f"{r['penalty']:.0e}"
+        print(f"| {label} | {r['status']} | {cell(pct['l2'], '.2f')} | {cell(pct['peak'], '+.2f')} | "
               f"{cell(pct['half_width'], '+.2f')} | {cell(pct['gauss_l2'], '.2f')} | {cell(r['max_penetration'], '.3e')} | "
               f"{cell(r['newton_iterations'], 'd')} | {cell(r['wall_s'], '.3f')} |")
     with open(os.path.join(directory, "sweep.csv"), "w", newline="") as f:
