@@ -195,9 +195,9 @@ TEST(Study, SigintKeepsTheFinishedLevels)
         std::this_thread::sleep_for(20ms);
     }
     ASSERT_TRUE(last_level_running) << read_text(err);
-    // ... and has opened its results file (level3.h5.tmp-<pid>, renamed when it ends): a
-    // signal during its set-up would leave no file at all, and on a loaded machine the
-    // set-up takes longer than any fixed wait.
+    // ... and has opened its results file (the level-3 file under a temporary name until
+    // it ends): a signal during its set-up would leave no file at all, and on a loaded
+    // machine the set-up takes longer than any fixed wait.
     auto level3_file_open = [&] {
         std::error_code ec;
         for (const auto& entry : fs::directory_iterator(dir / "stretch_study", ec))
