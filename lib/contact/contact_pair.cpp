@@ -339,7 +339,7 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
             ContactPointState point;
             // Against a deformable master the anchor is a material point of the master: none
             // until the point first touches (gpts_friction.hpp).
-            point.friction = FrictionHistory{gp.reference - start, 0.0, obstacle != nullptr};
+            point.friction = FrictionHistory{gp.reference - start, 0.0, obstacle != nullptr, false};
             point.tangential_multiplier = VecN::Zero(dim_);
             point.clear_response(dim_);
             committed_[c].push_back(std::move(point));
@@ -457,7 +457,7 @@ void ContactPair::anchor_on_reference_masters()
                 project_on_master(c.master, view, c.points[g].reference, Foot{}, scratch, timing, failed);
             if (!failed && foot && foot->status == Projection::Status::ok &&
                 foot->gap >= -touching_tolerance * view.size)
-                committed_[ci][g].friction = FrictionHistory{foot->point, 0.0, true};
+                committed_[ci][g].friction = FrictionHistory{foot->point, 0.0, true, false};
         }
     }
 }

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 
 namespace iga::contact {
@@ -32,10 +33,11 @@ TangentialResponse coulomb_response(const FrictionLaw& law, const FrictionHistor
     Matrix G = P;
     if (std::isfinite(normal_radius))
         G -= (normal.dot(w) * P + normal * gt.transpose()) / normal_radius;
-    out = coulomb_return_map(law, -eps * gt, -eps * G, pressure, d_pressure);
+    out = coulomb_return_map(law, -eps * gt, -eps * G, pressure, d_pressure, committed.slipping);
     out.next = committed;
     out.frame_traction = out.traction;
     out.elastic_slip = (out.traction - P * multiplier).norm() / eps;
+    out.next.slipping = out.status == StickSlip::slip;
     if (out.status == StickSlip::slip) {
         out.next.anchor = y + (out.traction - multiplier) / eps;  // where the traction is reproduced
         out.next.slip = committed.slip + out.slip_increment;
@@ -44,7 +46,7 @@ TangentialResponse coulomb_response(const FrictionLaw& law, const FrictionHistor
 }
 
 TangentialResponse coulomb_return_map(const FrictionLaw& law, const VecN& trial, const Matrix& d_trial,
-                                      double pressure, const Vector& d_pressure)
+                                      double pressure, const Vector& d_pressure, bool was_slipping)
 {
     const Index d = trial.size();
     const Index m = d_trial.cols();
@@ -52,7 +54,8 @@ TangentialResponse coulomb_return_map(const FrictionLaw& law, const VecN& trial,
     TangentialResponse out;
     const double s_norm = trial.norm();
     const double limit = law.coefficient * pressure;
-    if (s_norm <= limit) {
+    const bool on_cone = was_slipping && s_norm >= (1.0 - cone_band) * limit;
+    if (s_norm <= limit && !on_cone) {
         out.status = StickSlip::stick;
         out.traction = trial;
         out.d_traction = d_trial;
@@ -64,7 +67,7 @@ TangentialResponse coulomb_return_map(const FrictionLaw& law, const VecN& trial,
     out.traction = limit * direction;
     out.d_traction = (limit / s_norm) * (Matrix::Identity(d, d) - direction * direction.transpose()) * d_trial +
                      law.coefficient * direction * d_pressure.transpose();
-    out.slip_increment = (s_norm - limit) / eps;
+    out.slip_increment = std::max(0.0, s_norm - limit) / eps;
     return out;
 }
 

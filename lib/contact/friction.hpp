@@ -53,6 +53,9 @@ struct FrictionHistory {
     VecN anchor;           ///< the master-frame point the slave sticks to, d
     double slip = 0.0;     ///< accumulated slip length
     bool anchored = true;  ///< false: no anchor yet (never touched a deformable master); it sticks where it touches
+    /// It slipped in the increment that made this history, so its trial traction starts
+    /// on the Coulomb cone: there (to round-off) it is read as slipping on, not sticking.
+    bool slipping = false;
 };
 
 /// The tangential response at one Gauss point.
@@ -69,8 +72,17 @@ struct TangentialResponse {
 /// The return map alone: the trial traction s (tangential, d) with ds/dz (d x m),
 /// the pressure p and dp/dz (m). Fills status, traction, d_traction and the slip
 /// increment; the history is the caller's (it knows the frame of the anchor).
+/// `was_slipping`: the committed state slipped. Its anchor reproduces a traction on the
+/// cone, so at the converged state |s| = mu p up to round-off; read as stick there, the
+/// tangent the next increment's predictor solves with would hold the point fast and drag
+/// the surface along (the ironing die started every increment with half its points stuck).
+/// Within `cone_band` of the cone such a point slips: the traction is the same, the
+/// tangent is the sliding one.
 TangentialResponse coulomb_return_map(const FrictionLaw& law, const VecN& trial, const Matrix& d_trial,
-                                      double pressure, const Vector& d_pressure);
+                                      double pressure, const Vector& d_pressure, bool was_slipping = false);
+
+/// Relative band around the Coulomb cone in which a point that slipped keeps slipping.
+inline constexpr double cone_band = 1e-9;
 
 /// Coulomb's law at the slave point y (master frame) with outward normal n of
 /// the master, contact pressure p >= 0 and its derivative dp/dy (d), and the

@@ -20,7 +20,7 @@ FrictionHistory open_history(const FrictionHistory& committed, const MasterRefer
     // Not anchored: where an open point will touch is not the foot it has now (on a
     // curved master the closest point moves as the gap closes), so it sticks where it
     // touches, at the end of the increment in which it first presses.
-    return FrictionHistory{reference.point, committed.slip, false};
+    return FrictionHistory{reference.point, committed.slip, false, false};
 }
 
 TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W, const MasterFoot& master,
@@ -49,7 +49,7 @@ TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W
     }
     if (!committed.anchored) {  // first touch: it sticks where it touches
         out.status = StickSlip::stick;
-        out.next = FrictionHistory{reference.point, committed.slip, true};
+        out.next = FrictionHistory{reference.point, committed.slip, true, false};
         return out;
     }
     const FootVariation v = foot_variation(N, master);
@@ -88,8 +88,9 @@ TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W
         d_trial.block(0, (n_s + b) * d, d, d).diagonal().array() += eps_T * master.dR.row(b).dot(c);
     const Vector d_pressure = -result.slope * v.Nn;  // dp/du = p' dg_N/du
 
-    out = coulomb_return_map(law, eps_T * a * c, d_trial, result.pressure, d_pressure);
+    out = coulomb_return_map(law, eps_T * a * c, d_trial, result.pressure, d_pressure, committed.slipping);
     out.next = committed;
+    out.next.slipping = out.status == StickSlip::slip;
     // t_T pulled back to the master's reference space (F_s of it is t_T again).
     const Eigen::LLT<Matrix> m_llt(master.metric);
     out.frame_traction = G * m_llt.solve(a.transpose() * out.traction);

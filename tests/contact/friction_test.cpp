@@ -144,6 +144,41 @@ TEST(Friction, ReturnMapSticksInsideTheConeAndSlidesOnIt)
     EXPECT_EQ(open.next.anchor, y);
 }
 
+TEST(Friction, APointThatSlippedSlidesOnFromTheCone)
+{
+    // After a slipping increment the committed anchor reproduces |t_T| = mu p, so the
+    // next increment starts with the trial traction on the cone to round-off. Read as
+    // stick, its tangent (ds/dy = -eps_T along the slide) holds the point fast; it
+    // must be the sliding one (no stiffness along the slide), for the predictor to let
+    // the surface slide on.
+    const VecN n = (VecN(2) << 0.0, 1.0).finished();
+    const VecN y = (VecN(2) << 0.0, 0.0).finished();
+    const FrictionLaw law{0.5, 100.0};
+    const VecN dp = VecN::Zero(2);
+    const VecN none = VecN::Zero(2);
+    const TangentialResponse slid = coulomb_response(law, {(VecN(2) << -0.02, 0.0).finished(), 0.0}, none, y, n, 1.0, dp);
+    ASSERT_EQ(slid.status, StickSlip::slip);
+    EXPECT_TRUE(slid.next.slipping);
+    for (const double shift : {-1e-13, 0.0, 1e-13}) {  // the round-off either side of the cone
+        FrictionHistory committed = slid.next;
+        committed.anchor(0) += shift;
+        const TangentialResponse on = coulomb_response(law, committed, none, y, n, 1.0, dp);
+        EXPECT_EQ(on.status, StickSlip::slip) << "anchor shifted by " << shift;
+        EXPECT_NEAR(on.traction(0), -0.5, 1e-12);
+        EXPECT_NEAR(on.d_traction(0, 0), 0.0, 1e-9) << "the sliding tangent has no stiffness along the slide";
+        EXPECT_GE(on.slip_increment, 0.0);
+    }
+    // Sliding back inside the cone sticks again: the band is 1e-9 of mu p, not a slide.
+    FrictionHistory back = slid.next;
+    back.anchor(0) += 1e-6;
+    EXPECT_EQ(coulomb_response(law, back, none, y, n, 1.0, dp).status, StickSlip::stick);
+    // A point that stuck stays stuck on the cone itself: only a slip carries on.
+    FrictionHistory stuck = slid.next;
+    stuck.slipping = false;
+    stuck.anchor(0) += 1e-13;
+    EXPECT_EQ(coulomb_response(law, stuck, none, y, n, 1.0, dp).status, StickSlip::stick);
+}
+
 TEST(Friction, TangentEqualsFiniteDifferences2DPlane)
 {
     const RigidObstacle plane(RigidPlane::make((VecN(2) << 0.0, 0.0).finished(), (VecN(2) << 0.0, 1.0).finished()));
