@@ -225,9 +225,9 @@ def hertz_checks(path, b):
         side = pre.rstrip(".") or "first side"
         peak, rad, l2 = (float(at.get(pre + k, float("nan"))) for k in ("peak", "contact_radius", "l2"))
         ok = b["status"] == "completed"
-        out.append(("peak within 3 % (%s)" % side, ok and abs(peak) <= HERTZ_PEAK, "%+.2f %%" % (100 * peak)))
-        out.append(("contact radius within 3 % (%s)" % side, ok and abs(rad) <= HERTZ_RADIUS, "%+.2f %%" % (100 * rad)))
-        out.append(("radial L2 within 5 % (%s)" % side, ok and abs(l2) <= HERTZ_L2, "%.2f %%" % (100 * l2)))
+        out.append(("peak within 3 %% (%s)" % side, ok and abs(peak) <= HERTZ_PEAK, "%+.2f %%" % (100 * peak)))
+        out.append(("contact radius within 3 %% (%s)" % side, ok and abs(rad) <= HERTZ_RADIUS, "%+.2f %%" % (100 * rad)))
+        out.append(("radial L2 within 5 %% (%s)" % side, ok and abs(l2) <= HERTZ_L2, "%.2f %%" % (100 * l2)))
     return out
 
 
