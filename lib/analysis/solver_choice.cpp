@@ -104,6 +104,8 @@ solver::LinearSolverPolicy linear_solver_policy(const Scene& scene,
             policy.penalty_ratio = std::max(policy.penalty_ratio,
                                             pair.pair.settings().law.stiffness() * pair.rule.element_size /
                                                 pair.rule.modulus);
+    policy.two_body_contact =
+        std::any_of(scene.pairs.begin(), scene.pairs.end(), [](const PairModel& p) { return p.obstacle < 0; });
     if (policy.method == solver::Method::iterative) {  // multigrid: the near-null space, point blocks
         policy.rigid_body_modes = rigid_body_modes(scene);
         policy.block_size = point_block_size(scene);

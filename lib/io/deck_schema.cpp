@@ -247,7 +247,8 @@ constexpr Row deck_rows[] = {
      "`petsc` only for `iterative` (without a `backend`, `iterative` chooses `petsc`). `direct`: MUMPS "
      "(Cholesky/LDLᵀ for symmetric tangents, LU otherwise). `iterative`: CG (symmetric) or GMRES(100) (otherwise) "
      "with an algebraic multigrid (GAMG, or hypre BoomerAMG where a penalty is stiff; [parallel.md](parallel.md)), "
-     "to a relative true residual of 1e-8"},
+     "to a relative true residual of 1e-8; GMRES with a MUMPS LU where two deformable bodies are in two-half-pass "
+     "contact (no multigrid fits that tangent). A Krylov solve that stalls stops early, with a warning"},
     {"solver.options", text(), fallback("none"),
      "`petsc` only (without a `backend`, `options` choose `petsc`): PETSc options, applied after igacontact's defaults, so they win (e.g. `-pc_type gamg`, "
      "`-ksp_rtol 1e-10`, `-ksp_monitor`); the `PETSC_OPTIONS` environment variable is read after them and wins "

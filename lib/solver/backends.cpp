@@ -60,7 +60,7 @@ const std::array<LinearMethod, 6> table{{
     {Backend::petsc,       Method::direct,    "petsc",       "MUMPS Cholesky",   true,     true,       false,  true,    petsc_maker,       petsc_hint},
     {Backend::petsc,       Method::direct,    "petsc",       "MUMPS LU",         false,    true,       false,  true,    petsc_maker,       petsc_hint},
     {Backend::petsc,       Method::iterative, "petsc",       "CG + AMG",         true,     true,       false,  true,    petsc_maker,       petsc_hint},
-    {Backend::petsc,       Method::iterative, "petsc",       "GMRES + AMG",      false,    true,       false,  true,    petsc_maker,       petsc_hint},
+    {Backend::petsc,       Method::iterative, "petsc",       "GMRES + AMG / LU", false,    true,       false,  true,    petsc_maker,       petsc_hint},
 }};
 // clang-format on
 

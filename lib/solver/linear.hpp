@@ -118,6 +118,10 @@ struct LinearSolverPolicy {
     /// over the pairs (0 without contact): algebraic multigrid by aggregation loses
     /// its way past ~1e2 (petsc_solver.hpp).
     double penalty_ratio = 0.0;
+    /// A contact pair couples two deformable bodies. With a non-symmetric tangent
+    /// (two-half-pass) no algebraic multigrid fits it: GMRES is then preconditioned by
+    /// a MUMPS LU (solver/petsc_solver.hpp).
+    bool two_body_contact = false;
     /// The rigid-body modes on the free dofs (n_free x 3 in 2D, x 6 in 3D), the
     /// near-null space of an algebraic multigrid preconditioner; may be empty.
     Matrix rigid_body_modes;

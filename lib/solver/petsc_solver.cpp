@@ -43,6 +43,98 @@ constexpr double reuse_iteration_growth = 2.0;
 // 1 / 1e2 / 1e4 / 1e6 on two tied boxes, and a sphere pressed into a block at 5e4 did
 // not converge where BoomerAMG did (docs/parallel.md).
 constexpr double max_aggregation_penalty_ratio = 1e2;
+// A Krylov solve is stopped as stalled when, at the pace of its last stall_window
+// iterations, it would not reach its tolerance within its iteration cap. A
+// preconditioner that does not fit the tangent otherwise runs every solve, and every
+// shift Newton then tries, to the cap (issue 31: GMRES + GAMG on two cylinders in
+// contact, 1000-iteration failures, over 10 minutes). One GMRES restart cycle: a
+// cycle's residual only falls, and a restart rarely speeds it up.
+constexpr PetscInt stall_window = gmres_restart;
+
+/// The convergence test of every Krylov solve: PETSc's default, and a stop (reason
+/// KSP_DIVERGED_ITS, `stalled` set) when the solve is stalled (stall_window above).
+struct StallTest {
+    void* converged_default = nullptr;  // KSPConvergedDefault's context
+    std::vector<PetscReal> best;        // the smallest residual norm up to each iteration
+    bool stalled = false;
+    PetscInt iterations = 0;            // where a stalled solve was stopped
+};
+
+/// Whether the residual, shrinking as it did over the last stall_window iterations,
+/// misses `target` at the iteration cap. `best` holds iterations 0..it.
+bool off_pace(const std::vector<PetscReal>& best, PetscInt it, PetscInt max_it, double target)
+{
+    if (it < stall_window || it >= max_it)
+        return false;
+    const double now = best[static_cast<std::size_t>(it)];
+    const double ratio = now / best[static_cast<std::size_t>(it - stall_window)];
+    const double windows_left = static_cast<double>(max_it - it) / static_cast<double>(stall_window);
+    return now * std::pow(ratio, windows_left) > target;
+}
+
+PetscErrorCode converged_or_stalled(KSP ksp, PetscInt it, PetscReal rnorm, KSPConvergedReason* reason, void* context)
+{
+    auto& test = *static_cast<StallTest*>(context);
+    const PetscErrorCode code = KSPConvergedDefault(ksp, it, rnorm, reason, test.converged_default);
+    if (code != 0)
+        return code;
+    if (it == 0) {
+        test.best.clear();
+        test.stalled = false;
+    }
+    // GMRES tests the first residual of a cycle twice (at the end of one, the start of the next).
+    const auto k = static_cast<std::size_t>(it);
+    if (test.best.size() <= k)
+        test.best.resize(k + 1, test.best.empty() ? rnorm : test.best.back());
+    test.best[k] = std::min(test.best[k], rnorm);
+    if (*reason != KSP_CONVERGED_ITERATING)
+        return 0;
+    PetscReal rtol = 0, abstol = 0, dtol = 0;
+    PetscInt max_it = 0;
+    const PetscErrorCode got = KSPGetTolerances(ksp, &rtol, &abstol, &dtol, &max_it);
+    if (got != 0)
+        return got;
+    if (off_pace(test.best, it, max_it, std::max(rtol * test.best.front(), abstol))) {
+        test.stalled = true;
+        test.iterations = it;
+        *reason = KSP_DIVERGED_ITS;
+    }
+    return 0;
+}
+
+PetscErrorCode destroy_stall_test(void* context)
+{
+    auto* test = static_cast<StallTest*>(context);
+    const PetscErrorCode code = KSPConvergedDefaultDestroy(test->converged_default);
+    delete test;
+    return code;
+}
+
+/// The KSP's StallTest, or null when the options replaced it (-ksp_convergence_test).
+const StallTest* stall_test(KSP ksp)
+{
+    PetscErrorCode (*test)(KSP, PetscInt, PetscReal, KSPConvergedReason*, void*) = nullptr;
+    void* context = nullptr;
+    if (KSPGetConvergenceTest(ksp, &test, &context, nullptr) != 0 || test != converged_or_stalled)
+        return nullptr;
+    return static_cast<const StallTest*>(context);
+}
+
+/// What a Krylov solve that stopped short saw: "gmres + gamg stalled: ..." or
+/// "cg + gamg stopped after 2 iterations: DIVERGED_ITS".
+std::string krylov_failure_text(KSP ksp, const std::string& method, KSPConvergedReason reason, PetscInt iterations)
+{
+    const StallTest* test = stall_test(ksp);
+    if (!test || !test->stalled || test->best.empty())
+        return fmt::format("{} stopped after {} iterations: {}", method, iterations, KSPConvergedReasons[reason]);
+    PetscReal rtol = 0;
+    PetscInt max_it = 0;
+    KSPGetTolerances(ksp, &rtol, nullptr, nullptr, &max_it);
+    const double reached = test->best.back() / test->best.front();
+    return fmt::format("{} stalled: its residual fell to {:.2g} of the first in {} iterations, too slowly to reach "
+                       "{:.0e} within {}",
+                       method, reached, test->iterations, rtol, max_it);
+}
 
 void check(PetscErrorCode code, const char* what)
 {
@@ -78,6 +170,33 @@ void ensure_petsc(const std::string& deck_options)
         check(PetscOptionsInsertString(nullptr, env), "reading PETSC_OPTIONS");
 }
 
+/// A default in the options database, unless the options give it already.
+void default_option(const char* name, const char* value)
+{
+    PetscBool given = PETSC_FALSE;
+    check(PetscOptionsHasName(nullptr, nullptr, name, &given), "options");
+    if (!given)
+        check(PetscOptionsSetValue(nullptr, name, value), "options");
+}
+
+/// The algebraic multigrid of the policy (see the header).
+void set_multigrid(PC pc, const LinearSolverPolicy& policy)
+{
+    if (policy.penalty_ratio <= max_aggregation_penalty_ratio) {
+        check(PCSetType(pc, PCGAMG), "PCSetType");
+        return;
+    }
+    check(PCSetType(pc, PCHYPRE), "PCSetType");
+    check(PCHYPRESetType(pc, "boomeramg"), "PCHYPRESetType");
+    // Coarsening that keeps the coarse grids of 3D quadratic elements sparse
+    // (hypre's advice for 3D elasticity); each a default the user may override.
+    default_option("-pc_hypre_boomeramg_strong_threshold", "0.5");
+    default_option("-pc_hypre_boomeramg_coarsen_type", "HMIS");
+    default_option("-pc_hypre_boomeramg_interp_type", "ext+i");
+    default_option("-pc_hypre_boomeramg_P_max", "4");
+    default_option("-pc_hypre_boomeramg_agg_nl", "1");
+}
+
 /// The Krylov method and preconditioner of the policy (see the header).
 KSP make_ksp(const LinearSolverPolicy& policy)
 {
@@ -98,23 +217,18 @@ KSP make_ksp(const LinearSolverPolicy& policy)
         check(KSPSetNormType(ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
         check(KSPSetTolerances(ksp, krylov_rtol, PETSC_DEFAULT, PETSC_DEFAULT, krylov_max_iterations),
               "KSPSetTolerances");
-        if (policy.penalty_ratio <= max_aggregation_penalty_ratio) {
-            check(PCSetType(pc, PCGAMG), "PCSetType");
+        auto* test = new StallTest;  // owned by the KSP, freed by destroy_stall_test
+        check(KSPConvergedDefaultCreate(&test->converged_default), "KSPConvergedDefaultCreate");
+        check(KSPSetConvergenceTest(ksp, converged_or_stalled, test, destroy_stall_test), "KSPSetConvergenceTest");
+        if (policy.two_body_contact && !policy.symmetric) {
+            // Two bodies pressed together by a two-half-pass pair: the multigrids stall
+            // on such a tangent (GAMG and BoomerAMG, and one-level Schwarz with LU
+            // blocks on 3 ranks, where the body that only contact holds is cut), so
+            // the preconditioner is a MUMPS LU, kept for later tangents while it serves.
+            check(PCSetType(pc, PCLU), "PCSetType");
+            check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
         } else {
-            check(PCSetType(pc, PCHYPRE), "PCSetType");
-            check(PCHYPRESetType(pc, "boomeramg"), "PCHYPRESetType");
-            // Coarsening that keeps the coarse grids of 3D quadratic elements sparse
-            // (hypre's advice for 3D elasticity); each a default the user may override.
-            for (const auto& [name, value] : {std::pair{"-pc_hypre_boomeramg_strong_threshold", "0.5"},
-                                              std::pair{"-pc_hypre_boomeramg_coarsen_type", "HMIS"},
-                                              std::pair{"-pc_hypre_boomeramg_interp_type", "ext+i"},
-                                              std::pair{"-pc_hypre_boomeramg_P_max", "4"},
-                                              std::pair{"-pc_hypre_boomeramg_agg_nl", "1"}}) {
-                PetscBool given = PETSC_FALSE;
-                check(PetscOptionsHasName(nullptr, nullptr, name, &given), "options");
-                if (!given)
-                    check(PetscOptionsSetValue(nullptr, name, value), "options");
-            }
+            set_multigrid(pc, policy);
         }
     }
     check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
@@ -539,8 +653,7 @@ LinearStatus PetscSolver::solve_with(const Vector& b, Vector& x, double rtol)
         s.last_iterations = iterations;
         s.last_converged = reason > 0;
         if (reason <= 0)
-            failure_detail_ = fmt::format("{} stopped after {} iterations: {}", describe_method(), iterations,
-                                          KSPConvergedReasons[reason]);
+            failure_detail_ = krylov_failure_text(s.ksp, describe_method(), reason, iterations);
         if (s.setup_iterations < 0)
             s.setup_iterations = iterations;
         return reason > 0;

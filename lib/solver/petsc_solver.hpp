@@ -21,10 +21,14 @@
 //              solve_to asks, down to 1e-10); smoothed
 //              aggregation (GAMG) with the rigid-body modes as near-null space, or,
 //              when a contact penalty is stiff against its elements (eps h / E' >
-//              1e2, where aggregation fails), hypre BoomerAMG. The
+//              1e2, where aggregation fails), hypre BoomerAMG. A non-symmetric
+//              tangent of two deformable bodies in contact (policy.two_body_contact):
+//              GMRES with a MUMPS LU, as no multigrid fits it. The
 //              preconditioner is reused across Newton iterations while the Krylov
 //              iterations stay within twice those of its first solve; a solve that
-//              fails with a reused one is repeated with a fresh one.
+//              fails with a reused one is repeated with a fresh one. A solve that,
+//              at the pace of its last 100 iterations, would miss its tolerance at
+//              the cap of 1000 stops there as stalled.
 // The options database comes last and wins: the deck's `solver.options`, then the
 // PETSC_OPTIONS environment variable (e.g. "-pc_type gamg -ksp_monitor").
 //

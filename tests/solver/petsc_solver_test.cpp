@@ -1,8 +1,9 @@
 // Tests for solver/petsc_solver.hpp on one rank (the MPI runs are verification/mpi)
 // beyond the contract every backend meets (linear_backends_test.cpp): what a Krylov
-// method that stops short reports, a K known to be singular shifted without its own
-// factorization, a pattern that grows between factorizations, preconditioner reuse,
-// and Krylov solves to the accuracy a caller asks for.
+// method that stops short or stalls reports, the preconditioner of two-body contact,
+// a K known to be singular shifted without its own factorization, a pattern that grows
+// between factorizations, preconditioner reuse, and Krylov solves to the accuracy a
+// caller asks for.
 
 #include "core/parallel.hpp"
 #include "solver/petsc_solver.hpp"
@@ -187,6 +188,78 @@ TEST(PetscSolver, AUserToleranceLooserThanTheBoundIsHonoured)
     EXPECT_GT(residual, 1e-6) << "a solve that stopped at 1e-4, not one that went on to 1e-8: " << residual;
     ASSERT_EQ(solver.solve_to(b, x, 1e-10), LinearStatus::ok) << "the user's tolerance holds for every solve";
     EXPECT_GT((K * x - b).norm() / b.norm(), 1e-6) << (K * x - b).norm() / b.norm();
+}
+
+/// A tangent no multigrid fits: the non-symmetric dominant matrix with the sign of
+/// every other diagonal entry flipped (indefinite, as two bodies pressed together by a
+/// stiff two-half-pass penalty can make it).
+SparseMatrix indefinite_matrix(int n, std::mt19937& rng)
+{
+    SparseMatrix K = dominant_matrix(n, false, rng);
+    for (int i = 0; i < n; i += 2)
+        K.coeffRef(i, i) = -K.coeff(i, i);
+    K.makeCompressed();
+    return K;
+}
+
+// Two deformable bodies in two-half-pass contact: GMRES is preconditioned by a MUMPS
+// LU (GAMG stalls on such tangents, issue 31), so on one rank it takes one iteration,
+// and the deck's options still choose another preconditioner.
+TEST(PetscSolver, ATwoBodyContactTangentIsPreconditionedByLu)
+{
+    std::mt19937 rng(seed);
+    const SparseMatrix K = indefinite_matrix(300, rng);
+    const Vector b = random_vector(300, rng);
+    LinearSolverPolicy policy = petsc_policy(Method::iterative, false);
+    policy.two_body_contact = true;
+    PetscSolver solver(policy, Communicator());
+    EXPECT_EQ(solver.describe_method(), "gmres + lu");
+    EXPECT_NE(solver.describe().find("(mumps)"), std::string::npos) << solver.describe();
+    ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+    Vector x;
+    ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+    EXPECT_LE(solver.statistics().iterations, 2) << "an exact LU: GMRES converges at once";
+    EXPECT_TRUE(test::at_most(relative_error(x, Matrix(K).partialPivLu().solve(b)), krylov_tolerance));
+
+    policy.options = "-pc_type jacobi";
+    PetscSolver chosen(policy, Communicator());
+    PetscOptionsClearValue(nullptr, "-pc_type");  // the options database is global: read by now
+    EXPECT_EQ(chosen.describe_method(), "gmres + jacobi") << "the deck's options win";
+    // Without two bodies in contact a non-symmetric tangent keeps the multigrid.
+    EXPECT_EQ(PetscSolver(petsc_policy(Method::iterative, false), Communicator()).describe_method(), "gmres + gamg");
+}
+
+// A Krylov solve that cannot reach its tolerance within the iteration cap at its pace
+// stops after about one restart cycle, not at the cap, and says it stalled: GMRES(100)
+// without a preconditioner on a 1D Laplacian (cond ~ 1e6) gains little per cycle.
+TEST(PetscSolver, AStalledKrylovSolveStopsEarlyAndSaysSo)
+{
+    const int n = 2000;
+    std::vector<Eigen::Triplet<double>> entries;
+    for (int i = 0; i < n; ++i) {
+        entries.emplace_back(i, i, 2.0);
+        if (i + 1 < n) {
+            entries.emplace_back(i, i + 1, -1.0);
+            entries.emplace_back(i + 1, i, -1.0);
+        }
+    }
+    SparseMatrix K(n, n);
+    K.setFromTriplets(entries.begin(), entries.end());
+    std::mt19937 rng(seed);
+    const Vector b = random_vector(n, rng);
+    LinearSolverPolicy policy = petsc_policy(Method::iterative, false);
+    policy.options = "-pc_type none";
+    PetscSolver solver(policy, Communicator());
+    PetscOptionsClearValue(nullptr, "-pc_type");
+    ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+    Vector x;
+    EXPECT_EQ(solver.solve(b, x), LinearStatus::not_converged);
+    // One cycle to measure the pace, a few more iterations at most to judge it.
+    constexpr long long stall_iterations = 300;
+    EXPECT_LE(solver.statistics().iterations, stall_iterations) << "stopped at the cap of 1000";
+    const std::string detail = solver.failure_detail();
+    EXPECT_NE(detail.find("gmres + none stalled: its residual fell to "), std::string::npos) << detail;
+    EXPECT_NE(detail.find("too slowly to reach 1e-08 within 1000"), std::string::npos) << detail;
 }
 
 // PETSc and MPI are finalized once, after the last test.
