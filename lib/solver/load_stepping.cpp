@@ -236,6 +236,12 @@ bool LoadStepper::cut_back(int index, const Attempt& attempt, int& cutbacks)
         result_.message = increment + ": " + report.message;  // "the linear solver did not converge (...)"
         return false;
     }
+    // A Krylov method that does not fit the tangents does not fit them at a smaller
+    // increment either: each cutback would pay its failed solves again.
+    if (!rejected && report.status == NewtonStatus::linear_solver_not_converged) {
+        result_.message = increment + ": " + what + why;
+        return false;
+    }
     if (!stepping_.adaptive) {
         result_.message = increment + ": " + what + " (adaptive stepping is off)" + why;
         return false;

@@ -48,6 +48,9 @@ double largest_mu() { return first_mu * std::pow(mu_growth, max_regularizations 
 // pass (inputs/disc_on_plane_2d.yaml), 1e-8 changes the capped step by ~1e-3 of
 // its length: along the null mode both are the trust radius.
 constexpr int first_singular_attempt = 1;  // mu = first_mu * mu_growth
+// Newton stops after this many iterations in a row whose Krylov solve stopped short on
+// the unshifted tangent (a preconditioner that does not fit it; NewtonSolve::iterate).
+constexpr int max_krylov_stops_in_a_row = 2;
 // Linear systems: extra solves with the same factorization (iterative refinement)
 // while the algebraic residual is above the tolerance.
 constexpr int max_refinements = 2;
@@ -124,6 +127,22 @@ struct StepResult {
     std::string krylov_detail;
 };
 
+/// The first Krylov solve of a run that stops short on an unshifted tangent is a
+/// warning, printed under -q too: Newton goes on with shifted tangents, which slows it
+/// or stops it, and only a setting changes that. Counted in /counters (krylov_stops).
+void warn_krylov_stop(const std::string& detail, RunContext* context)
+{
+    if (!context)
+        return;
+    if (context->count("krylov_stops") == 0)
+        context->log(Verbosity::quiet,
+                     "warning: the iterative linear solver did not converge" +
+                         (detail.empty() ? std::string() : " (" + detail + ")") +
+                         "; Newton shifts the tangent instead, which slows it or stops it. solver.type: direct "
+                         "solves any tangent; solver.options sets another Krylov method or preconditioner");
+    context->add_count("krylov_stops", 1);
+}
+
 // Solves K du = -r; on a singular K retries with K + mu D (see the header). With
 // `consume` the solver may take K's storage and K is left empty (the caller needs it no more).
 // known_singular (Evaluation::singular_tangent): K is not factorized, and the shifts
@@ -149,8 +168,10 @@ StepResult newton_step(SparseMatrix& K, const Vector& r, LinearSolver& solver, R
         if (result.status != LinearStatus::singular && result.status != LinearStatus::not_converged)
             return result;
         result.krylov_stopped = result.status == LinearStatus::not_converged;
-        if (result.krylov_stopped)
+        if (result.krylov_stopped) {
             result.krylov_detail = solver.failure_detail();
+            warn_krylov_stop(result.krylov_detail, context);
+        }
     }
 
     const int first_attempt = shift_at_once ? first_singular_attempt : 0;
@@ -451,6 +472,7 @@ private:
     double r_initial_ = 0;
     bool have_tangent_ = true;        ///< current_ holds the tangent at u_
     bool previous_at_floor_ = false;  ///< the last iteration ended at the round-off floor
+    int krylov_stops_in_a_row_ = 0;   ///< iterations whose Krylov solve stopped short on the unshifted K
 };
 
 Progress NewtonSolve::finish(NewtonStatus status, std::string message)
@@ -569,6 +591,15 @@ Progress NewtonSolve::iterate(int iteration)
         ++report_.regularized_iterations;
     report_.last_step_regularized = step.regularized;
     report_.krylov_stopped = step.krylov_stopped;
+    // Once may be a tangent near a singular one; twice in a row the preconditioner does
+    // not fit the tangents, and shifted steps (and cutbacks) would only crawl.
+    krylov_stops_in_a_row_ = step.krylov_stopped ? krylov_stops_in_a_row_ + 1 : 0;
+    if (krylov_stops_in_a_row_ >= max_krylov_stops_in_a_row)
+        return finish(NewtonStatus::linear_solver_not_converged,
+                      "iteration " + std::to_string(iteration) + ": the linear solver did not converge on " +
+                          std::to_string(krylov_stops_in_a_row_) + " tangents in a row" +
+                          (step.krylov_detail.empty() ? std::string() : " (" + step.krylov_detail + ")") +
+                          "; last relative residual " + format_g(rel_) + tolerance_text());
     cap_step(du);
 
     double new_norm = 0;

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace iga::solver {
@@ -644,6 +645,30 @@ TEST(Newton, ALinearSystemSolvedOnlyWithAShiftSaysTheSolverStopped)
     EXPECT_NE(report.message.find("did not converge (cg + gamg stopped after 1000 iterations"), std::string::npos)
         << report.message;
     EXPECT_NE(report.message.find("on the tangent shifted by mu = "), std::string::npos) << report.message;
+}
+
+// A preconditioner that does not fit the tangents (GMRES + GAMG on two cylinders in
+// contact, issue 31): Newton stops at the second Krylov solve in a row that stops short
+// on the unshifted tangent, instead of crawling on shifted steps; the first such solve
+// is a warning that reaches a -q run (Verbosity::quiet) and names what to set.
+TEST(Newton, AKrylovSolverThatStopsShortTwiceInARowEndsNewtonWithAWarning)
+{
+    CubicSystem cubic;
+    const NonlinearSystem system = cubic.system();
+    ShiftOnlySolver solver;
+    std::vector<std::string> lines;
+    RunContext context([&](Verbosity, const std::string& line) { lines.push_back(line); }, Verbosity::quiet);
+    Vector u = Vector::Zero(4);
+    const NewtonReport report = solve_newton(system, 1.0, u, NewtonSettings{}, solver, &context);
+    EXPECT_EQ(report.status, NewtonStatus::linear_solver_not_converged) << report.message;
+    EXPECT_NE(report.message.find("iteration 2: the linear solver did not converge on 2 tangents in a row (cg + gamg"),
+              std::string::npos)
+        << report.message;
+    EXPECT_EQ(failure_cause(report), FailureCause::linear_solver);
+    ASSERT_EQ(lines.size(), 1u) << "one warning, however many solves stop";
+    EXPECT_EQ(lines[0].rfind("warning: the iterative linear solver did not converge (cg + gamg", 0), 0u) << lines[0];
+    EXPECT_NE(lines[0].find("solver.type: direct"), std::string::npos) << lines[0];
+    EXPECT_EQ(context.count("krylov_stops"), 2);
 }
 
 TEST(Newton, InconsistentSingularLinearSystemFails)
