@@ -94,6 +94,25 @@ def dofs(nu, nv, nw, p=2):
     return 3 * (nu + p) * (nv + p) * (nw + p)
 
 
+def mirrored_ball_patches(rows, u_insert, names, comments, mirror_normal):
+    """Two patches of the same octant rows, the second mirrored (which reverses u, so
+    its u-insertions are the first's reflected), as a `patches:` list at 6 spaces."""
+    def patch(name, comment, transform, insert):
+        return (f"""      - name: {name}{comment}
+        nurbs:
+          degrees: [2, 1, 2]
+          knots: [[0, 0, 0, 1, 1, 1], [0, 0, 1, 1], [0, 0, 0, 1, 1, 1]]
+          control_points:
+{fmt_rows(rows, "            ")}
+""" + transform + f"""        refine: {{insert: [{fmt_list(insert)}, [], []]}}
+""")
+    mirror = f"""          transform:
+            - {{mirror: {{normal: {mirror_normal}}}}}
+"""
+    reflected = [round(1 - x, 5) for x in reversed(u_insert)]
+    return (patch(names[0], comments[0], "", u_insert) + patch(names[1], comments[1], mirror, reflected)).rstrip("\n")
+
+
 def write(name, text):
     with open(os.path.join(HERE, name), "w") as f:
         f.write(text)
@@ -271,22 +290,9 @@ bodies:
   - name: ball
     material: rubber
     patches:
-      - name: lower   # v0 = sphere, w0 = z = 0 (the interface), u0 = x = 0, w1 = y = 0
-        nurbs:
-          degrees: [2, 1, 2]
-          knots: [[0, 0, 0, 1, 1, 1], [0, 0, 1, 1], [0, 0, 0, 1, 1, 1]]
-          control_points:
-{fmt_rows(ball, "            ")}
-        refine: {{insert: [{fmt_list(ub)}, [], []]}}
-      - name: upper   # the same rows mirrored in z (the mirror reverses u: u0 <-> u1)
-        nurbs:
-          degrees: [2, 1, 2]
-          knots: [[0, 0, 0, 1, 1, 1], [0, 0, 1, 1], [0, 0, 0, 1, 1, 1]]
-          control_points:
-{fmt_rows(ball, "            ")}
-          transform:
-            - {{mirror: {{normal: [0, 0, 1]}}}}
-        refine: {{insert: [{fmt_list([round(1 - x, 5) for x in reversed(ub)])}, [], []]}}
+{mirrored_ball_patches(ball, ub, ("lower", "upper"), (
+    "   # v0 = sphere, w0 = z = 0 (the interface), u0 = x = 0, w1 = y = 0",
+    "   # the same rows mirrored in z (the mirror reverses u: u0 <-> u1)"), "[0, 0, 1]")}
     refine:
       elevate: [0, 1, 0]
       insert:
@@ -354,22 +360,9 @@ bodies:
   - name: ball
     material: ball_mat
     patches:
-      - name: east    # x >= 0: v0 = sphere, w0 = top z = 1, u0 = x = 0 (interface), w1 = y = 0
-        nurbs:
-          degrees: [2, 1, 2]
-          knots: [[0, 0, 0, 1, 1, 1], [0, 0, 1, 1], [0, 0, 0, 1, 1, 1]]
-          control_points:
-{fmt_rows(ball, "            ")}
-        refine: {{insert: [{fmt_list(u)}, [], []]}}
-      - name: west    # x <= 0: the same rows mirrored in x (u0 <-> u1: u1 is the interface)
-        nurbs:
-          degrees: [2, 1, 2]
-          knots: [[0, 0, 0, 1, 1, 1], [0, 0, 1, 1], [0, 0, 0, 1, 1, 1]]
-          control_points:
-{fmt_rows(ball, "            ")}
-          transform:
-            - {{mirror: {{normal: [1, 0, 0]}}}}
-        refine: {{insert: [{fmt_list([round(1 - x, 5) for x in reversed(u)])}, [], []]}}
+{mirrored_ball_patches(ball, u, ("east", "west"), (
+    "    # x >= 0: v0 = sphere, w0 = top z = 1, u0 = x = 0 (interface), w1 = y = 0",
+    "    # x <= 0: the same rows mirrored in x (u0 <-> u1: u1 is the interface)"), "[1, 0, 0]")}
     refine:
       elevate: [0, 1, 0]
       insert:
