@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <map>
 
@@ -109,7 +110,8 @@ std::optional<double> parse_number(std::string_view text)
     if (result.ptr != body.data() + body.size())
         return std::nullopt;
     if (result.ec == std::errc::result_out_of_range)
-        value = std::abs(value) < 1 ? 0.0 : std::numeric_limits<double>::infinity();
+        // from_chars leaves `value` untouched here; strtod tells overflow (infinity) from underflow (0).
+        value = std::strtod(std::string(body).c_str(), nullptr);
     else if (result.ec != std::errc())
         return std::nullopt;
     return negative ? -value : value;
@@ -326,7 +328,10 @@ std::optional<double> Cursor::to_number() const
         return std::nullopt;
     }
     if (!std::isfinite(*value)) {
-        fail("must be a finite number");
+        const bool spelled_infinite = text->find("inf") != std::string::npos || text->find("Inf") != std::string::npos ||
+                                      text->find("INF") != std::string::npos || std::isnan(*value);
+        fail(spelled_infinite ? "must be a finite number"
+                              : "out of range: beyond the largest number a double holds (about 1.8e308)");
         return std::nullopt;
     }
     return value;

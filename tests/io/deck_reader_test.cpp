@@ -334,6 +334,15 @@ TEST(ResolvedDeck, NumbersAreShortestExactFloats)
         EXPECT_EQ(parse_number(format_number(x)), x) << format_number(x);
 }
 
+TEST(ResolvedDeck, NumbersBeyondADoubleOverflowToInfinityNotZero)
+{
+    // from_chars leaves its output untouched when out of range; 1e400 was once read as 0.
+    EXPECT_EQ(parse_number("1e400"), std::numeric_limits<double>::infinity());
+    EXPECT_EQ(parse_number("-1e400"), -std::numeric_limits<double>::infinity());
+    EXPECT_EQ(parse_number("1e-400"), 0.0);  // underflow is zero (to_number then judges the range)
+    EXPECT_EQ(parse_number("5e-324"), 5e-324);
+}
+
 // ---------------------------------------------------------------------------
 // Did you mean
 
