@@ -191,7 +191,9 @@ int check_command(int argc, char** argv)
     const std::string bodies = analysis::describe_bodies(deck);  // also builds the geometry: may throw DeckError
     // Everything a run checks before solving (Jacobians, pairs, constraints, obstacles).
     const analysis::Scene scene = analysis::build_scene(deck);
-    for (const std::string& line : analysis::duplicate_pair_warnings(scene))  // also said by a run
+    for (const std::string& line : scene.setup_warnings)  // also said by a run
+        std::cerr << "warning: " << line << '\n';
+    for (const std::string& line : analysis::duplicate_pair_warnings(scene))
         std::cerr << "warning: " << line << '\n';
     std::cout << "# resolved deck: " << deck_path << '\n' << deck.resolved_yaml;
     if (!deck.resolved_yaml.empty() && deck.resolved_yaml.back() != '\n')

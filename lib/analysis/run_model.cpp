@@ -112,6 +112,7 @@ RunModel::RunModel(const io::Deck& deck, const RunOptions& options_, RunContext&
     log_solver(context, *linear);
     open_results();
     write_geometry();
+    warn(scene.setup_warnings);
     warn(duplicate_pair_warnings(scene));
     // An initial overlap is pushed out by the first increment; should that need a
     // cutback, the overlap is released gradually over the first planned increment.

@@ -7,6 +7,7 @@
 #include "boundary/patch_side.hpp"
 #include "analysis/geometry.hpp"
 #include "analysis/obstacles.hpp"
+#include "analysis/side_facing.hpp"
 #include "core/text.hpp"
 #include "io/deck_names.hpp"
 #include "io/locate.hpp"
@@ -428,7 +429,7 @@ contact::ContactPair contact_pair(const io::Deck& deck, const Scene& scene, cons
 }
 
 /// Contact pair c of the deck, its dofs and its candidate couplings as pattern blocks.
-PairModel pair_model(const io::Deck& deck, const Scene& scene, const io::ContactPair& c,
+PairModel pair_model(const io::Deck& deck, Scene& scene, const io::ContactPair& c,
                      std::vector<std::vector<int>>& blocks)
 {
     contact::PairSettings settings;
@@ -451,6 +452,8 @@ PairModel pair_model(const io::Deck& deck, const Scene& scene, const io::Contact
             model.obstacle = k;
     if (model.obstacle >= 0)
         check_obstacle_side(deck, scene, c, model);
+    for (std::string& line : check_sides_face(deck, scene, c, model))
+        scene.setup_warnings.push_back(std::move(line));
     for (int k = 0; k < 2; ++k)
         if (s.body[k] >= 0) {
             const std::vector<int> full = dofs_of(*scene.dofs, s.body[k], s.parent[k]);

@@ -175,6 +175,9 @@ struct Scene {
     Partition partition;  ///< this rank's blocks; the pattern holds only those (and the diagonal)
     double model_size = 1.0;  ///< bounding-box diagonal of all deformable bodies
     LoadPath path;            ///< [0, T] and the breakpoints of the amplitudes
+    /// What the set-up found doubtful but usable (a contact side met edge-on, a
+    /// constraint on a collapsed side): said by a run and by `check`.
+    std::vector<std::string> setup_warnings;
 
     bool has_contact() const { return !pairs.empty(); }
     /// The dead external force at pseudo-time t (full dofs): sum of a_k(t) f_k.

@@ -177,7 +177,66 @@ std::string half_pass_cause(const PairModel& model, const io::ContactPairResult&
                        n_a, a, n_b, b, pair.name);
 }
 
+/// The control points of deformable body b in the configuration of `step` (n x d).
+RowMatrix current_control_points(const BodyModel& body, const io::StepData& step)
+{
+    std::vector<RowMatrix> blocks;
+    for (const auto& [name, u] : step.displacement)
+        if (name == body.name && body.patches.size() == 1)
+            blocks.push_back(body.patches.front().patch.control_points() + u);
+    for (const auto& [name, patches] : step.patch_displacement)
+        if (name == body.name)
+            for (const auto& [patch, u] : patches)
+                for (const PatchModel& model : body.patches)
+                    if (model.name == patch && model.patch.control_points().rows() == u.rows())
+                        blocks.push_back(model.patch.control_points() + u);
+    Index rows = 0;
+    for (const RowMatrix& b : blocks)
+        rows += b.rows();
+    RowMatrix out(rows, body.node_points.cols());
+    Index at = 0;
+    for (const RowMatrix& b : blocks) {
+        out.middleRows(at, b.rows()) = b;
+        at += b.rows();
+    }
+    return out;
+}
+
 }  // namespace
+
+std::vector<std::string> driven_through_warnings(const Scene& scene, const PairModel& model, const io::StepData& step)
+{
+    const int k = model.obstacle;
+    if (k < 0)
+        return {};
+    const int b = model.body[static_cast<std::size_t>(1 - k)];
+    const BodyModel& body = scene.bodies[static_cast<std::size_t>(b)];
+    const auto& obstacle = std::get<contact::RigidObstacle>(model.pair.surface(k));
+    const RowMatrix points = current_control_points(body, step);
+    // The deepest control point inside the obstacle, and the body's thickness along the
+    // obstacle's normal there (by the convex-hull property, the body lies within them).
+    double depth = 0.0;
+    VecN normal;
+    for (Index a = 0; a < points.rows(); ++a) {
+        const contact::ObstacleFoot foot = obstacle.foot(points.row(a).transpose(), step.load_factor);
+        if (foot.ok && foot.gap > depth) {
+            depth = foot.gap;
+            normal = foot.normal;
+        }
+    }
+    if (!(depth > 0.0))
+        return {};
+    const Vector along = points * normal;
+    const double thickness = along.maxCoeff() - along.minCoeff();
+    if (!(depth > driven_through * thickness))
+        return {};
+    return {fmt::format("contact pair '{}': at load factor {:.4g} the body '{}' reaches {:.3g} into the obstacle "
+                        "'{}', {:.0f} % of its thickness {:.3g} along the obstacle's normal: it has been driven "
+                        "through, not stopped (a penalty far too soft for the load, a load beyond what the contact "
+                        "can hold, or a contact side that does not face the obstacle)",
+                        model.name, step.load_factor, body.name, depth, model.label[static_cast<std::size_t>(k)],
+                        100.0 * std::min(depth / thickness, 1.0), thickness)};
+}
 
 std::vector<std::string> pair_warnings(const Scene& scene, const PairModel& model, const io::ContactPairResult& pair,
                                        double load_factor)

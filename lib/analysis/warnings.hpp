@@ -16,6 +16,8 @@
 //  - two contact pairs that share a patch side on both surfaces (in either order;
 //    a named surface counts as its sides, a rigid obstacle as itself): each adds its
 //    own contact forces there, so the contact is enforced twice (twice as stiff).
+//  - a body driven into its rigid obstacle by half its thickness or more (a penalty
+//    far too soft, a load the contact cannot hold, a side that does not face it).
 // A body that starts entirely inside a rigid obstacle is an error, not a warning
 // (analysis/obstacles.hpp).
 
@@ -53,6 +55,10 @@ constexpr double stiff_half_pass_penalty = 3.0;
 /// deck disagreed by 7.4 % with 2 pressed points a side, 1.7 % with 12 and 14, 0.5 %
 /// with 26 and 34, and the two-cylinder Hertz deck (131 a side) by 0.003 %.
 constexpr double resolved_zone_points = 20.0;
+/// A body whose control points reach into a rigid obstacle by more than this fraction
+/// of its thickness along the obstacle's normal has been driven through, not stopped:
+/// a sound run's penetration is a per-cent of the body at most (penetration_to_body).
+constexpr double driven_through = 0.5;
 /// Contact forces below this fraction of E L^(d-1) (L the body size) are round-off
 /// of grazing contact, not a resolved force: no disagreement is reported for them.
 constexpr double negligible_contact_force = 1e-8;
@@ -70,5 +76,9 @@ std::vector<std::string> release_initial_overclosure(Scene& scene, SceneSystem& 
 /// penetration too deep for the penalty, two half passes that disagree.
 std::vector<std::string> pair_warnings(const Scene& scene, const PairModel& model, const io::ContactPairResult& pair,
                                        double load_factor);
+
+/// A body driven into its rigid obstacle by more than driven_through of its thickness
+/// at the converged state `step` (see above); none for a pair of deformable sides.
+std::vector<std::string> driven_through_warnings(const Scene& scene, const PairModel& model, const io::StepData& step);
 
 }  // namespace iga::analysis

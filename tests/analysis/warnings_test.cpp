@@ -166,4 +166,74 @@ TEST(Warnings, FlippedPlaneIsAnError)
     EXPECT_FALSE(std::filesystem::exists(deck.output.file));
 }
 
+namespace {
+
+/// The located error of running `deck` with `overrides`, "" if it ran.
+std::string deck_error(const char* deck_file, const std::vector<std::string>& overrides, const std::string& scratch)
+{
+    io::Deck deck = io::read_deck(source_path(deck_file), overrides);
+    deck.output.file = (scratch_dir(scratch) / "never.h5").string();
+    RunContext context(nullptr, Verbosity::quiet);
+    try {
+        analysis::run(deck, analysis::RunOptions{}, context);
+    } catch (const DeckError& e) {
+        EXPECT_FALSE(std::filesystem::exists(deck.output.file));
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(Warnings, AContactSideFacingAwayFromAnObstacleIsAnError)
+{
+    // The block's top face named against the floor below it: it would sink through
+    // unopposed and end inside the floor (issue 32). The bottom face is suggested.
+    const std::string message = deck_error("inputs/press_then_shear_friction_2d.yaml",
+                                           {"contact.block_floor.between=[block.v1, floor]"}, "facing_rigid");
+    EXPECT_NE(message.find("contact.block_floor.between"), std::string::npos) << message;
+    EXPECT_NE(message.find("block.v1 faces away from floor"), std::string::npos) << message;
+    EXPECT_NE(message.find("facing floor: block.v0"), std::string::npos) << message;
+}
+
+TEST(Warnings, TheDeformableSideThatFacesAwayIsTheOneNamed)
+{
+    // Two cylinders with the lower body's bottom named: the upper arc faces the lower
+    // body, whose bottom turns away from it (both normals point down; the normals alone
+    // cannot say which side is wrong, the positions can).
+    const std::string message = deck_error("inputs/hertz_two_cylinders_2d.yaml",
+                                           {"contact.mate.between=[upper.v0, lower.v0]"}, "facing_two_bodies");
+    EXPECT_NE(message.find("lower.v0 faces away from upper.v0"), std::string::npos) << message;
+    EXPECT_NE(message.find("facing upper.v0: lower.v1"), std::string::npos) << message;
+}
+
+TEST(Warnings, ASideMetEdgeOnIsAWarning)
+{
+    const auto dir = scratch_dir("facing_edge_on");
+    const auto outcome = run_deck(source_path("inputs/press_then_shear_friction_2d.yaml"),
+                                  {"contact.block_floor.between=[block.u1, floor]", "steps.count=1",
+                                   "loads.1.force=[0, 0]"},
+                                  dir / "run.h5");
+    const std::string all = joined(outcome.warnings);
+    EXPECT_NE(all.find("block.u1 meets floor edge-on"), std::string::npos) << all;
+}
+
+TEST(Warnings, ABodyDrivenThroughItsObstacleIsReported)
+{
+    // penalty 5 under a press of 5 per unit length: the block (0.5 thick) sinks about 1
+    // into the floor, a sound deck's penetration is a per-cent of the body.
+    const auto dir = scratch_dir("driven_through");
+    const auto outcome = run_deck(source_path("inputs/press_then_shear_friction_2d.yaml"),
+                                  {"contact.block_floor.penalty=5"}, dir / "run.h5");
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    const std::string all = joined(outcome.warnings);
+    EXPECT_NE(all.find("the body 'block' reaches"), std::string::npos) << all;
+    EXPECT_NE(all.find("driven through"), std::string::npos) << all;
+    EXPECT_NE(Results(dir / "run.h5").text("/", "warnings").find("driven through"), std::string::npos);
+    // The same deck with its own penalty is stopped by the floor: no such warning.
+    const auto sound = run_deck(source_path("inputs/press_then_shear_friction_2d.yaml"), {}, dir / "sound.h5");
+    ASSERT_EQ(sound.status, "completed") << sound.message;
+    EXPECT_EQ(joined(sound.warnings).find("driven through"), std::string::npos) << joined(sound.warnings);
+}
+
 }  // namespace iga::test
