@@ -2,6 +2,7 @@
 #include "core/text.hpp"
 
 #include "io/locate.hpp"
+#include "nurbs/coincidence.hpp"
 #include "nurbs/side_patch.hpp"
 
 #include <fmt/format.h>
@@ -56,7 +57,17 @@ DirichletData dirichlet_data(const io::Deck& deck, const std::vector<BodyModel>&
                                     "body), not a boundary side",
                                     body_side_text(body.patch_names(), s), c.body)));
             const PatchModel& patch = body.patches[static_cast<std::size_t>(s.patch)];
-            for (const int a : nurbs::extract_side(patch.patch, s.side).parent_index) {
+            const nurbs::SidePatch sp = nurbs::extract_side(patch.patch, s.side);
+            const double tolerance = nurbs::coincidence_tolerance(patch.patch.control_points());
+            const bool point = nurbs::is_collapsed(sp, tolerance);
+            if (point || nurbs::is_collapsed_to_line(sp, tolerance))
+                out.warnings.push_back(fmt::format(
+                    "constraints.{}.side: the side {} of body '{}' is collapsed to a {} {}: the constraint holds "
+                    "that {}, not a face; for a symmetry condition name the face (`check` lists every side with its "
+                    "corners)",
+                    k, body_side_text(body.patch_names(), s), c.body, point ? "point at" : "line through",
+                    point_text(sp.patch.control_points(), Index{0}), point ? "single point (a pin)" : "line only"));
+            for (const int a : sp.parent_index) {
                 const int node = patch.node[static_cast<std::size_t>(a)];
                 if (std::find(side_nodes.begin(), side_nodes.end(), node) == side_nodes.end())
                     side_nodes.push_back(node);

@@ -32,6 +32,9 @@ namespace iga::analysis {
 struct DirichletData {
     std::vector<assembly::PrescribedDof> prescribed;  ///< each dof once
     std::vector<ReactionGroup> reactions;  ///< sides, then totals, then items (see above)
+    /// Constraints on a side collapsed to a point or a line: they hold that point or
+    /// line only, rarely what a symmetry condition means (Scene::setup_warnings).
+    std::vector<std::string> warnings;
 };
 
 /// bodies: the scene's deformable bodies (patches refined); node_offset: first

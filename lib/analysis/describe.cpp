@@ -52,21 +52,7 @@ std::string collapse_note(const nurbs::SidePatch& sp, double tolerance)
 {
     if (nurbs::is_collapsed(sp, tolerance))
         return " (collapsed to a point)";
-    if (sp.patch.n_par() < 2)
-        return "";
-    const RowMatrix& P = sp.patch.control_points();
-    const int n0 = sp.patch.n_basis(0), n1 = sp.patch.n_basis(1);
-    const auto along = [&](int dir) {  // every line of control points along `dir` is one point
-        for (int line = 0; line < (dir == 0 ? n1 : n0); ++line)
-            for (int k = 1; k < (dir == 0 ? n0 : n1); ++k) {
-                const int a = dir == 0 ? line * n0 : line;
-                const int b = dir == 0 ? line * n0 + k : line + k * n0;
-                if ((P.row(a) - P.row(b)).norm() > tolerance)
-                    return false;
-            }
-        return true;
-    };
-    return along(0) || along(1) ? " (collapsed to a line)" : "";
+    return nurbs::is_collapsed_to_line(sp, tolerance) ? " (collapsed to a line)" : "";
 }
 
 /// "#     <label>: <meaning>; corners ... (collapsed ...)"
@@ -76,14 +62,13 @@ std::string side_line(const std::string& label, const std::string& meaning, cons
     return fmt::format("#     {}: {}; corners {}{}\n", label, meaning, side_corners(sp), collapse_note(sp, tolerance));
 }
 
-/// The line that says a mirror reversed u, with where u0 and u1 are now.
-std::string reversal_line(const std::string& what, const nurbs::Patch& patch, const std::string& before)
+/// The line that says a mirror left the patch running backwards in u, and that side
+/// names still refer to the patch as built.
+std::string reversal_line(const std::string& what, const std::string& built)
 {
-    const nurbs::SidePatch u0 = nurbs::extract_side(patch, Side::u0);
-    const nurbs::SidePatch u1 = nurbs::extract_side(patch, Side::u1);
-    return fmt::format("#     {}mirror reversed u (to keep the patch right-handed): side u0 is now at {}, side u1 at "
-                       "{} (the {} u1 and u0 before the transform)\n",
-                       what, side_corners(u0), side_corners(u1), before);
+    return fmt::format("#     {}mirrored: the analysed patch runs backwards in u (to stay right-handed); side names "
+                       "are those of the {} as built, and `refine` is in its parameters\n",
+                       what, built);
 }
 
 std::string degrees_and_spans(const nurbs::Patch& patch)
@@ -104,20 +89,23 @@ std::string describe_multi_patch(const io::Deck& deck, const io::Body& body)
                                   built.patches.size(), built.topology.interfaces.size(), built.topology.n_nodes);
     for (std::size_t p = 0; p < built.patches.size(); ++p) {
         out += fmt::format("#     patch {}: {}\n", built.names[p], degrees_and_spans(built.patches[p]));
-        if (p < body.patches.size() && io::reverses_u(body.patches[p].nurbs.transform))
-            out += reversal_line("patch " + built.names[p] + ": ", built.patches[p], "control points'");
+        if (p < body.patches.size() && u_reversed(body, static_cast<int>(p)))
+            out += reversal_line("patch " + built.names[p] + ": ", "patch");
     }
+    auto named = [&](int patch, Side side) { return side_name(named_side(side, u_reversed(body, patch))); };
     for (const nurbs::Interface& i : built.topology.interfaces)
         out += fmt::format("#     interface {}.{} = {}.{}\n", built.names[static_cast<std::size_t>(i.patch_a)],
-                           side_name(i.side_a), built.names[static_cast<std::size_t>(i.patch_b)], side_name(i.side_b));
+                           named(i.patch_a, i.side_a), built.names[static_cast<std::size_t>(i.patch_b)],
+                           named(i.patch_b, i.side_b));
     for (std::size_t p = 0; p < built.patches.size(); ++p) {
         const nurbs::Patch& patch = built.patches[p];
         for (int k = 0; k < 2 * patch.n_par(); ++k) {
-            const Side side = static_cast<Side>(k);
-            std::string meaning = generic_side_meaning(side);
+            const Side as_named = static_cast<Side>(k);
+            const Side side = named_side(as_named, u_reversed(body, static_cast<int>(p)));
+            std::string meaning = generic_side_meaning(as_named);
             if (built.topology.is_interface(static_cast<int>(p), side))
                 meaning += " (interface)";
-            out += side_line(fmt::format("{}.{}.{}", body.name, built.names[p], side_name(side)), meaning,
+            out += side_line(fmt::format("{}.{}.{}", body.name, built.names[p], side_name(as_named)), meaning,
                              nurbs::extract_side(patch, side), coincidence_tolerance(patch));
         }
     }
@@ -156,18 +144,18 @@ std::string describe_bodies(const io::Deck& deck)
             }
         }();
         out += fmt::format("#   {}: {}\n", body.name, degrees_and_spans(patch));
-        const std::vector<io::TransformStep>& steps = body.shape ? body.shape->transform : body.nurbs->transform;
-        if (io::reverses_u(steps))
-            out += reversal_line("", patch, body.shape ? "shape's" : "control points'");
+        const bool reversed = u_reversed(body, 0);
+        if (reversed)
+            out += reversal_line("", body.shape ? "shape" : "patch");
         const std::vector<std::pair<std::string, std::string>> meanings = side_meanings(body);
         for (int k = 0; k < 2 * patch.n_par(); ++k) {
-            const Side side = static_cast<Side>(k);
-            std::string meaning = generic_side_meaning(side);
+            const Side as_named = static_cast<Side>(k);
+            std::string meaning = generic_side_meaning(as_named);
             for (const auto& [name, text] : meanings)
-                if (name == side_name(side))
+                if (name == side_name(as_named))
                     meaning = text;
-            out += side_line(body.name + "." + std::string(side_name(side)), meaning, nurbs::extract_side(patch, side),
-                             coincidence_tolerance(patch));
+            out += side_line(body.name + "." + std::string(side_name(as_named)), meaning,
+                             nurbs::extract_side(patch, named_side(as_named, reversed)), coincidence_tolerance(patch));
         }
         for (const io::NamedSurface& surface : body.surfaces) {
             std::string sides;

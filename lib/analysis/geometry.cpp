@@ -39,8 +39,12 @@ nurbs::Patch raw_patch(const io::NurbsData& data, int dimension)
             points(a, i) = row[static_cast<std::size_t>(i)];
         weights(a) = row[static_cast<std::size_t>(dimension)];
     }
-    nurbs::Patch patch(std::move(knots), std::move(points), std::move(weights));
-    return data.transform.empty() ? patch : nurbs::transformed(patch, placement(data.transform, dimension));
+    return nurbs::Patch(std::move(knots), std::move(points), std::move(weights));
+}
+
+nurbs::Patch placed(const nurbs::Patch& patch, const std::vector<io::TransformStep>& steps)
+{
+    return steps.empty() ? patch : nurbs::transformed(patch, placement(steps, patch.dim()));
 }
 
 namespace {
@@ -57,12 +61,11 @@ nurbs::Patch planar_or_solid_shape(const io::Shape& shape)
     throw Error("unknown shape type");
 }
 
+/// The shape as built (extruded in 3D), before its transform.
 nurbs::Patch shape_patch(const io::Shape& shape)
 {
     nurbs::Patch patch = planar_or_solid_shape(shape);
-    if (shape.extrude)
-        patch = nurbs::extrude(patch, *shape.extrude);
-    return shape.transform.empty() ? patch : nurbs::transformed(patch, placement(shape.transform, patch.dim()));
+    return shape.extrude ? nurbs::extrude(patch, *shape.extrude) : patch;
 }
 
 }  // namespace
@@ -73,19 +76,9 @@ std::vector<std::pair<std::string, std::string>> side_meanings(const io::Body& b
         return {};
     auto meanings =
         nurbs::shape_side_names(std::string(io::deck_name(body.shape->type)), body.shape->extrude.has_value());
-    if (body.shape->transform.empty())
-        return meanings;
-    const bool reversed = io::reverses_u(body.shape->transform);
-    for (auto& [side, text] : meanings) {
-        if (reversed && (side == "u0" || side == "u1")) {
-            // The mirror reversed u: the shape's u0 is now called u1, and its u1 u0.
-            const std::string built = side;
-            side = built == "u0" ? "u1" : "u0";
-            text += " (as built, where it was side " + built + "; placed by the transform, whose mirror reversed u)";
-        } else {
+    if (!body.shape->transform.empty())
+        for (auto& [side, text] : meanings)
             text += " (as built; placed by the transform)";
-        }
-    }
     return meanings;
 }
 
@@ -93,8 +86,9 @@ nurbs::Patch build_patch(const io::Body& body, int dimension, int halvings)
 {
     IGA_CHECK(!body.rigid, "build_patch called for the rigid body '" + body.name + "'");
     IGA_CHECK(!body.multi_patch(), "build_patch called for the multi-patch body '" + body.name + "'");
-    return nurbs::halve_spans(
-        refined(body.nurbs ? raw_patch(*body.nurbs, dimension) : shape_patch(*body.shape), body.refine), halvings);
+    const nurbs::Patch built = body.nurbs ? raw_patch(*body.nurbs, dimension) : shape_patch(*body.shape);
+    const std::vector<io::TransformStep>& steps = body.nurbs ? body.nurbs->transform : body.shape->transform;
+    return nurbs::halve_spans(placed(refined(built, body.refine), steps), halvings);
 }
 
 nurbs::Patch refined(nurbs::Patch patch, const io::Refine& refine)

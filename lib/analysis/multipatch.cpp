@@ -114,7 +114,14 @@ std::optional<int> thin_direction(const nurbs::Patch& patch, double tolerance)
 std::string body_side_text(const std::vector<std::string>& patch_names, const BodySide& side)
 {
     const std::string& patch = patch_names[static_cast<std::size_t>(side.patch)];
-    return patch.empty() ? std::string(side_name(side.side)) : patch + "." + std::string(side_name(side.side));
+    return patch.empty() ? std::string(side_name(side.named)) : patch + "." + std::string(side_name(side.named));
+}
+
+bool u_reversed(const io::Body& body, int patch)
+{
+    if (body.multi_patch())
+        return io::reverses_u(body.patches[static_cast<std::size_t>(patch)].nurbs.transform);
+    return io::reverses_u(body.nurbs ? body.nurbs->transform : body.shape->transform);
 }
 
 std::vector<BodySide> resolve_sides(const io::Body& body, const std::vector<std::string>& patch_names,
@@ -125,13 +132,17 @@ std::vector<BodySide> resolve_sides(const io::Body& body, const std::vector<std:
         IGA_CHECK(it != patch_names.end(), "the deck reader let an unknown patch '" + name + "' through");
         return static_cast<int>(it - patch_names.begin());
     };
+    auto body_side = [&](const std::string& name, Side as_named) {
+        const int p = index_of(name);
+        return BodySide{p, named_side(as_named, u_reversed(body, p)), as_named};
+    };
     if (surface.empty())
-        return {BodySide{index_of(patch), side}};
+        return {body_side(patch, side)};
     const io::NamedSurface* named = body.find_surface(surface);
     IGA_CHECK(named != nullptr, "the deck reader let an unknown surface '" + surface + "' through");
     std::vector<BodySide> out;
     for (const io::PatchSideRef& ref : named->sides)
-        out.push_back(BodySide{index_of(ref.patch), ref.side});
+        out.push_back(body_side(ref.patch, ref.side));
     return out;
 }
 
@@ -151,7 +162,8 @@ BodyPatches build_body_patches(const io::Deck& deck, const io::Body& body, int h
         for (const io::PatchData& data : body.patches) {
             stop.check();
             try {
-                out.patches.push_back(nurbs::halve_spans(refined(refined(raw_patch(data.nurbs, d), body.refine), data.refine), halvings));
+                const nurbs::Patch built = refined(refined(raw_patch(data.nurbs, d), body.refine), data.refine);
+                out.patches.push_back(nurbs::halve_spans(placed(built, data.nurbs.transform), halvings));
             } catch (const Error& e) {
                 throw body_error(deck, patch_path(body, data.name), std::string("cannot build the patch: ") + e.what());
             }

@@ -38,7 +38,8 @@ inline constexpr double glue_relative_tolerance = 1e-9;
 /// A side of one patch of a body.
 struct BodySide {
     int patch = 0;
-    Side side = Side::u0;
+    Side side = Side::u0;   ///< of the analysed (placed) patch
+    Side named = Side::u0;  ///< as the deck names it: the side of the patch as built (analysis/geometry.hpp)
 
     bool operator==(const BodySide&) const = default;
 };
@@ -56,11 +57,15 @@ BodyPatches build_body_patches(const io::Deck& deck, const io::Body& body, int h
                                const StopRequest& stop = {});
 
 /// The patch sides a reference names (the reader checked the names): a named
-/// surface's sides, or the one side `patch.side` / `side`.
+/// surface's sides, or the one side `patch.side` / `side`; names are those of the
+/// patch as built, the sides those of the placed patch (analysis/geometry.hpp).
 std::vector<BodySide> resolve_sides(const io::Body& body, const std::vector<std::string>& patch_names,
                                     const std::string& patch, Side side, const std::string& surface);
 
-/// "left.v0", or "v0" for a single-patch body's side.
+/// Whether the transform of patch `patch` of deck body `body` reversed its u.
+bool u_reversed(const io::Body& body, int patch);
+
+/// "left.v0", or "v0" for a single-patch body's side, as the deck names it.
 std::string body_side_text(const std::vector<std::string>& patch_names, const BodySide& side);
 
 }  // namespace iga::analysis

@@ -246,6 +246,7 @@ void add_dofs_and_elements(const io::Deck& deck, const Communicator& comm, Scene
     DirichletData dirichlet = dirichlet_data(deck, scene.bodies, scene.body_of_deck, node_offset);
     scene.dofs = std::make_unique<assembly::DofMap>(scene.dim, nodes_per_body, dirichlet.prescribed);
     scene.reactions = std::move(dirichlet.reactions);
+    scene.setup_warnings = std::move(dirichlet.warnings);
     for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
         BodyModel& body = scene.bodies[b];
         body.first_block = static_cast<int>(blocks.size());
@@ -307,15 +308,21 @@ void add_load(const io::Deck& deck, std::size_t load_index, Scene& scene, Vector
         return;
     }
     mechanics::SideQuadrature side = load_side(deck, scene, load, load_index);
+    // A side collapsed to a point (or a face to a line) has no length or area: a traction
+    // or pressure on it adds nothing, a force cannot be spread over it.
+    const double measure = mechanics::reference_measure(side);
+    const RowMatrix& nodes = scene.bodies[static_cast<std::size_t>(b)].node_points;
+    const double size = (nodes.colwise().maxCoeff() - nodes.colwise().minCoeff()).norm();
+    constexpr double collapsed_measure = 1e-12;  // of size^(d-1): round-off of coincident control points
+    if (!(measure > collapsed_measure * std::pow(size, d - 1)))
+        throw DeckError(body_issue(deck, fmt::format("loads.{}.side", load_index),
+                                   fmt::format("the side is collapsed to a {} (zero {}): a traction or pressure on it applies nothing, a force cannot be spread over it; "
+                                               "`check` lists every side with its corners",
+                                               d == 3 ? "point or a line" : "point", d == 3 ? "area" : "length")));
     if (load.kind == io::LoadKind::traction || load.kind == io::LoadKind::force) {
         VecN traction = to_vec(load.vector);
-        if (load.kind == io::LoadKind::force) {
-            const double measure = mechanics::reference_measure(side);
-            if (!(measure > 0.0))
-                throw DeckError(body_issue(deck, fmt::format("loads.{}", load_index),
-                                           "a force on a collapsed side (zero length) cannot be spread"));
+        if (load.kind == io::LoadKind::force)
             traction /= measure;
-        }
         for (const auto& element : side.elements) {
             const mechanics::LocalForce f = mechanics::dead_traction(element, d, traction);
             scatter_load(dofs, b, f.indices, f.f_ext, f_ext);

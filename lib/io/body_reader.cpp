@@ -206,15 +206,7 @@ std::optional<NurbsData> read_nurbs(const Cursor& c, int dim, std::optional<Para
     if (c.has("transform"))
         nurbs.transform = read_transform(c.child("transform"), dim);
     if (degrees_ok && knots_ok) {
-        param = Parametrization{nurbs.degrees, nurbs.knots};
-        if (reverses_u(nurbs.transform)) {
-            // `refine` applies to the placed patch, whose u runs backwards (nurbs/transform.hpp).
-            std::vector<double>& u = param->knots.front();
-            const double sum = u.front() + u.back();
-            std::reverse(u.begin(), u.end());
-            for (double& x : u)
-                x = sum - x;
-        }
+        param = Parametrization{nurbs.degrees, nurbs.knots};  // `refine` is in the parameters as given
     }
     return nurbs;
 }

@@ -57,4 +57,23 @@ bool is_collapsed(const SidePatch& side, double tolerance)
     return true;
 }
 
+bool is_collapsed_to_line(const SidePatch& side, double tolerance)
+{
+    if (side.patch.n_par() < 2)
+        return false;
+    const RowMatrix& P = side.patch.control_points();
+    const int n0 = side.patch.n_basis(0), n1 = side.patch.n_basis(1);
+    const auto along = [&](int dir) {  // every line of control points along `dir` is one point
+        for (int line = 0; line < (dir == 0 ? n1 : n0); ++line)
+            for (int k = 1; k < (dir == 0 ? n0 : n1); ++k) {
+                const int a = dir == 0 ? line * n0 : line;
+                const int b = dir == 0 ? line * n0 + k : line + k * n0;
+                if (!((P.row(a) - P.row(b)).norm() <= tolerance))
+                    return false;
+            }
+        return true;
+    };
+    return along(0) || along(1);
+}
+
 }  // namespace iga::nurbs

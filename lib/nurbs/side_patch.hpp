@@ -28,4 +28,8 @@ SidePatch extract_side(const Patch& patch, Side side);
 /// degenerate corner of a disc patch): it has zero length and carries nothing.
 bool is_collapsed(const SidePatch& side, double tolerance);
 
+/// True when a face (the side of a volume) is a curve: its control points coincide
+/// along one of its directions (the axis of a revolved solid, an extruded corner).
+bool is_collapsed_to_line(const SidePatch& side, double tolerance);
+
 }  // namespace iga::nurbs

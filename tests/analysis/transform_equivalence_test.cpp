@@ -11,6 +11,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
 namespace iga::test {
 
 namespace {
@@ -56,22 +60,57 @@ TEST(TransformEquivalence, CrossedCylindersFromShapesEqualTheRawNurbsDeck)
     EXPECT_TRUE(near_rel(f_upper, f_lower, half_pass_agreement));
 }
 
-TEST(TransformEquivalence, TheMirroredShapesSideNamesFollowTheReversal)
+TEST(TransformEquivalence, AMirroredShapeKeepsItsSideNamesAndRefinementParameters)
 {
-    const auto dir = scratch_dir("transform_side_names");
-    const auto outcome = run_deck(source_path("tests/analysis/decks/crossed_cylinders_shapes_3d.yaml"),
-                                  {"steps.count=1"}, dir / "shapes.h5");
+    // A rectangle [0, 2] x [0, 1] mirrored in x lies in [-2, 0] x [0, 1]. As built, u0 is
+    // its face x = 0 and the knot u = 0.1 lies 0.2 from it; a transform places the body
+    // and renames nothing (issue 32): u0 is still the face at x = 0 (its own mirror
+    // image), the knot lies at x = -0.2, and the face u1 at x = -2 carries the load.
+    const auto dir = scratch_dir("transform_as_built");
+    const auto deck = dir / "mirrored.yaml";
+    std::ofstream(deck) << R"(format: 1
+analysis: {dimension: 2, plane: strain, kinematics: small}
+materials:
+  - {name: m, model: linear_elastic, E: 1000.0, nu: 0.0}
+bodies:
+  - name: bar
+    material: m
+    shape: {type: rectangle, corner: [0, 0], size: [2, 1], transform: [{mirror: {normal: [1, 0]}}]}
+    refine: {insert: [[0.1], []]}
+constraints:
+  - {body: bar, side: u0, fix: [x]}
+  - {body: bar, side: v0, fix: [y]}
+loads:
+  - {body: bar, side: u1, traction: [-1.0, 0.0]}
+steps: {count: 1}
+)";
+    const auto outcome = run_deck(deck.string(), {}, dir / "mirrored.h5");
     ASSERT_EQ(outcome.status, "completed") << outcome.message;
-    const Results r(dir / "shapes.h5");
-    const io::h5::Array names = io::h5::read_dataset(r.id(), "/bodies/lower/side_names");
-    ASSERT_EQ(names.strings.size(), 12u);  // six sides of the extruded shape, (side, meaning) each
-    // half_disc: u0 is the left end of the diameter as built; the mirror reversed u,
-    // so that side is now called u1.
-    for (std::size_t k = 0; k < names.strings.size(); k += 2) {
-        if (names.strings[k] == "u1") {
-            EXPECT_NE(names.strings[k + 1].find("left end"), std::string::npos) << names.strings[k + 1];
-        }
+    const Results r(dir / "mirrored.h5");
+    const RowMatrix points = r.matrix("/bodies/bar/control_points");
+    std::vector<double> xs;
+    for (Index a = 0; a < points.rows(); ++a)
+        xs.push_back(points(a, 0));
+    // Degree 1: the inserted knot is a control point column; exact arithmetic (0.1 * 2).
+    constexpr double knot_tolerance = 1e-12;
+    auto has_x = [&](double x) {
+        return std::any_of(xs.begin(), xs.end(), [&](double v) { return std::abs(v - x) < knot_tolerance; });
+    };
+    EXPECT_TRUE(has_x(-0.2)) << "the knot u = 0.1 is 0.2 from the face u0 as built";
+    EXPECT_FALSE(has_x(-1.8)) << "the refinement was applied in the placed (reversed) parameters";
+    // The face held in x is u0 as built, at x = 0: the load pulls the bar (nu = 0) to
+    // u_x = -strain * 2 = -2e-3 at x = -2, with the held face fixed.
+    const RowMatrix u = r.matrix("/results/displacement/bar");
+    ASSERT_EQ(u.rows(), points.rows());
+    double u_min = 0.0, u_at_zero = 1.0;
+    for (Index a = 0; a < points.rows(); ++a) {
+        u_min = std::min(u_min, u(a, 0));
+        if (std::abs(xs[static_cast<std::size_t>(a)]) < knot_tolerance)
+            u_at_zero = std::abs(u(a, 0));
     }
+    constexpr double solve_tolerance = 1e-9;  // a linear solve of a well-posed bar
+    EXPECT_NEAR(u_at_zero, 0.0, solve_tolerance);
+    EXPECT_NEAR(u_min, -2e-3, solve_tolerance);
 }
 
 }  // namespace iga::test

@@ -6,6 +6,7 @@
 
 #include "run_support.hpp"
 
+#include "analysis/scene.hpp"
 #include "core/error.hpp"
 
 #include <gtest/gtest.h>
@@ -234,6 +235,23 @@ TEST(Warnings, ABodyDrivenThroughItsObstacleIsReported)
     const auto sound = run_deck(source_path("inputs/press_then_shear_friction_2d.yaml"), {}, dir / "sound.h5");
     ASSERT_EQ(sound.status, "completed") << sound.message;
     EXPECT_EQ(joined(sound.warnings).find("driven through"), std::string::npos) << joined(sound.warnings);
+}
+
+TEST(Warnings, AConstraintOnACollapsedSideIsReportedAndALoadThereRefused)
+{
+    // The upper quarter disc's u1 is its collapsed corner (1, 1): a symmetry condition
+    // written there holds one point (issue 32); a load there would apply nothing.
+    const io::Deck pinned = io::read_deck(source_path("inputs/hertz_two_cylinders_2d.yaml"), {"constraints.0.side=u1"});
+    const analysis::Scene scene = analysis::build_scene(pinned);
+    const std::string all = joined(scene.setup_warnings);
+    EXPECT_NE(all.find("constraints.0.side: the side u1 of body 'upper' is collapsed to a point at (1, 1)"),
+              std::string::npos)
+        << all;
+    const io::Deck sound = io::read_deck(source_path("inputs/hertz_two_cylinders_2d.yaml"), {});
+    EXPECT_TRUE(analysis::build_scene(sound).setup_warnings.empty());
+    const std::string message =
+        deck_error("inputs/hertz_two_cylinders_2d.yaml", {"loads.0.side=u1"}, "collapsed_load");
+    EXPECT_NE(message.find("loads.0.side: the side is collapsed to a point"), std::string::npos) << message;
 }
 
 }  // namespace iga::test

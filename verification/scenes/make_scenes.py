@@ -95,8 +95,9 @@ def dofs(nu, nv, nw, p=2):
 
 
 def mirrored_ball_patches(rows, u_insert, names, comments, mirror_normal):
-    """Two patches of the same octant rows, the second mirrored (which reverses u, so
-    its u-insertions are the first's reflected), as a `patches:` list at 6 spaces."""
+    """Two patches of the same octant rows, the second mirrored, as a `patches:` list at
+    6 spaces. A transform keeps side names and `refine` in the patch as built, so both
+    take the same u-insertions and name the same faces."""
     def patch(name, comment, transform, insert):
         return (f"""      - name: {name}{comment}
         nurbs:
@@ -109,8 +110,7 @@ def mirrored_ball_patches(rows, u_insert, names, comments, mirror_normal):
     mirror = f"""          transform:
             - {{mirror: {{normal: {mirror_normal}}}}}
 """
-    reflected = [round(1 - x, 5) for x in reversed(u_insert)]
-    return (patch(names[0], comments[0], "", u_insert) + patch(names[1], comments[1], mirror, reflected)).rstrip("\n")
+    return (patch(names[0], comments[0], "", u_insert) + patch(names[1], comments[1], mirror, u_insert)).rstrip("\n")
 
 
 def write(name, text):
@@ -292,7 +292,7 @@ bodies:
     patches:
 {mirrored_ball_patches(ball, ub, ("lower", "upper"), (
     "   # v0 = sphere, w0 = z = 0 (the interface), u0 = x = 0, w1 = y = 0",
-    "   # the same rows mirrored in z (the mirror reverses u: u0 <-> u1)"), "[0, 0, 1]")}
+    "   # the same rows mirrored in z (the same side names)"), "[0, 0, 1]")}
     refine:
       elevate: [0, 1, 0]
       insert:
@@ -300,7 +300,7 @@ bodies:
         - {fmt_list(vb)}
         - {fmt_list([round(1 - x, 5) for x in reversed(ub)])}
     surfaces:
-      sym_x: [lower.u0, upper.u1]
+      sym_x: [lower.u0, upper.u0]
       sym_y: [lower.w1, upper.w1]
       skin: [lower.v0, upper.v0]
   - name: shell
@@ -362,7 +362,7 @@ bodies:
     patches:
 {mirrored_ball_patches(ball, u, ("east", "west"), (
     "    # x >= 0: v0 = sphere, w0 = top z = 1, u0 = x = 0 (interface), w1 = y = 0",
-    "    # x <= 0: the same rows mirrored in x (u0 <-> u1: u1 is the interface)"), "[1, 0, 0]")}
+    "    # x <= 0: the same rows mirrored in x (the same side names: u0 is the interface)"), "[1, 0, 0]")}
     refine:
       elevate: [0, 1, 0]
       insert:
