@@ -5,6 +5,8 @@
 
 #include <array>
 #include <cmath>
+#include <algorithm>
+#include <limits>
 #include <set>
 
 namespace iga::analysis {
@@ -202,7 +204,64 @@ RowMatrix current_control_points(const BodyModel& body, const io::StepData& step
     return out;
 }
 
+/// Knot spans the pressed Gauss points of a deformable side occupy, per parameter
+/// direction of the side (pieces of a named surface add up), and the side's spans.
+struct ZoneSpans {
+    std::vector<int> pressed;  ///< per direction
+    std::vector<int> total;    ///< per direction
+};
+
+ZoneSpans zone_spans(const contact::DeformableSide& side, const io::GaussPointData& gp)
+{
+    const int q = side.pieces.front().side.patch.n_par();
+    ZoneSpans out{std::vector<int>(static_cast<std::size_t>(q), 0), std::vector<int>(static_cast<std::size_t>(q), 0)};
+    for (std::size_t k = 0; k < side.pieces.size(); ++k) {
+        const nurbs::Patch& patch = side.pieces[k].side.patch;
+        for (int j = 0; j < q; ++j) {
+            std::set<int> spans;
+            for (Index g = 0; g < gp.pressure.size(); ++g) {
+                const bool on_piece = gp.patch.empty() ? k == 0 : gp.patch[static_cast<std::size_t>(g)] == static_cast<int>(k);
+                if (on_piece && gp.pressure(g) > 0.0 && g < gp.parameter.rows())
+                    spans.insert(patch.knots(j).find_span(gp.parameter(g, j)));
+            }
+            out.pressed[static_cast<std::size_t>(j)] += static_cast<int>(spans.size());
+            out.total[static_cast<std::size_t>(j)] += patch.knots(j).n_spans();
+        }
+    }
+    return out;
+}
+
 }  // namespace
+
+std::vector<std::string> resolution_warnings(const PairModel& model, const io::ContactPairResult& pair)
+{
+    std::vector<std::string> out;
+    for (int k = 0; k < 2; ++k) {
+        const auto* side = std::get_if<contact::DeformableSide>(&model.pair.surface(k));
+        const auto result = std::find_if(pair.sides.begin(), pair.sides.end(), [&](const io::ContactSideResult& r) {
+            return r.side_name == model.label[static_cast<std::size_t>(k)];
+        });
+        if (!side || side->pieces.empty() || result == pair.sides.end())
+            continue;
+        const ZoneSpans spans = zone_spans(*side, result->gauss_points);
+        // The narrowest direction of the zone that the side's extent does not bound: a zone
+        // as wide as the side (a flat punch, a patch test) is not under-resolved.
+        int fewest = std::numeric_limits<int>::max();
+        for (std::size_t j = 0; j < spans.pressed.size(); ++j)
+            if (spans.pressed[j] > 0 && spans.pressed[j] < spans.total[j])
+                fewest = std::min(fewest, spans.pressed[j]);
+        if (fewest >= resolved_zone_spans)
+            continue;
+        out.push_back(fmt::format(
+            "contact pair '{}': the contact zone on {} spans only {} knot span{} across{}: too few to resolve the "
+            "pressure (Gauss-point pressures and the contact {} can be off by tens of per cent); refine {} where it "
+            "touches (refine.insert), {} or more spans across the zone",
+            model.name, result->side_name, fewest, fewest == 1 ? "" : "s",
+            spans.pressed.size() > 1 ? " in its narrower direction" : "", spans.pressed.size() > 1 ? "radius" : "width",
+            result->side_name, 2 * resolved_zone_spans));
+    }
+    return out;
+}
 
 std::vector<std::string> driven_through_warnings(const Scene& scene, const PairModel& model, const io::StepData& step)
 {

@@ -16,6 +16,7 @@
 //  - two contact pairs that share a patch side on both surfaces (in either order;
 //    a named surface counts as its sides, a rigid obstacle as itself): each adds its
 //    own contact forces there, so the contact is enforced twice (twice as stiff).
+//  - a contact zone only a few knot spans across (resolved_zone_spans);
 //  - a body driven into its rigid obstacle by half its thickness or more (a penalty
 //    far too soft, a load the contact cannot hold, a side that does not face it).
 // A body that starts entirely inside a rigid obstacle is an error, not a warning
@@ -55,6 +56,10 @@ constexpr double stiff_half_pass_penalty = 3.0;
 /// deck disagreed by 7.4 % with 2 pressed points a side, 1.7 % with 12 and 14, 0.5 %
 /// with 26 and 34, and the two-cylinder Hertz deck (131 a side) by 0.003 %.
 constexpr double resolved_zone_points = 20.0;
+/// Knot spans across a contact zone (on a side that extends beyond it) below which the
+/// zone is reported as under-resolved: a rigid sphere into a cube at a/h ~ 6 had
+/// Gauss-point pressures 29 % high; two spheres at a/h ~ 3.5 peaks of 2.4 p0.
+constexpr int resolved_zone_spans = 4;
 /// A body whose control points reach into a rigid obstacle by more than this fraction
 /// of its thickness along the obstacle's normal has been driven through, not stopped:
 /// a sound run's penetration is a per-cent of the body at most (penetration_to_body).
@@ -76,6 +81,10 @@ std::vector<std::string> release_initial_overclosure(Scene& scene, SceneSystem& 
 /// penetration too deep for the penalty, two half passes that disagree.
 std::vector<std::string> pair_warnings(const Scene& scene, const PairModel& model, const io::ContactPairResult& pair,
                                        double load_factor);
+
+/// Contact zones held by fewer than resolved_zone_spans knot spans across, on a side
+/// that extends beyond them, at the converged state of `pair`.
+std::vector<std::string> resolution_warnings(const PairModel& model, const io::ContactPairResult& pair);
 
 /// A body driven into its rigid obstacle by more than driven_through of its thickness
 /// at the converged state `step` (see above); none for a pair of deformable sides.
