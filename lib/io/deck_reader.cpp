@@ -1,5 +1,6 @@
 #include "io/deck_reader.hpp"
 
+#include "core/petsc_options.hpp"
 #include "io/amplitude_reader.hpp"
 #include "io/body_reader.hpp"
 #include "io/deck_writer.hpp"
@@ -492,6 +493,8 @@ Solver read_solver(const Cursor& root)
         c.child("type").fail("type iterative needs backend petsc (the suitesparse backend is direct only)");
     if (!s.options.empty() && s.backend != SolverBackend::petsc)
         c.child("options").fail("options are PETSc options: they need backend petsc");
+    else if (const PetscOptionsCheck options = check_petsc_options(s.options, PetscOptionsSource::deck); !options.ok())
+        c.child("options").fail(options.message());  // before PETSc sees them (core/petsc_options.hpp)
     return s;
 }
 
