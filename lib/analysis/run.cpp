@@ -54,6 +54,7 @@ void count_linear_statistics(const RunModel& m)
 void warn_at_end(RunModel& m, const IncrementSteps& steps, const Vector& u)
 {
     m.warn(steps.uzawa().notes());
+    m.warn(m.linear->warnings());
     const std::optional<io::StepData>& last = steps.last_step();
     if (!last)
         return;
@@ -206,8 +207,15 @@ RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& cont
         result.message = *driven_mode;  // not completed, no increment
     else {
         solver::SteppingCallbacks callbacks = steps.callbacks();
-        result = solver::run_load_steps(model.nonlinear, u, stepping_settings(model.settings.steps, model.scene.path),
-                                        newton_settings(model.settings.newton), *model.linear, callbacks, &context);
+        try {
+            result = solver::run_load_steps(model.nonlinear, u,
+                                            stepping_settings(model.settings.steps, model.scene.path),
+                                            newton_settings(model.settings.newton), *model.linear, callbacks, &context);
+        } catch (const PetscOptionsError& e) {
+            // An option PETSc rejects only when it sets up or runs the solver: bad input,
+            // as at the start (the results file is abandoned, never renamed).
+            throw petsc_options_error(model.settings, e);
+        }
     }
     return finish(model, steps, result, u, total);
 }

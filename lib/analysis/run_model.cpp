@@ -37,8 +37,9 @@ Scene timed_scene(const io::Deck& deck, const RunOptions& options, RunContext& c
     return built;
 }
 
-/// The linear solver of the deck. PETSc reads its options when the solver is made:
-/// a value it rejects (-ksp_rtol abc) is bad input, named where the user gave it.
+/// The linear solver of the deck. The PETSc backend checks its options when it is
+/// made (core/petsc_options.hpp) and PETSc reads them: a refused option, or a value
+/// PETSc rejects (-pc_type bogus), is bad input, named where the user gave it.
 std::unique_ptr<solver::LinearSolver> make_solver(const Scene& scene, const solver::NonlinearSystem& nonlinear,
                                                   const Communicator& comm)
 {
@@ -50,20 +51,10 @@ std::unique_ptr<solver::LinearSolver> make_solver(const Scene& scene, const solv
                                           "then rebuild); the suitesparse backend needs nothing else"));
     try {
         return solver::make_linear_solver(linear_solver_policy(scene, nonlinear, comm), comm);
-    } catch (const Error& e) {
-        const char* env = petsc ? std::getenv("PETSC_OPTIONS") : nullptr;
-        const std::string reason = std::string("PETSc could not set up the solver with these options: ") + e.what();
-        if (petsc && !settings.solver.options.empty())
-            throw DeckError(io::located_issue(settings.source_file, "solver.options", settings.solver.options, reason));
-        if (env && *env) {
-            DeckIssue issue;
-            issue.where.file = "environment";
-            issue.path = "PETSC_OPTIONS";
-            issue.value = env;
-            issue.reason = reason;
-            throw DeckError(std::move(issue));
-        }
-        throw;
+    } catch (const PetscOptionsError& e) {
+        // Under mpirun the backend is petsc whatever the deck says: the error says
+        // which options it was.
+        throw petsc_options_error(settings, e);
     }
 }
 
@@ -93,6 +84,19 @@ std::string load_items_text(const Scene& scene, const FreeModeGroup& group)
 }
 
 }  // namespace
+
+DeckError petsc_options_error(const RunSettings& settings, const PetscOptionsError& e)
+{
+    if (e.source() == PetscOptionsSource::deck)
+        return DeckError(io::located_issue(settings.source_file, "solver.options", settings.solver.options, e.what()));
+    DeckIssue issue;
+    issue.where.file = "environment";
+    issue.path = e.variable();
+    const char* value = std::getenv(e.variable().c_str());
+    issue.value = value ? value : "";
+    issue.reason = e.what();
+    return DeckError(std::move(issue));
+}
 
 RunModel::RunModel(const io::Deck& deck, const RunOptions& options_, RunContext& context_)
     : options(options_), context(context_), stop(collective_stop(context_, options_.comm)),

@@ -14,6 +14,7 @@
 #include "analysis/scene.hpp"
 #include "analysis/system.hpp"
 #include "analysis/tessellation.hpp"
+#include "core/petsc_options.hpp"
 #include "io/results_writer.hpp"
 #include "solver/linear.hpp"
 
@@ -23,6 +24,10 @@
 #include <vector>
 
 namespace iga::analysis {
+
+/// PETSc options refused or rejected (core/petsc_options.hpp) as bad input, located
+/// where they were given: the deck's solver.options, or the environment variable.
+DeckError petsc_options_error(const RunSettings& settings, const PetscOptionsError& e);
 
 class RunModel {
 public:

@@ -22,6 +22,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace iga {
 class Communicator;
@@ -102,6 +103,8 @@ public:
     /// What the last solve that did not return `ok` showed, in a clause for a message
     /// (e.g. "cg + gamg stopped after 1000 iterations: DIVERGED_ITS"); may be empty.
     virtual std::string failure_detail() const { return {}; }
+    /// Lines for the run's warnings at its end (PETSc: options no solver read).
+    virtual std::vector<std::string> warnings() const { return {}; }
 };
 
 /// Everything that decides which backend and how it runs: from the deck

@@ -1,11 +1,14 @@
 #include "solver/petsc_solver.hpp"
 
 #include "core/error.hpp"
+#include "core/petsc_options.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <petscksp.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -151,23 +154,117 @@ void finalize_petsc()
         PetscFinalize();
 }
 
+/// The last error PETSc raised: its first message and the functions it came back
+/// through. PETSc's error handler is process-wide, as PETSc is, so this record is too.
+struct PetscErrorRecord {
+    PetscErrorCode code = 0;
+    std::string message;
+    std::vector<std::string> functions;
+
+    /// Whether PETSc raised it reading an option: a value it could not parse
+    /// (PetscOptions*), one rejected while an object read its options
+    /// (*SetFromOptions, MUMPS's options read at its first factorization), or a type
+    /// name nothing is registered under (-mg_levels_pc_type bogus). A numerical failure
+    /// (a zero pivot, a multigrid that cannot be built) comes from neither.
+    bool from_options() const
+    {
+        return code == PETSC_ERR_ARG_UNKNOWN_TYPE ||
+               std::any_of(functions.begin(), functions.end(),
+                           [](const std::string& f) { return f.find("Options") != std::string::npos; });
+    }
+};
+
+PetscErrorRecord& last_error()
+{
+    static PetscErrorRecord record;
+    return record;
+}
+
+PetscErrorCode record_error(MPI_Comm, int, const char* function, const char*, PetscErrorCode code,
+                            PetscErrorType type, const char* message, void* context)
+{
+    auto& record = *static_cast<PetscErrorRecord*>(context);
+    if (type == PETSC_ERROR_INITIAL) {
+        record = PetscErrorRecord{};
+        record.code = code;
+        record.message = message ? message : "";
+        while (!record.message.empty() && (record.message.back() == '\n' || record.message.back() == ' '))
+            record.message.pop_back();
+    }
+    if (function)
+        record.functions.emplace_back(function);
+    return code;
+}
+
 /// PETSc once per process, on MPI_COMM_WORLD (MPI initialized by core/parallel
 /// under mpirun, else by PETSc as a one-rank world). Our SIGINT/SIGTERM handling
-/// stays ours (-no_signal_handler); errors come back as codes, not printed traces.
-void ensure_petsc(const std::string& deck_options)
+/// stays ours (-no_signal_handler); errors come back as codes, not printed traces,
+/// and are recorded (last_error). Its options come from the deck and PETSC_OPTIONS
+/// only, both checked before (checked_options): no .petscrc or petscrc file, which
+/// PETSc reads from the home and working folders unless -skip_petscrc is given (on
+/// a command line: hence the one of the program's name alone). PETSc's standard
+/// output (monitors, views) goes to standard error, with our log: standard output
+/// is the run's summary (--summary json).
+void ensure_petsc()
 {
-    if (!PetscInitializeCalled) {
-        check(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr), "PetscOptionsSetValue");
-        check(PetscInitialize(nullptr, nullptr, nullptr, nullptr), "PetscInitialize");
-        PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
-        parallel::on_finalize(finalize_petsc);
-    }
-    // The deck's options, then the environment's again, so that PETSC_OPTIONS wins
-    // as a command line wins over a file.
-    if (!deck_options.empty())
-        check(PetscOptionsInsertString(nullptr, deck_options.c_str()), "reading solver.options");
-    if (const char* env = std::getenv("PETSC_OPTIONS"))
-        check(PetscOptionsInsertString(nullptr, env), "reading PETSC_OPTIONS");
+    if (PetscInitializeCalled)
+        return;
+    check(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr), "PetscOptionsSetValue");
+    check(PetscOptionsSetValue(nullptr, "-skip_petscrc", "true"), "PetscOptionsSetValue");
+    static char program[] = "igacontact";
+    static char* arguments[] = {program, nullptr};
+    static char** argv = arguments;
+    static int argc = 1;
+    check(PetscInitialize(&argc, &argv, nullptr, nullptr), "PetscInitialize");
+    PETSC_STDOUT = stderr;
+    PetscPushErrorHandler(record_error, &last_error());
+    parallel::on_finalize(finalize_petsc);
+}
+
+/// The options of the deck and of PETSC_OPTIONS, checked on every rank before PETSc
+/// reads any (it reads PETSC_OPTIONS when it starts). A refused option ends the
+/// construction on every rank alike, with the lowest rank's reason.
+struct UserOptions {
+    std::vector<PetscOption> deck, environment;
+};
+
+UserOptions checked_options(const std::string& deck_text, const Communicator& comm)
+{
+    UserOptions user;
+    const PetscOptionsCheck deck = check_petsc_options(deck_text, PetscOptionsSource::deck);
+    if (const std::string problem = comm.first_message(deck.message()); !problem.empty())
+        throw PetscOptionsError(PetscOptionsSource::deck, problem);
+    user.deck = deck.options;
+    // PETSc would read PETSC_OPTIONS_YAML after PETSC_OPTIONS, unchecked.
+    const char* yaml = std::getenv("PETSC_OPTIONS_YAML");
+    const std::string yaml_problem = comm.first_message(
+        yaml && *yaml ? "igacontact takes PETSc options from solver.options and PETSC_OPTIONS only; unset it" : "");
+    if (!yaml_problem.empty())
+        throw PetscOptionsError(PetscOptionsSource::environment, yaml_problem, "PETSC_OPTIONS_YAML");
+    const char* env = std::getenv("PETSC_OPTIONS");
+    const PetscOptionsCheck environment =
+        check_petsc_options(env ? env : "", PetscOptionsSource::environment);
+    if (const std::string problem = comm.first_message(environment.message()); !problem.empty())
+        throw PetscOptionsError(PetscOptionsSource::environment, problem);
+    user.environment = environment.options;
+    return user;
+}
+
+/// The options into PETSc's database: the deck's, then the environment's again (PETSc
+/// read them when it started), so that PETSC_OPTIONS wins as a command line wins over
+/// a file. Each checked option goes in as one name and value, split as checked.
+void insert_options(const UserOptions& user)
+{
+    for (const std::vector<PetscOption>* list : {&user.deck, &user.environment})
+        for (const PetscOption& option : *list)
+            check(PetscOptionsSetValue(nullptr, option.name.c_str(), option.has_value ? option.value.c_str() : nullptr),
+                  "PetscOptionsSetValue");
+}
+
+/// An option's name as PETSc's database holds it: without its dashes.
+std::string stored_name(const std::string& name)
+{
+    return name.substr(std::min(name.find_first_not_of('-'), name.size()));
 }
 
 /// A default in the options database, unless the options give it already.
@@ -197,7 +294,8 @@ void set_multigrid(PC pc, const LinearSolverPolicy& policy)
     default_option("-pc_hypre_boomeramg_agg_nl", "1");
 }
 
-/// The Krylov method and preconditioner of the policy (see the header).
+/// The Krylov method and preconditioner of the policy (see the header), before the
+/// options database is applied (PetscSolver::new_ksp).
 KSP make_ksp(const LinearSolverPolicy& policy)
 {
     KSP ksp = nullptr;
@@ -231,7 +329,6 @@ KSP make_ksp(const LinearSolverPolicy& policy)
             set_multigrid(pc, policy);
         }
     }
-    check(KSPSetFromOptions(ksp), "KSPSetFromOptions");
     return ksp;
 }
 
@@ -413,8 +510,12 @@ struct PetscSolver::State {
 PetscSolver::PetscSolver(const LinearSolverPolicy& policy, const Communicator& comm)
     : policy_(policy), comm_(comm), state_(std::make_unique<State>())
 {
-    ensure_petsc(policy.options);
-    state_->ksp = make_ksp(policy);
+    UserOptions user = checked_options(policy.options, comm_);
+    ensure_petsc();
+    insert_options(user);
+    deck_options_ = std::move(user.deck);
+    environment_options_ = std::move(user.environment);
+    new_ksp();
     PetscBool given = PETSC_FALSE;
     check(PetscOptionsHasName(nullptr, nullptr, "-ksp_rtol", &given), "options");
     state_->user_rtol = given == PETSC_TRUE;
@@ -422,6 +523,79 @@ PetscSolver::PetscSolver(const LinearSolverPolicy& policy, const Communicator& c
 }
 
 PetscSolver::~PetscSolver() = default;
+
+void PetscSolver::new_ksp()
+{
+    state_->ksp = make_ksp(policy_);
+    const PetscErrorCode code = KSPSetFromOptions(state_->ksp);
+    if (comm_.any(code != 0)) {
+        throw_if_options_error(code != 0);
+        check(code, "KSPSetFromOptions");
+        throw Error("PETSc: KSPSetFromOptions failed on another rank");
+    }
+}
+
+void PetscSolver::throw_if_options_error(bool failed_here) const
+{
+    std::string here;
+    if (failed_here && last_error().from_options()) {
+        const std::string& message = last_error().message;
+        // The option PETSc rejected: the one whose value its message quotes (PETSc
+        // names the value, "Unknown type ... bogus", not the option). The
+        // environment's come last in the database and win, so they are looked at first.
+        auto quoted = [&](const PetscOption& o) {
+            if (!o.has_value)
+                return false;
+            auto inside_word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+            for (std::size_t at = message.find(o.value); at != std::string::npos;
+                 at = message.find(o.value, at + 1)) {
+                const std::size_t end = at + o.value.size();
+                if ((at == 0 || !inside_word(message[at - 1])) && (end == message.size() || !inside_word(message[end])))
+                    return true;
+            }
+            return false;
+        };
+        const auto env = std::find_if(environment_options_.rbegin(), environment_options_.rend(), quoted);
+        const auto deck = std::find_if(deck_options_.rbegin(), deck_options_.rend(), quoted);
+        const bool from_environment =
+            env != environment_options_.rend() || (deck == deck_options_.rend() && deck_options_.empty());
+        const std::string option = env != environment_options_.rend() ? env->text()
+                                   : deck != deck_options_.rend()     ? deck->text()
+                                                                      : std::string();
+        here = std::string(from_environment ? "E" : "D") +
+               (option.empty() ? "PETSc rejected an option" : option + ": PETSc rejected it") +
+               (message.empty() ? std::string() : " (" + message + ")");
+    }
+    // Collective: every rank throws, with the lowest rank's reason.
+    const std::string text = comm_.first_message(here);
+    if (!text.empty())
+        throw PetscOptionsError(text[0] == 'E' ? PetscOptionsSource::environment : PetscOptionsSource::deck,
+                                text.substr(1));
+}
+
+std::vector<std::string> PetscSolver::warnings() const
+{
+    // PETSc reads some options only when the preconditioner is first set up (MUMPS's,
+    // those of multigrid levels): before that, unread says nothing.
+    if (statistics_.numeric == 0 || PetscFinalizeCalled)
+        return {};
+    std::vector<std::string> unread;
+    for (const auto& [list, where] : {std::pair{&deck_options_, "solver.options"},
+                                      std::pair{&environment_options_, "PETSC_OPTIONS"}})
+        for (const PetscOption& option : *list) {
+            PetscBool used = PETSC_FALSE;
+            if (PetscOptionsUsed(nullptr, stored_name(option.name).c_str(), &used) != 0 || used)
+                continue;
+            const std::string text = option.name + " (" + where + ")";
+            if (std::find(unread.begin(), unread.end(), text) == unread.end())
+                unread.push_back(text);
+        }
+    if (unread.empty())
+        return {};
+    return {fmt::format("PETSc options {} did not read: {}; PETSc does not know them, or this method and "
+                        "preconditioner take no such option",
+                        describe_method(), fmt::join(unread, ", "))};
+}
 
 std::string PetscSolver::describe_method() const
 {
@@ -550,10 +724,11 @@ LinearStatus PetscSolver::set_up_preconditioner()
     if (code == 0)
         PCGetFailedReasonRank(pc, &reason);
     if (comm_.any(code != 0 || reason != PC_NOERROR)) {
+        throw_if_options_error(code != 0);  // an option rejected at set-up is bad input, not a singular K
         failure_detail_ = describe_method() + ": the preconditioner could not be built" +
                           (reason != PC_NOERROR ? std::string(" (") + PCFailedReasons[reason] + ")" : std::string());
         s.abandoned.push_back(s.ksp);
-        s.ksp = make_ksp(policy_);
+        new_ksp();
         return LinearStatus::singular;  // a zero pivot, or a preconditioner that cannot be built
     }
     s.set_up = true;
@@ -639,7 +814,9 @@ LinearStatus PetscSolver::solve_with(const Vector& b, Vector& x, double rtol)
         }
         // An error inside the solve (a preconditioner that a singular matrix left
         // unusable) is a failed solve of this K, not an error of the program.
-        if (comm_.any(KSPSolve(s.ksp, s.b, s.x) != 0)) {
+        const PetscErrorCode code = KSPSolve(s.ksp, s.b, s.x);
+        if (comm_.any(code != 0)) {
+            throw_if_options_error(code != 0);  // (a viewer option is read at the end of a solve)
             s.ksp_failed = true;
             s.last_converged = false;
             failure_detail_ = describe_method() + ": the solve stopped with a PETSc error";

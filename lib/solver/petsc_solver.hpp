@@ -30,7 +30,12 @@
 //              at the pace of its last 100 iterations, would miss its tolerance at
 //              the cap of 1000 stops there as stalled.
 // The options database comes last and wins: the deck's `solver.options`, then the
-// PETSC_OPTIONS environment variable (e.g. "-pc_type gamg -ksp_monitor").
+// PETSC_OPTIONS environment variable (e.g. "-pc_type gamg -ksp_monitor"). Both are
+// checked before PETSc starts (core/petsc_options.hpp): a refused option throws
+// PetscOptionsError on every rank alike, as does an option whose value PETSc rejects
+// when it makes or sets up the solver or solves (-mg_levels_pc_type bogus): bad input,
+// never a singular tangent. PETSc reads no options file, and what it prints (monitors,
+// views) goes to standard error. warnings() names the options no solver read.
 //
 // Statuses: a zero pivot in the factorization or a preconditioner that cannot be
 // built: `singular`; a solution whose true residual exceeds its bound (1e-6 ||b||, or
@@ -39,9 +44,11 @@
 // solver/newton.hpp); a non-finite entry on any rank: `failed`.
 
 #include "core/parallel.hpp"
+#include "core/petsc_options.hpp"
 #include "solver/linear.hpp"
 
 #include <memory>
+#include <vector>
 
 namespace iga::solver {
 
@@ -65,6 +72,10 @@ public:
     LinearStatistics statistics() const override { return statistics_; }
     std::string describe() const override;
     std::string failure_detail() const override { return failure_detail_; }
+    /// The options of the deck and of PETSC_OPTIONS that no PETSc object read
+    /// (misspelt, or not taken by this method and preconditioner), once the
+    /// preconditioner was set up.
+    std::vector<std::string> warnings() const override;
     /// "cg + gamg": the Krylov method and preconditioner, for messages.
     std::string describe_method() const;
 
@@ -75,12 +86,17 @@ private:
     LinearStatus prepare();  // after load(): the preconditioner kept, or set up anew
     LinearStatus set_up_preconditioner();
     LinearStatus solve_with(const Vector& b, Vector& x, double rtol);  // rtol <= 0: the KSP's own
+    void new_ksp();  // the policy's KSP, then the options database applied (a rejected option throws)
+    // After a PETSc error on some rank (collective): throws PetscOptionsError on every
+    // rank when on any rank it came from an option.
+    void throw_if_options_error(bool failed_here) const;
 
     LinearSolverPolicy policy_;
     Communicator comm_;
     std::unique_ptr<State> state_;
     LinearStatistics statistics_;
     std::string failure_detail_;  // of the last factorize/solve that did not return ok
+    std::vector<PetscOption> deck_options_, environment_options_;  // as checked: for messages, warnings()
 };
 
 }  // namespace iga::solver

@@ -2,8 +2,9 @@
 // beyond the contract every backend meets (linear_backends_test.cpp): what a Krylov
 // method that stops short or stalls reports, the preconditioner of two-body contact,
 // a K known to be singular shifted without its own factorization, a pattern that grows
-// between factorizations, preconditioner reuse, and Krylov solves to the accuracy a
-// caller asks for.
+// between factorizations, preconditioner reuse, Krylov solves to the accuracy a
+// caller asks for, and its options (issue 32): refused in PETSC_OPTIONS before PETSc
+// starts, rejected by PETSc at the set-up as bad input, unread ones as warnings.
 
 #include "core/parallel.hpp"
 #include "solver/petsc_solver.hpp"
@@ -14,8 +15,10 @@
 #include <gtest/gtest.h>
 #include <petscsys.h>
 
+#include <cstdlib>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace iga::solver {
 namespace {
@@ -268,6 +271,75 @@ public:
     void TearDown() override { parallel::finalize(); }
 };
 const auto* const finalize_environment = ::testing::AddGlobalTestEnvironment(new FinalizeParallel);
+
+// Issue 32: PETSC_OPTIONS is checked before PETSc reads it (at its start): an option
+// that would make PETSc write a file is bad input of the environment's.
+TEST(PetscSolver, ARefusedOptionInTheEnvironmentIsBadInputOfTheEnvironment)
+{
+    ASSERT_EQ(setenv("PETSC_OPTIONS", "-log_view :results.h5", 1), 0);
+    try {
+        PetscSolver solver(petsc_policy(Method::direct, true), Communicator());
+        ADD_FAILURE() << "-log_view was taken";
+    } catch (const PetscOptionsError& e) {
+        EXPECT_EQ(e.source(), PetscOptionsSource::environment);
+        EXPECT_EQ(e.variable(), "PETSC_OPTIONS");
+        EXPECT_NE(std::string(e.what()).find("-log_view :results.h5: makes PETSc write a performance log"),
+                  std::string::npos)
+            << e.what();
+    }
+    unsetenv("PETSC_OPTIONS");
+    // The deck's own options are checked as well (the deck reader did so first).
+    LinearSolverPolicy policy = petsc_policy(Method::direct, true);
+    policy.options = "-ksp_view ascii:deck.yaml";
+    try {
+        PetscSolver solver(policy, Communicator());
+        ADD_FAILURE() << "-ksp_view ascii:deck.yaml was taken";
+    } catch (const PetscOptionsError& e) {
+        EXPECT_EQ(e.source(), PetscOptionsSource::deck);
+        EXPECT_NE(std::string(e.what()).find("PETSc would write the file deck.yaml"), std::string::npos) << e.what();
+    }
+}
+
+// Issue 32: a value PETSc rejects only when it sets up the preconditioner (the type of
+// block Jacobi's inner solver) is bad input naming the option, not a singular matrix
+// (it was `singular`, and Newton shifted it to the end of its cutbacks).
+TEST(PetscSolver, AnOptionRejectedAtTheSetUpIsBadInputNotASingularMatrix)
+{
+    std::mt19937 rng(seed);
+    const SparseMatrix K = dominant_matrix(50, true, rng);
+    LinearSolverPolicy policy = petsc_policy(Method::iterative, true);
+    policy.options = "-pc_type bjacobi -sub_pc_type bogus";
+    PetscSolver solver(policy, Communicator());
+    try {
+        const LinearStatus status = solver.factorize(K);
+        ADD_FAILURE() << "factorize returned " << status_name(status);
+    } catch (const PetscOptionsError& e) {
+        EXPECT_EQ(e.source(), PetscOptionsSource::deck);
+        EXPECT_NE(std::string(e.what()).find("-sub_pc_type bogus: PETSc rejected it"), std::string::npos) << e.what();
+    }
+    PetscOptionsClearValue(nullptr, "-pc_type");
+    PetscOptionsClearValue(nullptr, "-sub_pc_type");
+}
+
+// An option no PETSc object read (misspelt, or not one of this method's) is named in
+// the run's warnings once the preconditioner was set up; one that MUMPS read at its
+// factorization is not.
+TEST(PetscSolver, AnOptionNoSolverReadIsAWarning)
+{
+    std::mt19937 rng(seed);
+    const SparseMatrix K = dominant_matrix(50, true, rng);
+    LinearSolverPolicy policy = petsc_policy(Method::direct, true);
+    policy.options = "-ksp_nonexistent_option 3 -mat_mumps_icntl_14 50";
+    PetscSolver solver(policy, Communicator());
+    EXPECT_TRUE(solver.warnings().empty()) << "before the set-up, unread says nothing";
+    ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+    const std::vector<std::string> warnings = solver.warnings();
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("-ksp_nonexistent_option (solver.options)"), std::string::npos) << warnings[0];
+    EXPECT_EQ(warnings[0].find("icntl_14"), std::string::npos) << warnings[0];
+    PetscOptionsClearValue(nullptr, "-ksp_nonexistent_option");
+    PetscOptionsClearValue(nullptr, "-mat_mumps_icntl_14");
+}
 
 }  // namespace
 }  // namespace iga::solver
