@@ -19,7 +19,9 @@
 #   # skip-if-root: yes permission cases: root ignores file modes, so they cannot fail
 #   # needs: petsc      cases of the PETSc backend: skipped when `igacontact --version`
 #                       does not list it (a build without PETSc refuses them earlier)
-# For every run: the exit code is the expected one (a crash, 3 or 0 fails), the
+#   env: NAME=VALUE ... (.args) environment variables for the run (shell words)
+# For every run: it ends within RUN_LIMIT_S seconds (a hang is killed and fails), the
+# exit code is the expected one (a crash, 3 or 0 fails), the
 # message is there, and the scratch folder is unchanged: an existing results file
 # (result.h5, a copy of base.yaml's results) is byte-identical and no file (results,
 # temporary "*.tmp-<pid>", XDMF) was created.
@@ -39,6 +41,7 @@ if ! (cd "$work/base" && "$exe" base.yaml -q -o base.h5) || [ ! -s "$work/base/b
   exit 1
 fi
 reference="$work/base/base.h5"
+RUN_LIMIT_S="${RUN_LIMIT_S:-120}"  # the longest case takes under 2 s
 has_petsc=no
 [[ "$("$exe" --version)" == *petsc* ]] && has_petsc=yes
 
@@ -59,8 +62,9 @@ check_run() {
   shift 7
   local before after code err problems=()
   before="$(listing "$dir")"
-  (cd "$dir" && "$@" > "$work/$name.out" 2> "$work/$name.err" < /dev/null)
+  (cd "$dir" && timeout -s KILL "$RUN_LIMIT_S" "$@" > "$work/$name.out" 2> "$work/$name.err" < /dev/null)
   code=$?
+  [ "$code" -eq 137 ] && problems+=("killed after ${RUN_LIMIT_S} s (a hang)")
   err="$(cat "$work/$name.err")"
   after="$(listing "$dir")"
   [ "$code" -eq "$want_exit" ] || problems+=("exit code $code, expected $want_exit")
@@ -98,6 +102,10 @@ for deck in "$here"/*.yaml; do
   if [ -z "$expect" ]; then
     n_fail=$((n_fail + 1)); failures+=("$name: no '# expect:' line"); continue
   fi
+  if [ "$(header "$deck" needs)" = petsc ] && [ "$has_petsc" = no ]; then
+    echo "SKIP $name (this igacontact was built without PETSc)"
+    n_skip=$((n_skip + 1)); continue
+  fi
   want_exit="$(header "$deck" exit)"; want_exit="${want_exit:-2}"
   at="$(header "$deck" at)"
   dir="$(prepare "$name")"
@@ -111,6 +119,7 @@ for case_file in "$here"/*.args; do
   expect="$(header "$case_file" expect)"
   args="$(sed -n 's/^args: //p' "$case_file" | head -n 1)"
   setup="$(sed -n 's/^setup: //p' "$case_file" | head -n 1)"
+  env_line="$(sed -n 's/^env: //p' "$case_file" | head -n 1)"
   if [ -z "$expect" ] || [ -z "$args" ]; then
     n_fail=$((n_fail + 1)); failures+=("$name: needs '# expect:' and 'args:' lines"); continue
   fi
@@ -128,7 +137,8 @@ for case_file in "$here"/*.args; do
     n_fail=$((n_fail + 1)); failures+=("$name: setup failed: $setup"); continue
   fi
   eval "words=($args)"
-  check_run "$name" "$dir" "$want_exit" "$expect" "" "" -- "$exe" "${words[@]}"
+  eval "variables=($env_line)"
+  check_run "$name" "$dir" "$want_exit" "$expect" "" "" -- env "${variables[@]}" "$exe" "${words[@]}"
 done
 
 echo "bad input: $n_pass runs passed, $n_fail failed, $n_skip skipped"
