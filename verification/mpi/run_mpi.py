@@ -21,6 +21,10 @@ checked: the root attribute `ranks` is N, the status is the serial one, and on
 
 Then the failure paths:
   - a bad deck under mpirun -np 2: exit code 2, the located message printed once;
+  - bad PETSc options under mpirun -np 2 (issue 32): an option that would write over
+    the deck, an unknown preconditioner type in PETSC_OPTIONS, and one PETSc rejects
+    only when it sets up the preconditioner: exit code 2, one message naming
+    solver.options or PETSC_OPTIONS, the deck unchanged and no results file;
   - SIGTERM to mpirun in the middle of a run: every rank stops at the same
     residual evaluation, exit 1, and the results file holds the converged
     increments with status failed and an "interrupted" message;
@@ -234,6 +238,48 @@ def check_bad_deck(exe, work):
     return not problems
 
 
+def check_bad_petsc_options(exe, work):
+    """Bad PETSc options under mpirun -np 2: exit 2, one message from rank 0, nothing written."""
+    ok = True
+    deck = os.path.join(work, "options.yaml")
+    with open(os.path.join(INPUTS, "hertz.yaml")) as f:
+        text = f.read()
+    cases = [
+        ("an option writing over the deck", ["--set", "solver.options=-ksp_view ascii:" + deck], {},
+         "solver.options = -ksp_view ascii:"),
+        ("an unknown type in PETSC_OPTIONS", [], {"PETSC_OPTIONS": "-pc_type bogus"},
+         "PETSC_OPTIONS = -pc_type bogus: -pc_type bogus: PETSc rejected it"),
+        ("an option rejected at the preconditioner's set-up",
+         ["--set", "solver.type=iterative", "--set", "solver.options=-pc_type bjacobi -sub_pc_type bogus"], {},
+         "-sub_pc_type bogus: PETSc rejected it"),
+    ]
+    for what, sets, env, expect in cases:
+        with open(deck, "w") as f:
+            f.write(text)
+        out = os.path.join(work, "options.h5")
+        if os.path.exists(out):
+            os.remove(out)
+        environ = environment()
+        environ.update(env)
+        p = subprocess.run(mpirun(2) + [exe, deck, "-q", "-o", out] + sets, capture_output=True, text=True,
+                           timeout=RUN_LIMIT_S, env=environ)
+        messages = [line for line in p.stderr.splitlines() if "error:" in line]
+        problems = []
+        if p.returncode != 2:
+            problems.append("exit %d (expected 2)" % p.returncode)
+        if len(messages) != 1 or expect not in messages[0]:
+            problems.append("%d error message(s), expected one with %r: %r" % (len(messages), expect, p.stderr[-400:]))
+        with open(deck) as f:
+            if f.read() != text:
+                problems.append("the deck changed")
+        if os.path.exists(out):
+            problems.append("a results file was written")
+        print("%s bad PETSc options under mpirun -np 2 (%s): exit %d%s"
+              % ("FAIL" if problems else "ok  ", what, p.returncode, ("; " + "; ".join(problems)) if problems else ""))
+        ok = ok and not problems
+    return ok
+
+
 def check_killed_rank(exe, work):
     """SIGKILL to one rank mid-run: the whole run ends within KILL_LIMIT_S, non-zero."""
     deck = os.path.join(HERE, "sphere_on_block.yaml")
@@ -316,6 +362,8 @@ def main():
             ok = check_case(exe, work, name, deck, sets, method, *ranks) and ok
     if not only or "bad_deck" in only:
         ok = check_bad_deck(exe, work) and ok
+    if not only or "bad_petsc_options" in only:
+        ok = check_bad_petsc_options(exe, work) and ok
     if not only or "stop_request" in only:
         ok = check_stop_request(exe, work) and ok
     if not only or "killed_rank" in only:
