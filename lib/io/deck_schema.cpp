@@ -250,9 +250,12 @@ constexpr Row deck_rows[] = {
      "to a relative true residual of 1e-8; GMRES with a MUMPS LU where two deformable bodies are in two-half-pass "
      "contact (no multigrid fits that tangent). A Krylov solve that stalls stops early, with a warning"},
     {"solver.options", text(), fallback("none"),
-     "`petsc` only (without a `backend`, `options` choose `petsc`): PETSc options, applied after igacontact's defaults, so they win (e.g. `-pc_type gamg`, "
-     "`-ksp_rtol 1e-10`, `-ksp_monitor`); the `PETSC_OPTIONS` environment variable is read after them and wins "
-     "over both"},
+     "`petsc` only (without a `backend`, `options` choose `petsc`): PETSc options of the linear solver (`-ksp_*`, "
+     "`-pc_*`, `-mat_*` and the inner solvers' `-mg_*`, `-sub_*`, ...), applied after igacontact's defaults, so they "
+     "win (e.g. `-pc_type gamg`, `-ksp_rtol 1e-10`, `-ksp_monitor`); the `PETSC_OPTIONS` environment variable is "
+     "read after them and wins over both. Both are checked before PETSc sees them: an option that would make PETSc "
+     "write or read a file or print its help or a log, or a tolerance out of range, is refused, and what PETSc "
+     "prints goes to standard error ([parallel.md](parallel.md#petsc-options))"},
 
     {"output.file", text("path"), fallback("the deck's name with `.h5`, next to the deck"),
      "results file, relative to the deck's folder. `-o FILE` on the command line wins, and is relative to the "
