@@ -24,6 +24,7 @@
 #include "analysis/refinement_study.hpp"
 #include "analysis/size_estimate.hpp"
 #include "core/error.hpp"
+#include "core/petsc_options.hpp"
 #include "io/deck_reader.hpp"
 #include "io/study_csv.hpp"
 #include "io/study_results.hpp"
@@ -291,6 +292,13 @@ int study_command(int argc, char** argv)
 
     // Bad input is found here, before any level runs (exit 2).
     const io::Deck deck = io::read_deck(deck_path, overrides);
+    if (deck.solver.backend == io::SolverBackend::petsc) {
+        try {
+            checked_environment_options();  // each level would refuse PETSC_OPTIONS alike, into its log
+        } catch (const PetscOptionsError& e) {
+            throw DeckError(e.environment_issue());
+        }
+    }
     const fs::path deck_file(deck_path);
     const fs::path folder = deck_file.parent_path();
     const std::string stem = deck_file.stem().string();

@@ -89,13 +89,7 @@ DeckError petsc_options_error(const RunSettings& settings, const PetscOptionsErr
 {
     if (e.source() == PetscOptionsSource::deck)
         return DeckError(io::located_issue(settings.source_file, "solver.options", settings.solver.options, e.what()));
-    DeckIssue issue;
-    issue.where.file = "environment";
-    issue.path = e.variable();
-    const char* value = std::getenv(e.variable().c_str());
-    issue.value = value ? value : "";
-    issue.reason = e.what();
-    return DeckError(std::move(issue));
+    return DeckError(e.environment_issue());
 }
 
 RunModel::RunModel(const io::Deck& deck, const RunOptions& options_, RunContext& context_)

@@ -32,7 +32,8 @@ const char* const solver_only =
 std::string lower(std::string_view text)
 {
     std::string out(text);
-    std::transform(out.begin(), out.end(), out.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    std::transform(out.begin(), out.end(), out.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return out;
 }
 
@@ -215,7 +216,8 @@ std::optional<long long> parse_integer(const std::string& text)
 /// The reason a number of the options PETSc takes without a check is refused, or "".
 std::string number_reason(const std::string& name, const PetscOption& option)
 {
-    auto real_in = [&](double low, bool low_open, double high, bool high_open, const std::string& range) -> std::string {
+    auto real_in = [&](double low, bool low_open, double high, bool high_open,
+                       const std::string& range) -> std::string {
         const std::optional<double> v = option.has_value ? parse_real(option.value) : std::nullopt;
         if (!v || !std::isfinite(*v) || (low_open ? !(*v > low) : !(*v >= low)) ||
             (high_open ? !(*v < high) : !(*v <= high)))
@@ -296,6 +298,31 @@ std::string option_reason(const PetscOption& option)
 std::string PetscOptionsCheck::message() const
 {
     return ok() ? std::string() : refused + ": " + reason;
+}
+
+DeckIssue PetscOptionsError::environment_issue() const
+{
+    DeckIssue issue;
+    issue.where.file = "environment";
+    issue.path = variable_;
+    const char* value = std::getenv(variable_.c_str());
+    issue.value = value ? value : "";
+    issue.reason = what();
+    return issue;
+}
+
+std::vector<PetscOption> checked_environment_options(const Communicator& comm)
+{
+    const char* yaml = std::getenv("PETSC_OPTIONS_YAML");
+    const std::string yaml_problem = comm.first_message(
+        yaml && *yaml ? "igacontact takes PETSc options from solver.options and PETSC_OPTIONS only; unset it" : "");
+    if (!yaml_problem.empty())
+        throw PetscOptionsError(PetscOptionsSource::environment, yaml_problem, "PETSC_OPTIONS_YAML");
+    const char* env = std::getenv("PETSC_OPTIONS");
+    const PetscOptionsCheck check = check_petsc_options(env ? env : "", PetscOptionsSource::environment);
+    if (const std::string problem = comm.first_message(check.message()); !problem.empty())
+        throw PetscOptionsError(PetscOptionsSource::environment, problem);
+    return check.options;
 }
 
 PetscOptionsCheck check_petsc_options(std::string_view text, PetscOptionsSource source)

@@ -36,6 +36,7 @@
 // solver does not read: PetscSolver names those in the run's warnings.
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 
 #include <string>
 #include <string_view>
@@ -86,10 +87,18 @@ public:
     /// The environment variable at fault (source environment): PETSC_OPTIONS, or
     /// PETSC_OPTIONS_YAML, which igacontact does not read.
     const std::string& variable() const { return variable_; }
+    /// For source environment: "environment: error: VARIABLE = value: reason".
+    DeckIssue environment_issue() const;
 
 private:
     PetscOptionsSource source_;
     std::string variable_;
 };
+
+/// The options of this process's environment for PETSc, checked on every rank of
+/// `comm` alike (collective): PETSC_OPTIONS_YAML must be unset or empty (PETSc would
+/// read it unchecked), PETSC_OPTIONS must pass check_petsc_options(). Throws
+/// PetscOptionsError (source environment, the lowest rank's reason) otherwise.
+std::vector<PetscOption> checked_environment_options(const Communicator& comm = Communicator());
 
 }  // namespace iga

@@ -235,18 +235,7 @@ UserOptions checked_options(const std::string& deck_text, const Communicator& co
     if (const std::string problem = comm.first_message(deck.message()); !problem.empty())
         throw PetscOptionsError(PetscOptionsSource::deck, problem);
     user.deck = deck.options;
-    // PETSc would read PETSC_OPTIONS_YAML after PETSC_OPTIONS, unchecked.
-    const char* yaml = std::getenv("PETSC_OPTIONS_YAML");
-    const std::string yaml_problem = comm.first_message(
-        yaml && *yaml ? "igacontact takes PETSc options from solver.options and PETSC_OPTIONS only; unset it" : "");
-    if (!yaml_problem.empty())
-        throw PetscOptionsError(PetscOptionsSource::environment, yaml_problem, "PETSC_OPTIONS_YAML");
-    const char* env = std::getenv("PETSC_OPTIONS");
-    const PetscOptionsCheck environment =
-        check_petsc_options(env ? env : "", PetscOptionsSource::environment);
-    if (const std::string problem = comm.first_message(environment.message()); !problem.empty())
-        throw PetscOptionsError(PetscOptionsSource::environment, problem);
-    user.environment = environment.options;
+    user.environment = checked_environment_options(comm);
     return user;
 }
 

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <string>
 
 namespace iga {
@@ -161,6 +162,36 @@ TEST(PetscOptions, TheFirstRefusedOptionIsNamedAndThoseBeforeItKept)
     EXPECT_EQ(check.refused, "-ksp_view ascii:base.yaml");
     ASSERT_EQ(check.options.size(), 1u);
     EXPECT_EQ(check.options[0].text(), "-pc_type gamg");
+}
+
+TEST(PetscOptions, TheEnvironmentIsCheckedWithItsVariableNamed)
+{
+    ASSERT_EQ(setenv("PETSC_OPTIONS", "-ksp_monitor -pc_type jacobi", 1), 0);
+    unsetenv("PETSC_OPTIONS_YAML");
+    EXPECT_EQ(checked_environment_options().size(), 2u);
+    ASSERT_EQ(setenv("PETSC_OPTIONS", "-options_file /dev/zero", 1), 0);
+    try {
+        checked_environment_options();
+        ADD_FAILURE() << "-options_file passed";
+    } catch (const PetscOptionsError& e) {
+        EXPECT_EQ(e.source(), PetscOptionsSource::environment);
+        EXPECT_EQ(e.environment_issue().format().rfind("environment: error: PETSC_OPTIONS = -options_file /dev/zero: "
+                                                       "-options_file /dev/zero: reads PETSc options from a file",
+                                                       0),
+                  0u)
+            << e.environment_issue().format();
+    }
+    unsetenv("PETSC_OPTIONS");
+    // PETSc reads PETSC_OPTIONS_YAML after PETSC_OPTIONS: refused whatever it holds.
+    ASSERT_EQ(setenv("PETSC_OPTIONS_YAML", "ksp_view: ascii:deck.yaml", 1), 0);
+    try {
+        checked_environment_options();
+        ADD_FAILURE() << "PETSC_OPTIONS_YAML passed";
+    } catch (const PetscOptionsError& e) {
+        EXPECT_EQ(e.variable(), "PETSC_OPTIONS_YAML");
+    }
+    unsetenv("PETSC_OPTIONS_YAML");
+    EXPECT_TRUE(checked_environment_options().empty());
 }
 
 }  // namespace
