@@ -3,8 +3,8 @@
 // `solver.options` and the environment's PETSC_OPTIONS. Both are split into options
 // here, as PETSc splits them, and checked before PETSc sees them (issue 32): an
 // option may tune the linear solver, never make PETSc write or read a file, print
-// its help or a log, or end the run. The deck reader (io/) and the PETSc backend
-// (solver/) share this check, so it lives below both.
+// its help or a log, or end the run. The deck reader (io/), the PETSc backend
+// (solver/) and `igacontact study` (app/) share this check, so it lives below them.
 //
 // Splitting, as PETSc's PetscOptionsInsertString does it: an option is a word that
 // starts with one or two dashes and a letter and is not a number ("-1" and "-inf"
