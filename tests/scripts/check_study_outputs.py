@@ -2,7 +2,7 @@
 """Checks of the outputs of the study scripts (run by CTest after their --quick modes).
 
 Usage:  check_study_outputs.py accuracy DIR N_ROWS   (scripts/accuracy_vs_time.py --out DIR)
-        check_study_outputs.py sweep DIR N_ROWS      (scripts/sweep_penalty.sh --out DIR)
+        check_study_outputs.py sweep DIR N_ROWS      (scripts/sweep_penalty.sh --out DIR; a row per run and side)
 Every comparison is written so that NaN fails it. Exits 1 with the list of failures.
 """
 import csv
@@ -88,17 +88,25 @@ def check_accuracy(directory, n_rows):
 
 def check_sweep(directory, n_rows):
     rows = read_csv(os.path.join(directory, "sweep.csv"),
-                    ["penalty", "status", "l2", "max_penetration", "newton_iterations", "wall_s"], n_rows)
+                    ["penalty", "side", "status", "l2", "max_penetration", "normal_force", "newton_iterations",
+                     "wall_s"], n_rows)
     for i, r in enumerate(rows):
         tag = f"sweep.csv row {i + 1}"
         check(r["status"] == "completed", f"{tag}: status {r['status']}")
+        check(number(r, "penalty") > 0, f"{tag}: penalty {r['penalty']} (given {r.get('given')}) not positive")
         check(number(r, "max_penetration") > 0 and 0 < number(r, "l2") < 1, f"{tag}: penetration or l2 not sane")
+        check(number(r, "normal_force") > 0, f"{tag}: normal force {r['normal_force']} not positive")
         check(os.path.isfile(os.path.join(directory, r["results"])), f"{tag}: results file missing")
-    for lo, hi in zip(rows, rows[1:]):
-        ratio = number(lo, "max_penetration") / number(hi, "max_penetration")
-        expected = number(hi, "penalty") / number(lo, "penalty")
-        check(expected / PENETRATION_RATIO_SLACK <= ratio <= expected * PENETRATION_RATIO_SLACK,
-              f"sweep.csv: penetration ratio {ratio} for a penalty ratio {expected}")
+    sides = list(dict.fromkeys(r["side"] for r in rows))
+    # Every run has a row for every side (a two-body pair: both sides, not only the first).
+    check(len(rows) == len(sides) * len({r["results"] for r in rows}), f"sweep.csv: sides {sides} not in every run")
+    for side in sides:
+        mine = [r for r in rows if r["side"] == side]
+        for lo, hi in zip(mine, mine[1:]):
+            ratio = number(lo, "max_penetration") / number(hi, "max_penetration")
+            expected = number(hi, "penalty") / number(lo, "penalty")
+            check(expected / PENETRATION_RATIO_SLACK <= ratio <= expected * PENETRATION_RATIO_SLACK,
+                  f"sweep.csv, {side}: penetration ratio {ratio} for a penalty ratio {expected}")
     check_png(os.path.join(directory, "sweep.png"))
 
 
