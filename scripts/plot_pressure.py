@@ -3,7 +3,12 @@
 
 Usage:  scripts/plot_pressure.py RESULTS.h5 [-o PNG] [--pair NAME] [--step KKKK] [--radial]
 
-Reads only the documented layout (docs/results.md). It plots the pair of
+Reads only the documented layout (docs/results.md). Which increment: --step KKKK
+(/steps/KKKK), else the last converged one (/results), unless its contact pressure is
+zero everywhere (a load path that presses and releases ends with no contact): then the
+stored step of largest total contact force (the sum of the sides' `normal_force` over
+the plotted pairs). The title and stdout name the step drawn, its load factor (the
+pseudo-time t with amplitudes) and why it was chosen. It plots the pair of
 /reference if there is one (or --pair), else every pair, in deck order (the order
 of `contact` in the /deck text; HDF5 lists groups alphabetically). For each side
 carrying Gauss points it draws
@@ -53,7 +58,8 @@ def parse_args(argv):
     parser.add_argument("results", type=pathlib.Path, help="igacontact results file (.h5)")
     parser.add_argument("-o", "--output", type=pathlib.Path, help="PNG to write (default: RESULTS_pressure.png)")
     parser.add_argument("--pair", help="contact pair to plot (default: the reference's pair, else the first)")
-    parser.add_argument("--step", help="increment KKKK under /steps instead of /results (the last one)")
+    parser.add_argument("--step", help="increment KKKK under /steps (default: the last one, or the one of largest "
+                                       "contact force when the last has no contact)")
     parser.add_argument("--radial", action="store_true",
                         help="3D without a reference: pressure against the distance from the peak, not a map")
     return parser.parse_args(argv)
@@ -70,18 +76,103 @@ def attribute(attrs, *names):
     return None
 
 
-def results_group(h5, step):
+def step_groups(h5):
+    """The stored increments: [(name, group)] in increment order ('steps/0001', ...)."""
+    if "steps" not in h5:
+        return []
+    return [(f"steps/{k}", h5["steps"][k]) for k in sorted(h5["steps"].keys())]
+
+
+def load_factor(group):
+    value = attribute(group.attrs, "load_factor")
+    return None if value is None else float(value)
+
+
+def describe(name, group):
+    """'/steps/0010 (load factor 1)': the step's name and its load factor (pseudo-time)."""
+    t = load_factor(group)
+    return f"/{name}" + (f" (load factor {t:g})" if t is not None else "")
+
+
+def contact_force(group, pair_filter):
+    """Total contact force of one increment: the sum of the `normal_force` of every side
+    carrying Gauss points (Σ pressure × weight where the attribute is missing), over the
+    pairs pair_filter lets through; 0 without contact data."""
+    if "contact" not in group:
+        return 0.0
+    total = 0.0
+    for pair in group["contact"]:
+        if not pair_filter(pair):
+            continue
+        for side in contact_sides(group, pair):
+            force = attribute(side.attrs, "normal_force")
+            if force is None:
+                gauss = side["gauss_points"]
+                pressure = np.asarray(gauss["pressure"][()], dtype=float)
+                weight = np.asarray(gauss["weight"][()], dtype=float) if "weight" in gauss else np.ones(len(pressure))
+                force = float(np.sum(pressure * weight))
+            total += abs(float(force))
+    return total
+
+
+def has_pressure(group, pair_filter):
+    """Whether any Gauss point of the plotted pairs carries a pressure > 0."""
+    if "contact" not in group:
+        return False
+    return any(np.any(np.asarray(side["gauss_points"]["pressure"][()], dtype=float) > 0)
+               for pair in group["contact"] if pair_filter(pair) for side in contact_sides(group, pair))
+
+
+def results_group(h5, step, pair=None):
+    """The increment to draw: (group, name, why). --step KKKK if given; else the last
+    converged increment, unless its contact pressure is zero everywhere, then the stored
+    increment of largest total contact force. `why` says which and why, for the title."""
+    pair_filter = (lambda name: True) if pair is None else (lambda name: name == pair)
     if step is not None:
         key = f"steps/{int(step):04d}" if step.isdigit() else f"steps/{step}"
         if key not in h5:
             sys.exit(f"error: {key} not found in the results file")
-        return h5[key], key
+        return h5[key], key, f"{describe(key, h5[key])}: the step asked for (--step)"
+    steps = step_groups(h5)
     if "results" in h5:
-        return h5["results"], "results"
-    if "steps" in h5 and len(h5["steps"]) > 0:
-        last = sorted(h5["steps"].keys())[-1]
-        return h5["steps"][last], f"steps/{last}"
-    sys.exit("error: the results file has no /results and no /steps (did the run converge any increment?)")
+        last, last_name = h5["results"], "results"
+        for name, group in steps:  # /results is a second name of the last stored step
+            if group == last:
+                last_name = name
+    elif steps:
+        last_name, last = steps[-1]
+    else:
+        sys.exit("error: the results file has no /results and no /steps (did the run converge any increment?)")
+    if has_pressure(last, pair_filter):
+        return last, last_name, f"{describe(last_name, last)}: the last step"
+    forces = [(contact_force(group, pair_filter), name, group) for name, group in steps]
+    best = max(forces, key=lambda f: f[0], default=(0.0, None, None))
+    if best[0] > 0:
+        return best[2], best[1], (f"{describe(best[1], best[2])}: the step of largest total contact force "
+                                  f"({best[0]:.4g}); the last step, {describe(last_name, last)}, has no contact")
+    why = f"{describe(last_name, last)}: the last step; no contact pressure in it"
+    if len(steps) > 1:
+        return last, last_name, why + " or any stored step"
+    peak = history_peak(h5, pair_filter)
+    if peak is not None:  # output.every_step: false kept only the last increment
+        why += (f"; the largest contact force ({peak[0]:.4g}) was at load factor {peak[1]:g}, not stored "
+                "(output.every_step: false)")
+    return last, last_name, why
+
+
+def history_peak(h5, pair_filter):
+    """(largest total contact force, its load factor) from /history, or None without one > 0."""
+    if "history" not in h5 or "contact" not in h5["history"] or "load_factor" not in h5["history"]:
+        return None
+    t = np.asarray(h5["history"]["load_factor"][()], dtype=float)
+    total = np.zeros(len(t))
+    for pair, group in h5["history"]["contact"].items():
+        if pair_filter(pair):
+            for side in group.values():
+                if isinstance(side, h5py.Group) and "normal_force" in side:
+                    total += np.abs(np.asarray(side["normal_force"][()], dtype=float).reshape(len(t)))
+    k = int(np.argmax(total)) if len(t) else 0
+    return (float(total[k]), float(t[k])) if len(t) and total[k] > 0 else None
 
 
 def deck_pair_order(h5):
@@ -496,11 +587,15 @@ def main(argv):
     args = parse_args(argv)
     output = args.output or args.results.with_name(args.results.stem + "_pressure.png")
     with h5py.File(args.results, "r") as h5:
-        group, group_name = results_group(h5, args.step)
+        group, group_name, why = results_group(h5, args.step, args.pair)
+        print(f"drawn: {why}")
         pairs = choose_pairs(h5, group, args.pair)
         with_reference = len(pairs) == 1 and "reference" in h5 and pairs[0] in h5["reference"]
         if not with_reference and is_3d(group, pairs):
-            plot_faces(h5, group, group_name, pairs, args).savefig(output, dpi=120)
+            fig = plot_faces(h5, group, group_name, pairs, args)
+            fig.suptitle(why.replace("; ", ";\n"), fontsize=9)
+            fig.tight_layout()
+            fig.savefig(output, dpi=120)
             print(output)
             return 0
         friction = has_friction(group, pairs)
@@ -513,7 +608,7 @@ def main(argv):
             title = plot_with_reference(ax, h5, group, group_name, pairs[0], args, colours)
         else:
             title = plot_pairs(ax, group, group_name, pairs, args, colours)
-        ax.set_title(title, fontsize=10)
+        ax.set_title(title + "\n" + why.replace("; ", ";\n"), fontsize=9)
         ax.axhline(0.0, color="grey", linewidth=0.5)
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=8)

@@ -2,7 +2,9 @@
 """Tests of scripts/plot_history.py and scripts/plot_pressure.py on synthetic results files
 made with h5py (the documented layout only). Usage: plot_scripts_test.py SCRIPTS_DIR WORK_DIR"""
 
+import contextlib
 import importlib.util
+import io
 import pathlib
 import sys
 import unittest
@@ -138,6 +140,70 @@ class PlotPressure(unittest.TestCase):
         x = np.linspace(-1, 1, 11)
         self.assertTrue(plot_pressure.SideAbscissa(np.column_stack([x, 0.1 * x ** 2])).use_x)
         self.assertFalse(plot_pressure.SideAbscissa(np.column_stack([np.cos(x * 3), x])).use_x)
+
+
+def write_press_release(path, every_step=True):
+    """A press-and-release load path as inputs/rubber_press_release_2d.yaml writes it: four
+    increments at t = 0.5, 1, 1.5, 2, the pressure scaled by f(t) = [0.5, 1, 0.5, 0]: the
+    last step has no contact. /results is a second name of the last step; with
+    every_step=False only that step is stored, /history keeps every increment."""
+    x = np.linspace(0, 1, 31)
+    coordinates = np.column_stack([x, np.zeros_like(x)])
+    t, scale = [0.5, 1.0, 1.5, 2.0], [0.5, 1.0, 0.5, 0.0]
+    with h5py.File(path, "w") as h5:
+        h5["deck"] = "format: 1\ncontact:\n  - {name: touch, between: [rubber.v0, floor]}\n"
+        h5["history/load_factor"] = t
+        h5["history/contact/touch/rubber.v0/normal_force"] = [3.0 * f for f in scale]
+        for k in range(4) if every_step else [3]:
+            step = h5.create_group(f"steps/{k + 1:04d}")
+            step.attrs["load_factor"] = t[k]
+            side = step.create_group("contact/touch/rubber.v0")
+            write_side(side, coordinates, scale[k] * np.maximum(0.0, 1.0 - (x / 0.6) ** 2))
+            side.attrs["normal_force"] = 3.0 * scale[k]
+        h5["results"] = h5["steps/0004"]  # the hard link the writer makes
+
+
+class PlotPressureStep(unittest.TestCase):
+    def test_a_released_last_step_gives_way_to_the_largest_force(self):
+        path = WORK / "press_release.h5"
+        write_press_release(path)
+        with h5py.File(path, "r") as h5:
+            group, name, why = plot_pressure.results_group(h5, None)
+            self.assertEqual(name, "steps/0002")
+            self.assertEqual(group.attrs["load_factor"], 1.0)
+            self.assertIn("load factor 1", why)
+            self.assertIn("largest total contact force", why)
+            self.assertIn("/steps/0004 (load factor 2), has no contact", why)
+            # an explicit step is drawn as asked, all zero or not
+            group, name, why = plot_pressure.results_group(h5, "4")
+            self.assertEqual(name, "steps/0004")
+            self.assertIn("--step", why)
+            _, name, _ = plot_pressure.results_group(h5, "0003")
+            self.assertEqual(name, "steps/0003")
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            self.assertEqual(plot_pressure.main([str(path), "-o", str(WORK / "press_release.png")]), 0)
+        self.assertIn("drawn: /steps/0002 (load factor 1): the step of largest total contact force", out.getvalue())
+        self.assertTrue(is_png(WORK / "press_release.png"))
+
+    def test_the_last_step_when_it_has_contact(self):
+        path = WORK / "pressed.h5"
+        write_press_release(path)
+        with h5py.File(path, "a") as h5:  # end pressed: the last step keeps its contact
+            h5["steps/0004/contact/touch/rubber.v0/gauss_points/pressure"][0] = 1.0
+        with h5py.File(path, "r") as h5:
+            _, name, why = plot_pressure.results_group(h5, None)
+        self.assertEqual(name, "steps/0004")  # named by its step, not as /results
+        self.assertEqual(why, "/steps/0004 (load factor 2): the last step")
+
+    def test_only_the_last_step_stored(self):
+        path = WORK / "press_release_last.h5"
+        write_press_release(path, every_step=False)
+        with h5py.File(path, "r") as h5:
+            _, name, why = plot_pressure.results_group(h5, None)
+        self.assertEqual(name, "steps/0004")
+        self.assertIn("no contact pressure", why)
+        self.assertIn("largest contact force (3) was at load factor 1, not stored", why)
 
 
 if __name__ == "__main__":
