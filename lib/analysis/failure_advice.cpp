@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace iga::analysis {
@@ -21,14 +22,48 @@ std::string penalty_facts(const FailureContext& c)
     return text;
 }
 
+/// A friction force within this fraction of mu N has reached the Coulomb limit (the
+/// last converged increment of a load that exceeds it sits on the limit to round-off,
+/// or just below it when the increment before the failure was cut).
+constexpr double friction_limit_fraction = 0.99;
+
+/// "... block.v0 in contact pair 'p' ...: friction force 1.5 against mu N = 1.5" for
+/// the first frictional side at its Coulomb limit at `last`; empty if none.
+std::string saturated_friction(const Scene& scene, const io::StepData& last)
+{
+    for (const io::ContactPairResult& pair : last.contact) {
+        const auto model = std::find_if(scene.pairs.begin(), scene.pairs.end(),
+                                        [&](const PairModel& p) { return p.name == pair.name; });
+        if (model == scene.pairs.end() || !model->pair.settings().friction.active())
+            continue;
+        const double mu = model->pair.settings().friction.coefficient;
+        for (const io::ContactSideResult& side : pair.sides) {
+            double tangential = 0.0;
+            for (double f : side.friction_force)
+                tangential += f * f;
+            tangential = std::sqrt(tangential);
+            const double limit = mu * std::abs(side.normal_force);
+            if (!(limit > 0.0) || tangential < friction_limit_fraction * limit)
+                continue;
+            return fmt::format("in the last converged increment (load factor {:.4g}) the friction on {} in contact "
+                               "pair '{}' had reached its limit: friction force {:.4g} against mu N = {:.4g} "
+                               "(mu = {:g})",
+                               last.load_factor, side.side_name, pair.name, tangential, limit, mu);
+        }
+    }
+    return {};
+}
+
 }  // namespace
 
-FailureContext failure_context(const Scene& scene)
+FailureContext failure_context(const Scene& scene, const io::StepData* last)
 {
     FailureContext c;
     c.has_contact = scene.has_contact();
     if (!c.has_contact)
         return c;
+    if (last)
+        c.saturated_friction = saturated_friction(scene, *last);
     double E_min = std::numeric_limits<double>::infinity(), penalty_max = 0;
     for (const BodyModel& b : scene.bodies)
         E_min = std::min(E_min, b.material.E);
@@ -53,6 +88,11 @@ std::string failure_advice(solver::FailureCause cause, const FailureContext& c)
                "incompressible material, nu near 0.5, is hard for algebraic multigrid). "
                "solver.type: direct tells the two apart; solver.options (PETSc options) changes the method";
     case solver::FailureCause::free_mode:
+        if (!c.saturated_friction.empty())
+            return ". Singular tangent: " + c.saturated_friction +
+                   ". A tangential load beyond what friction can hold (mu N) has nothing left to hold the body: "
+                   "lower that load, raise friction.coefficient, or drive the body by a prescribed displacement "
+                   "if it is meant to slide";
         return ". Singular tangent: a body may be unconstrained (held by nothing, or only by frictionless "
                "contact that is not yet closed). Constrain every rigid-body motion the loads can excite";
     case solver::FailureCause::inadmissible:

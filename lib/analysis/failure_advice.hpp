@@ -5,6 +5,7 @@
 // penalty the augmented Lagrangian raised), never a cause the history does not show.
 
 #include "analysis/scene.hpp"
+#include "io/results_data.hpp"
 #include "solver/failure_cause.hpp"
 
 #include <string>
@@ -16,9 +17,13 @@ struct FailureContext {
     bool has_contact = false;
     double penalty_over_modulus = 0;  ///< largest pair penalty / smallest E (0: no contact)
     double penalty_raised = 1;        ///< largest current / initial penalty (> 1: raised by the augmented Lagrangian)
+    /// A frictional side whose friction force had reached mu N in the last converged
+    /// increment, in words; empty if none.
+    std::string saturated_friction;
 };
 
-FailureContext failure_context(const Scene& scene);
+/// The scene's facts; `last` (the last converged state, if any) tells saturated friction.
+FailureContext failure_context(const Scene& scene, const io::StepData* last = nullptr);
 
 /// ". <cause in words>. <what to change>", to append to the failure message; empty for none.
 std::string failure_advice(solver::FailureCause cause, const FailureContext& context);

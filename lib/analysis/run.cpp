@@ -86,7 +86,8 @@ RunOutcome outcome_of(const RunModel& m, const IncrementSteps& steps, const solv
     outcome.message = result.message;
     // Name the cause of a Newton failure, read from its history, and what to change.
     if (!result.completed && !result.stopped && result.last_failure.status != solver::NewtonStatus::converged)
-        outcome.message += failure_advice(solver::failure_cause(result.last_failure), failure_context(m.scene));
+        outcome.message += failure_advice(solver::failure_cause(result.last_failure),
+                                          failure_context(m.scene, steps.last_step() ? &*steps.last_step() : nullptr));
     outcome.results_file = m.settings.output.file;
     outcome.increments = static_cast<int>(result.increments.size());
     outcome.newton_iterations = result.total_iterations;

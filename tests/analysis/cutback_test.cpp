@@ -123,5 +123,23 @@ TEST(Cutback, LoadBeyondLimitFailsCleanly)
     EXPECT_EQ((last - linked).cwiseAbs().maxCoeff(), 0.0);
 }
 
+TEST(Cutback, AShearBeyondFrictionNamesTheFrictionLimit)
+{
+    // The block pressed by 5 at mu = 0.3 holds a shear up to mu N = 1.5; sheared by 2 it
+    // slides off at t = 1.75. The message says friction gave out (issue 32), not that a
+    // body may be unconstrained.
+    const auto dir = scratch_dir("cutback_friction_limit");
+    const auto file = dir / "block.h5";
+    const CliResult cli = run_cli(shell_quote(source_path("inputs/press_then_shear_friction_2d.yaml")) + " -q -o " +
+                                      shell_quote(file.string()) + " --set 'loads.1.force=[2, 0]'",
+                                  dir);
+    EXPECT_EQ(cli.exit_code, 1) << cli.err;
+    EXPECT_NE(cli.err.find("the friction on block.v0 in contact pair 'block_floor' had reached its limit"),
+              std::string::npos)
+        << cli.err;
+    EXPECT_NE(cli.err.find("beyond what friction can hold (mu N)"), std::string::npos) << cli.err;
+    EXPECT_EQ(cli.err.find("Constrain every rigid-body motion"), std::string::npos) << cli.err;
+}
+
 }  // namespace
 }  // namespace iga::test
