@@ -138,6 +138,8 @@ std::string describe_bodies(const io::Deck& deck)
         nurbs::Patch patch = [&] {
             try {
                 return build_patch(body, d);
+            } catch (const TransformOutOfRange& e) {
+                throw transform_error(deck, body, "", e);
             } catch (const Error& e) {
                 throw DeckError(io::located_issue(deck.source_file, "bodies." + body.name, "",
                                                   std::string("cannot build the patch: ") + e.what()));

@@ -4,6 +4,8 @@
 #include "nurbs/refine.hpp"
 #include "nurbs/shapes.hpp"
 
+#include <fmt/format.h>
+
 #include <variant>
 
 namespace iga::analysis {
@@ -42,9 +44,67 @@ nurbs::Patch raw_patch(const io::NurbsData& data, int dimension)
     return nurbs::Patch(std::move(knots), std::move(points), std::move(weights));
 }
 
+namespace {
+
+/// Why points (rows) are out of the range of TransformOutOfRange; "" when in range.
+std::string range_problem(const RowMatrix& points)
+{
+    if (!points.allFinite())
+        return "a control point is no longer a finite number (beyond about 1.8e308)";
+    const double largest = points.cwiseAbs().maxCoeff();
+    // The largest extent along an axis: a norm would square 1e-300 to 0.
+    const double size = (points.colwise().maxCoeff() - points.colwise().minCoeff()).maxCoeff();
+    if (largest > max_placed_coordinate)
+        return fmt::format("a control point reaches |x| = {:.3g}, beyond {:g} (the element geometry multiplies "
+                           "such lengths and would overflow)",
+                           largest, max_placed_coordinate);
+    if (size < min_placed_size)
+        return fmt::format("the patch shrinks to a size of {:.3g}, below {:g} (the element geometry multiplies "
+                           "such lengths and would underflow to 0)",
+                           size, min_placed_size);
+    if (size < min_size_to_distance * largest)
+        return fmt::format("the patch (size {:.3g}) lies {:.3g} from the origin, more than {:g} times its size: "
+                           "round-off of the coordinates would blur its shape",
+                           size, largest, 1.0 / min_size_to_distance);
+    return {};
+}
+
+}  // namespace
+
 nurbs::Patch placed(const nurbs::Patch& patch, const std::vector<io::TransformStep>& steps)
 {
-    return steps.empty() ? patch : nurbs::transformed(patch, placement(steps, patch.dim()));
+    if (steps.empty())
+        return patch;
+    // Each prefix of the steps applied to the control points: the first step that
+    // leaves the range (and was not out of it before) is named. Cheap: a few
+    // matrix products of the control points per step.
+    const int d = patch.dim();
+    const RowMatrix& raw = patch.control_points();
+    bool in_range = range_problem(raw).empty();
+    nurbs::Affine map = nurbs::identity(d);
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+        map = map.then(placement({steps[k]}, d));
+        if (!in_range)
+            continue;
+        RowMatrix points = raw * map.A.transpose();
+        points.rowwise() += map.b.transpose();
+        const std::string problem = map.A.allFinite() && map.b.allFinite()
+                                        ? range_problem(points)
+                                        : std::string("the transform is no longer a finite map (beyond about 1.8e308)");
+        if (!problem.empty())
+            throw TransformOutOfRange(k, io::transform_step_keys[steps[k].index()],
+                                      "out of range: after this step " + problem);
+    }
+    return nurbs::transformed(patch, map);
+}
+
+std::string transform_path(const io::Body& body, const std::string& patch)
+{
+    const std::string prefix = "bodies." + body.name;
+    if (!patch.empty())
+        return body.geometry_file.empty() ? prefix + ".patches." + patch + ".nurbs.transform"
+                                          : prefix + ".geometry.transform";
+    return prefix + (body.shape ? ".shape.transform" : ".nurbs.transform");
 }
 
 namespace {

@@ -30,6 +30,16 @@ DeckError body_error(const io::Deck& deck, const std::string& path, const std::s
     return DeckError(io::located_issue(deck.source_file, path, "", reason));
 }
 
+}  // namespace
+
+DeckError transform_error(const io::Deck& deck, const io::Body& body, const std::string& patch,
+                          const TransformOutOfRange& e)
+{
+    return body_error(deck, fmt::format("{}.{}.{}", transform_path(body, patch), e.step(), e.kind()), e.what());
+}
+
+namespace {
+
 /// A point of one patch inside another.
 struct Overlap {
     std::size_t a, b;  ///< patch with the point, patch that holds it
@@ -154,6 +164,8 @@ BodyPatches build_body_patches(const io::Deck& deck, const io::Body& body, int h
     if (!body.multi_patch()) {
         try {
             out.patches.push_back(build_patch(body, d, halvings));
+        } catch (const TransformOutOfRange& e) {
+            throw transform_error(deck, body, "", e);
         } catch (const Error& e) {
             throw body_error(deck, patch_path(body, ""), std::string("cannot build the patch: ") + e.what());
         }
@@ -164,6 +176,8 @@ BodyPatches build_body_patches(const io::Deck& deck, const io::Body& body, int h
             try {
                 const nurbs::Patch built = refined(refined(raw_patch(data.nurbs, d), body.refine), data.refine);
                 out.patches.push_back(nurbs::halve_spans(placed(built, data.nurbs.transform), halvings));
+            } catch (const TransformOutOfRange& e) {
+                throw transform_error(deck, body, data.name, e);
             } catch (const Error& e) {
                 throw body_error(deck, patch_path(body, data.name), std::string("cannot build the patch: ") + e.what());
             }

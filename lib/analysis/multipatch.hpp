@@ -20,6 +20,7 @@
 // diagonal. Every check is near-linear in the number of patches and elements
 // (the overlap test inverts a point only into the elements whose box holds it).
 
+#include "analysis/geometry.hpp"
 #include "core/side.hpp"
 #include "core/stop.hpp"
 #include "io/deck.hpp"
@@ -49,6 +50,11 @@ struct BodyPatches {
     std::vector<nurbs::Patch> patches;  ///< refined and conforming
     nurbs::Topology topology;
 };
+
+/// The located bad-input error of a transform step out of range (analysis/geometry.hpp):
+/// at `<transform path>.<step>.<kind>` of the body (`patch`: an item of `patches`, or "").
+DeckError transform_error(const io::Deck& deck, const io::Body& body, const std::string& patch,
+                          const TransformOutOfRange& e);
 
 /// The patches of deformable deck body `body` (precondition: !body.rigid), refined
 /// (then every span halved `halvings` times: RunOptions::refine_levels), glued and

@@ -16,12 +16,15 @@ void check_vector(const VecN& v, Index n, const char* what)
     IGA_CHECK(v.allFinite(), std::string(what) + " must be finite");
 }
 
-/// v / |v|; the reader has refused zero vectors.
+/// v / |v|; the reader has refused zero vectors. Scaled by its largest entry first,
+/// so that |v| neither overflows ([0, 0, 1e300]) nor underflows ([0, 0, 5e-324]):
+/// any finite non-zero vector has a direction.
 VecN unit(const VecN& v, const char* what)
 {
-    const double norm = v.norm();
-    IGA_CHECK(norm > 0 && std::isfinite(norm), std::string(what) + " must have a finite, non-zero length");
-    return v / norm;
+    const double largest = v.cwiseAbs().maxCoeff();
+    IGA_CHECK(largest > 0 && std::isfinite(largest), std::string(what) + " must be finite and non-zero");
+    const VecN scaled = v / largest;  // largest entry +-1: its norm lies in [1, sqrt(3)]
+    return scaled / scaled.norm();
 }
 
 }  // namespace

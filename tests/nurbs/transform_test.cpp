@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -233,6 +234,30 @@ TEST(Transform, ScalingAndPreconditions)
     EXPECT_THROW(rotation(vec({0.0, 0.0, 0.0}), 10.0, vec({0.0, 0.0, 0.0})), Error);
     EXPECT_THROW(cos_sin_deg(std::nan("")), Error);
     EXPECT_THROW(transformed(patch, translation(vec({1.0, 2.0, 3.0}))), Error);
+}
+
+// Issue 32: |axis| of [0, 0, 1e300] overflowed and of [0, 0, 5e-324] underflowed, and
+// the rotation ended in an internal error. Any finite non-zero axis or normal has a
+// direction; its length must not matter.
+TEST(Transform, AxisAndNormalOfAnyFiniteLengthGiveTheSameMap)
+{
+    // Normalizing a scaled copy of the axis rounds differently by an ulp or two.
+    constexpr double map_tolerance = 1e-15;
+    auto same = [&](const Affine& a, const Affine& b) {
+        return (a.A - b.A).cwiseAbs().maxCoeff() <= map_tolerance && (a.b - b.b).cwiseAbs().maxCoeff() <= map_tolerance;
+    };
+    const Affine about_z = rotation(vec({0.0, 0.0, 1.0}), 30.0, vec({1.0, 2.0, 0.0}));
+    const Affine oblique = rotation(vec({1.0, -2.0, 2.0}), 30.0, vec({1.0, 2.0, 0.0}));
+    const Affine mirror_y = mirror(vec({0.0, 1.0}), vec({0.0, 1.0}));
+    for (double length : {1e300, 1.7e308, 5e-324, 1e-310}) {
+        EXPECT_TRUE(same(rotation(vec({0.0, 0.0, length}), 30.0, vec({1.0, 2.0, 0.0})), about_z)) << length;
+        if (std::isfinite(2.0 * length))
+            EXPECT_TRUE(same(rotation(vec({length, -2.0 * length, 2.0 * length}), 30.0, vec({1.0, 2.0, 0.0})), oblique))
+                << length;
+        EXPECT_TRUE(same(mirror(vec({0.0, length}), vec({0.0, 1.0})), mirror_y)) << length;
+    }
+    EXPECT_THROW(rotation(vec({0.0, 0.0, std::numeric_limits<double>::infinity()}), 10.0, vec({0.0, 0.0, 0.0})),
+                 Error);
 }
 
 }  // namespace
