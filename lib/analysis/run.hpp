@@ -14,6 +14,7 @@
 #include "core/parallel.hpp"
 #include "core/run_context.hpp"
 #include "io/deck.hpp"
+#include "io/output_paths.hpp"
 #include "io/results_data.hpp"
 
 #include <functional>
@@ -41,6 +42,9 @@ struct RunOptions {
     /// The ranks of the run (core/parallel.hpp): each builds the same scene and
     /// assembles its part; rank 0 writes the results file. One process by default.
     Communicator comm;
+    /// Where output.file came from: a results file that cannot be created is reported
+    /// there (at the deck's key, "<command line>" for --set, naming -o for -o).
+    io::OutputOrigin output_origin = io::OutputOrigin::deck;
 };
 
 struct RunOutcome {

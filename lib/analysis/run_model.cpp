@@ -138,7 +138,7 @@ void RunModel::open_results()
     }
     open_error = options.comm.first_message(open_error);  // every rank leaves with rank 0's error
     if (!open_error.empty())
-        throw DeckError(io::located_issue(settings.source_file, "output.file", settings.output.file, open_error));
+        throw io::output_error(settings.source_file, settings.output.file, options.output_origin, open_error);
 }
 
 void RunModel::write_geometry()

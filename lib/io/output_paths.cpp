@@ -97,21 +97,27 @@ OutputOrigin output_origin(bool o_option_given, const std::vector<std::string>& 
     return OutputOrigin::deck;
 }
 
+DeckError output_error(const std::string& deck_file, const std::string& results, OutputOrigin origin,
+                       const std::string& reason)
+{
+    const std::string path = "output.file";
+    if (origin == OutputOrigin::deck)
+        return DeckError(located_issue(deck_file, path, results, reason));
+    DeckIssue issue;
+    issue.where.file = "<command line>";
+    issue.path = path;
+    issue.value = results;
+    const std::string o_option = " (the -o option)";
+    const bool named = reason.find("-o option") != std::string::npos;
+    issue.reason = reason + (origin == OutputOrigin::o_option && !named ? o_option : "");
+    return DeckError(std::move(issue));
+}
+
 void check_output_paths(const Deck& deck, const std::vector<std::string>& inputs, OutputOrigin origin)
 {
     const std::string& results = deck.output.file;
     const bool o_option = origin == OutputOrigin::o_option;
-    auto refuse = [&](const std::string& reason) {
-        const std::string path = "output.file";
-        if (origin == OutputOrigin::deck)
-            throw DeckError(located_issue(deck.source_file, path, results, reason));
-        DeckIssue issue;
-        issue.where.file = "<command line>";
-        issue.path = path;
-        issue.value = results;
-        issue.reason = reason;
-        throw DeckError(std::move(issue));
-    };
+    auto refuse = [&](const std::string& reason) { throw output_error(deck.source_file, results, origin, reason); };
     auto input_role = [&](const std::string& input) {
         return same_file(input, deck.source_file) ? std::string("the deck itself")
                                                   : "an input file of the deck (" + input + ")";
@@ -120,8 +126,7 @@ void check_output_paths(const Deck& deck, const std::vector<std::string>& inputs
     const std::string choose = "; nothing was written. Choose another results file";
     // The same words as the results writer's check, which runs later for library callers.
     if (is_folder(results))
-        refuse("cannot create results file " + results + ": '" + results + "' is a folder, not a file" +
-               (o_option ? " (the -o option)" : ""));
+        refuse("cannot create results file " + results + ": '" + results + "' is a folder, not a file");
     if (const std::string kind = special_kind(results); !kind.empty())
         refuse("cannot create results file " + results + ": '" + results + "' is " + kind +
                ", not a regular file; nothing was written. Choose another results file");

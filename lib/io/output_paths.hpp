@@ -38,6 +38,12 @@ enum class OutputOrigin {
 /// The origin of output.file given the command line: -o wins over --set, --set over the deck.
 OutputOrigin output_origin(bool o_option_given, const std::vector<std::string>& set_overrides);
 
+/// The bad-input error of a results file (`reason`) where output.file came from:
+/// located at output.file in the deck (`deck_file`), or at "<command line>" for --set
+/// and -o; for -o the reason ends with " (the -o option)".
+DeckError output_error(const std::string& deck_file, const std::string& results, OutputOrigin origin,
+                       const std::string& reason);
+
 /// Throws DeckError, located at output.file in the deck, at "<command line>" for --set,
 /// or naming the -o option, if the results file or (with output.paraview) its XDMF
 /// index is one of `inputs`, a folder or an existing non-regular file. Touches nothing.
