@@ -165,10 +165,26 @@ private:
         report_.entries.push_back(std::move(entry));
     }
 
+    /// True if `group` of the reference is one of the groups the walk is inside: a link
+    /// back to an ancestor (a hard link of a group into itself, a soft link to a parent)
+    /// would make the walk endless. Compared by object (HDF5 address or token), not by path.
+    bool is_ancestor(hid_t group) const
+    {
+        for (hid_t ancestor : ancestors_)
+            if (h5::same_object(group, ancestor))
+                return true;
+        return false;
+    }
+
     void visit_group(const std::string& path)
     {
         h5::Handle reference_group = h5::open_object(reference_, path);
         h5::Handle candidate_group = h5::open_object(candidate_, path);
+        ancestors_.push_back(reference_group.id());
+        struct Leave {
+            std::vector<hid_t>& stack;
+            ~Leave() { stack.pop_back(); }
+        } leave{ancestors_};
         for (const std::string& name : h5::attribute_names(reference_group.id())) {
             const std::string apath = attribute_path(path, name);
             if (is_volatile(apath, name) || !in_scope(apath))
@@ -204,8 +220,11 @@ private:
                                                              : "dataset in reference, not in new file"));
                 continue;
             }
-            if (kind == h5::ObjectKind::group)
+            if (kind == h5::ObjectKind::group) {
+                if (is_ancestor(reference_child.id()))
+                    continue;  // a cycle: the group's content is compared where the walk entered it
                 visit_group(cpath);
+            }
             else if (scoped)
                 add(compare_arrays(cpath, h5::read_dataset(reference_, cpath), h5::read_dataset(candidate_, cpath)));
         }
@@ -275,6 +294,7 @@ private:
     std::vector<std::string> prefixes_;
     std::vector<bool> prefix_hit_;
     CompareReport report_;
+    std::vector<hid_t> ancestors_;  ///< the reference groups the walk is inside, outermost first
 };
 
 }  // namespace

@@ -12,14 +12,18 @@
 
 #include <gtest/gtest.h>
 
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <thread>
 
 namespace iga::io {
 namespace {
@@ -524,6 +528,46 @@ TEST_F(TinyFileCompareTest, RealAgainstIntegerIsTypeMismatch)
     ASSERT_EQ(report.entries.size(), 1u);
     EXPECT_EQ(report.entries[0].kind, Kind::type_mismatch);
     EXPECT_EQ(report.entries[0].detail, "reference float64, new int32");
+}
+
+// Issue 32: a group hard-linked into itself (and a soft link back to the root) made the
+// walk endless. The comparison runs in a child process that the test kills after
+// `hang_limit`, so a regression fails instead of hanging the suite.
+TEST_F(TinyFileCompareTest, LinkCyclesEndTheWalk)
+{
+    for (const char* name : {"a.h5", "b.h5"}) {
+        h5::ErrorSilencer silence;
+        h5::Handle file = h5::create_file(path(name));
+        h5::Handle group = h5::create_group(file.id(), "g");
+        h5::write_dataset(group.id(), "values", std::vector<double>{1.0, 2.0}, {2});
+        ASSERT_GE(H5Lcreate_hard(file.id(), "g", group.id(), "loop", H5P_DEFAULT, H5P_DEFAULT), 0);
+        ASSERT_GE(H5Lcreate_soft("/", group.id(), "up", H5P_DEFAULT, H5P_DEFAULT), 0);
+    }
+    constexpr auto hang_limit = std::chrono::seconds(30);  // the walk takes milliseconds
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        int code = 1;
+        try {
+            const CompareReport report = compare_results(path("a.h5"), path("b.h5"), {});
+            code = report.same() && report.n_compared == 1 ? 0 : 1;
+        } catch (...) {
+            code = 2;
+        }
+        ::_exit(code);
+    }
+    int status = 0;
+    const auto end = std::chrono::steady_clock::now() + hang_limit;
+    while (::waitpid(child, &status, WNOHANG) == 0) {
+        if (std::chrono::steady_clock::now() > end) {
+            ::kill(child, SIGKILL);
+            ::waitpid(child, &status, 0);
+            FAIL() << "compare did not end within " << hang_limit.count() << " s (a link cycle followed forever)";
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0) << "1: not the same or not exactly /g/values compared; 2: an exception";
 }
 
 TEST_F(TinyFileCompareTest, UnreadableFilesThrowClearErrors)
