@@ -8,6 +8,7 @@
 #include "analysis/warnings.hpp"
 #include "core/error.hpp"
 #include "core/run_context.hpp"
+#include "core/stop.hpp"
 #include "io/deck_reader.hpp"
 #include "io/deck_writer.hpp"
 #include "io/output_paths.hpp"
@@ -60,6 +61,25 @@ int parse_command_line(CLI::App& cli, int argc, char** argv)
     }
 }
 
+namespace {
+
+/// A stream that drops what it is given (and never fails): the other ranks' output.
+std::ostream& null_stream()
+{
+    struct NullBuffer : std::streambuf {
+        int overflow(int c) override { return traits_type::not_eof(c); }
+        std::streamsize xsputn(const char*, std::streamsize n) override { return n; }
+    };
+    static NullBuffer buffer;
+    static std::ostream stream(&buffer);
+    return stream;
+}
+
+}  // namespace
+
+std::ostream& out_stream(const Communicator& comm) { return comm.root() ? std::cout : null_stream(); }
+std::ostream& err_stream(const Communicator& comm) { return comm.root() ? std::cerr : null_stream(); }
+
 std::string rank_prefix(const Communicator& comm)
 {
     return comm.parallel() ? fmt::format("rank {}: ", comm.rank()) : std::string();
@@ -100,6 +120,10 @@ int run_command(int argc, char** argv, const Communicator& comm)
     if (const int code = parse_command_line(cli, argc, argv); code >= 0)
         return code;
 
+    // From here on SIGINT/SIGTERM request a stop, also while the deck is read: a stop
+    // before the results file is opened ends the run with exit 1 and writes nothing.
+    std::signal(SIGINT, on_interrupt);
+    std::signal(SIGTERM, on_interrupt);
     io::Deck deck = io::read_deck(deck_path, overrides);
     if (refine_levels > 0) {
         // The size check of the deck (analysis/size_estimate.hpp) sees the deck's own
@@ -120,7 +144,9 @@ int run_command(int argc, char** argv, const Communicator& comm)
         deck.resolved_yaml = io::write_resolved_yaml(deck);  // /deck shows the file actually written
     }
     // Never write over the deck (or any input), whichever way the path was given.
-    io::check_output_paths(deck, io::input_files(deck), io::output_origin(!output.empty(), overrides));
+    const io::OutputOrigin output_origin = io::output_origin(!output.empty(), overrides);
+    io::check_output_paths(deck, io::input_files(deck), output_origin);
+    StopRequest(&interrupt_requested).check();  // reading the deck polls nothing
 
     const Verbosity verbosity = quiet ? Verbosity::quiet : (verbose ? Verbosity::verbose : Verbosity::normal);
     // On a terminal the progress line (k/N, load factor, iterations, active Gauss
@@ -137,14 +163,13 @@ int run_command(int argc, char** argv, const Communicator& comm)
         },
         verbosity);
 
-    std::signal(SIGINT, on_interrupt);
-    std::signal(SIGTERM, on_interrupt);
     analysis::RunOptions options;
     options.stop_requested = [] { return interrupt_requested.load(); };
     context.set_stop(StopRequest(&interrupt_requested));  // polled inside set-up, assembly and Newton
     options.threads = threads;
     options.refine_levels = refine_levels;
     options.comm = comm;
+    options.output_origin = output_origin;
     if (terminal && speaks)
         options.progress = [](const std::string& line) { std::cerr << line << '\n'; };
     // -q silences progress only: a warning or a failure's reason always reaches stderr.
@@ -174,8 +199,10 @@ int run_command(int argc, char** argv, const Communicator& comm)
     return code;
 }
 
-int check_command(int argc, char** argv)
+int check_command(int argc, char** argv, const Communicator& comm)
 {
+    std::ostream& out = out_stream(comm);
+    std::ostream& err = err_stream(comm);
     CLI::App cli{"Validate a deck, print the resolved deck (defaults filled in) and the side names of each body.",
                  "igacontact check"};
     std::string deck_path;
@@ -192,38 +219,40 @@ int check_command(int argc, char** argv)
     // Everything a run checks before solving (Jacobians, pairs, constraints, obstacles).
     const analysis::Scene scene = analysis::build_scene(deck);
     for (const std::string& line : scene.setup_warnings)  // also said by a run
-        std::cerr << "warning: " << line << '\n';
+        err << "warning: " << line << '\n';
     for (const std::string& line : analysis::duplicate_pair_warnings(scene))
-        std::cerr << "warning: " << line << '\n';
-    std::cout << "# resolved deck: " << deck_path << '\n' << deck.resolved_yaml;
+        err << "warning: " << line << '\n';
+    out << "# resolved deck: " << deck_path << '\n' << deck.resolved_yaml;
     if (!deck.resolved_yaml.empty() && deck.resolved_yaml.back() != '\n')
-        std::cout << '\n';
-    std::cout << bodies;
+        out << '\n';
+    out << bodies;
     if (!scene.reactions.empty()) {
-        std::cout << "# reactions reported per increment (force each constraint exerts on its body):\n";
+        out << "# reactions reported per increment (force each constraint exerts on its body):\n";
         for (const analysis::ReactionGroup& group : scene.reactions)
-            std::cout << fmt::format("#   {} ({} constrained dofs)\n", group.name, group.dofs.size());
+            out << fmt::format("#   {} ({} constrained dofs)\n", group.name, group.dofs.size());
     }
     for (const analysis::PairModel& pair : scene.pairs)
         if (pair.obstacle >= 0)
-            std::cout << fmt::format("# contact force on the obstacle {} reported for pair {}\n",
+            out << fmt::format("# contact force on the obstacle {} reported for pair {}\n",
                                      pair.label[static_cast<std::size_t>(pair.obstacle)], pair.name);
     for (const analysis::PairModel& pair : scene.pairs)
         if (pair.penalty_auto)
-            std::cout << "# contact pair " << pair.name << ": penalty auto = " << analysis::describe(pair.rule)
+            out << "# contact pair " << pair.name << ": penalty auto = " << analysis::describe(pair.rule)
                       << "\n";
     for (const analysis::PairModel& pair : scene.pairs)
         if (const contact::FrictionLaw& law = pair.pair.settings().friction; law.active())
-            std::cout << fmt::format("# contact pair {}: Coulomb friction, mu = {:g}, tangential penalty {:g}{}\n",
+            out << fmt::format("# contact pair {}: Coulomb friction, mu = {:g}, tangential penalty {:g}{}\n",
                                      pair.name, law.coefficient, law.tangential_penalty,
                                      pair.augmented ? ", with tangential multipliers (augmented Lagrangian)" : "");
-    std::cout.flush();  // the listing before the verdict, also when both streams go to one pipe
-    std::cerr << deck_path << ": ok\n";
+    out.flush();  // the listing before the verdict, also when both streams go to one pipe
+    err << deck_path << ": ok\n";
     return exit_ok;
 }
 
-int compare_command(int argc, char** argv)
+int compare_command(int argc, char** argv, const Communicator& comm)
 {
+    std::ostream& out = out_stream(comm);
+    std::ostream& err = err_stream(comm);
     CLI::App cli{"Compare a results file with a reference: every dataset and attribute of REF must be in NEW and\n"
                  "agree to |new - ref| <= atol + rtol |ref|. Timings, versions, counters and solver statistics are ignored "
                  "unless --all.",
@@ -253,10 +282,10 @@ int compare_command(int argc, char** argv)
     try {
         report = io::compare_results(reference, candidate, options);
     } catch (const Error& e) {
-        std::cerr << "igacontact compare: error: " << e.what() << '\n';
+        err << "igacontact compare: error: " << e.what() << '\n';
         return exit_bad_input;
     }
-    std::cout << io::format_report(report, verbose) << '\n';
+    out << io::format_report(report, verbose) << '\n';
     return report.same() ? exit_ok : exit_failed;
 }
 

@@ -4,6 +4,7 @@
 
 #include "core/parallel.hpp"
 
+#include <iosfwd>
 #include <stdexcept>
 
 namespace CLI {
@@ -28,10 +29,17 @@ int run_command(int argc, char** argv, const Communicator& comm);
 
 /// "rank k: " on several ranks, "" on one process: names the rank a message comes from.
 std::string rank_prefix(const Communicator& comm);
-int check_command(int argc, char** argv);
-int compare_command(int argc, char** argv);
+/// `check` and `compare`: under mpirun every rank does the work (and meets the same
+/// errors), rank 0 alone prints the listing and the verdict.
+int check_command(int argc, char** argv, const Communicator& comm);
+int compare_command(int argc, char** argv, const Communicator& comm);
 int study_command(int argc, char** argv);  ///< app/study.cpp
 int keys_command(int argc, char** argv);   ///< app/keys.cpp (not in --help: a tool of the docs)
+
+/// Where a command prints: std::cout / std::cerr on rank 0 (or a plain run), a stream
+/// that drops everything on the other ranks.
+std::ostream& out_stream(const Communicator& comm);
+std::ostream& err_stream(const Communicator& comm);
 
 /// Parses with CLI11; returns -1 when parsing succeeded, 0 after --help/--version
 /// (CLI11 printed them). A usage error throws UsageError.

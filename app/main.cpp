@@ -21,6 +21,9 @@
 #include "core/stop.hpp"
 #include "version.hpp"
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <string>
@@ -43,9 +46,9 @@ int run_main(int argc, char** argv, const iga::Communicator& comm)
     };
     try {
         if (first == "check")
-            return check_command(argc - 1, argv + 1);
+            return check_command(argc - 1, argv + 1, comm);
         if (first == "compare")
-            return compare_command(argc - 1, argv + 1);
+            return compare_command(argc - 1, argv + 1, comm);
         if (first == "study")
             return study_command(argc - 1, argv + 1);
         if (first == "keys")
@@ -78,6 +81,23 @@ int run_main(int argc, char** argv, const iga::Communicator& comm)
     }
 }
 
+/// The exit code once standard output is flushed: a write to it that failed (a full
+/// device, a closed file) is an error, never a silent exit 0. Checked after every
+/// command, for whatever it printed (a summary line, a listing, a verdict, key tables).
+int check_standard_output(int code, bool json)
+{
+    errno = 0;
+    std::cout.flush();
+    const bool flushed = std::fflush(stdout) == 0;
+    const int error = errno;
+    if (flushed && std::cout.good() && !std::ferror(stdout))
+        return code;
+    std::cerr << "igacontact: error: cannot write to standard output"
+              << (error != 0 ? std::string(": ") + std::strerror(error) : std::string())
+              << (json ? " (the --summary json line is lost)" : "") << '\n';
+    return code == iga::app::exit_ok ? iga::app::exit_bad_input : code;
+}
+
 }  // namespace
 
 int main(int argc, char** argv)
@@ -87,7 +107,8 @@ int main(int argc, char** argv)
     // Under mpirun (or srun) MPI first: every rank then builds the same scene and
     // works on its part (core/parallel.hpp). A plain run starts no MPI.
     iga::parallel::initialize();
-    const int code = run_main(argc, argv, iga::Communicator::world());
+    const int code = check_standard_output(run_main(argc, argv, iga::Communicator::world()),
+                                           iga::app::summary_json_requested(argc, argv));
     iga::parallel::finalize();
     return code;
 }

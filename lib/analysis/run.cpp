@@ -179,8 +179,25 @@ RunOutcome finish(RunModel& m, IncrementSteps& steps, const solver::SteppingResu
     warn_at_end(m, steps, u);
     RunOutcome outcome = outcome_of(m, steps, result);
     const io::RunSummary summary = summary_of(m, steps, outcome, total.elapsed());
-    if (m.writer)
-        m.writer->finish(summary);
+    // A stop (SIGINT/SIGTERM) while the results are written: the run did not end as
+    // it should, so the file says "failed" (with every increment) and the exit is 1.
+    const std::string interrupted_message =
+        fmt::format("interrupted (SIGINT/SIGTERM) while the results were written, after increment {} (load factor "
+                    "{:.6g}); every converged increment is stored",
+                    outcome.increments, steps.last_step() ? steps.last_step()->load_factor : 0.0);
+    if (outcome.status == "completed" && m.stop.requested()) {
+        outcome.status = "failed";
+        outcome.message = interrupted_message;
+    }
+    if (m.writer) {
+        io::RunSummary written = summary;
+        written.status = outcome.status;
+        written.message = outcome.message;
+        if (m.writer->finish(written, [&m] { return m.stop.requested(); }, interrupted_message) != outcome.status) {
+            outcome.status = "failed";
+            outcome.message = interrupted_message;
+        }
+    }
     if (m.settings.output.paraview && m.writer) {
         write_xdmf_index(m, steps);
         outcome.numbers["paraview"] = 1;

@@ -485,7 +485,8 @@ void ResultsWriter::append_history(const HistoryRow& row)
     ++h.n_rows;
 }
 
-void ResultsWriter::finish(const RunSummary& summary)
+std::string ResultsWriter::finish(const RunSummary& summary, const std::function<bool()>& interrupted,
+                                  const std::string& interrupted_message)
 {
     IGA_CHECK(is_open(), "results file " + final_path_ + " is already closed");
     IGA_CHECK(summary.status == "completed" || summary.status == "failed" || summary.status == "running",
@@ -528,10 +529,25 @@ void ResultsWriter::finish(const RunSummary& summary)
     timings.reset();
     counters.reset();
 
+    std::string status = summary.status;
+    auto stopped_now = [&] { return status == "completed" && interrupted && interrupted(); };
+    auto mark_failed = [&](hid_t f) {
+        h5::write_attribute(f, "status", std::string("failed"));
+        h5::write_attribute(f, "message", interrupted_message);
+        status = "failed";
+    };
+    if (stopped_now())
+        mark_failed(file);
     h5::Handle closing = std::move(state_->file);
     state_.reset();
     try {
         closing.close();
+        if (stopped_now()) {  // during the close (which writes the file's metadata): opened once more
+            h5::Handle again(H5Fopen(temp_path_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose,
+                             "cannot open " + temp_path_);
+            mark_failed(again.id());
+            again.close();
+        }
     } catch (const Error& error) {
         std::remove(temp_path_.c_str());
         throw Error("cannot complete results file " + final_path_ + ": " + error.what());
@@ -539,6 +555,7 @@ void ResultsWriter::finish(const RunSummary& summary)
     if (std::rename(temp_path_.c_str(), final_path_.c_str()) != 0)
         throw Error("cannot rename " + temp_path_ + " to results file " + final_path_ + ": " +
                     std::strerror(errno) + " (the results are in the temporary file)");
+    return status;
 }
 
 void ResultsWriter::abandon() noexcept

@@ -24,6 +24,7 @@
 
 #include "io/results_data.hpp"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -66,7 +67,12 @@ public:
 
     /// Writes status/message/warnings (root attributes; warnings "" when none), /history,
     /// /timings, /counters, /convergence and /reference, closes the file and renames it onto the final path. The writer is closed afterwards.
-    void finish(const RunSummary& summary);
+    /// `interrupted` (may be empty) is asked twice before the rename, after the
+    /// writes and after the close: once it is true, a "completed" status becomes
+    /// "failed" with `interrupted_message` (a stop during the writing of the results
+    /// never leaves a completed file behind a non-zero exit). Returns the status written.
+    std::string finish(const RunSummary& summary, const std::function<bool()>& interrupted = {},
+                       const std::string& interrupted_message = {});
 
     /// Closes and deletes the temporary file; the final path is untouched. No-op when closed.
     void abandon() noexcept;

@@ -315,6 +315,83 @@ TEST(Cli, CompareTellsEqualFromPerturbedFiles)
     EXPECT_NE(missing.err.find("missing.h5"), std::string::npos) << missing.err;
 }
 
+/// Runs `igacontact <arguments>` with `prefix` before it (e.g. mpirun) and stdout sent to
+/// `stdout_target` (a shell redirection target such as /dev/full), stderr captured.
+CliResult run_cli_to(const std::string& prefix, const std::string& arguments, const std::string& stdout_target,
+                     const fs::path& dir)
+{
+    const fs::path out = dir / "to_stdout.txt", err = dir / "to_stderr.txt";
+    const std::string target = stdout_target.empty() ? out.string() : stdout_target;
+    const std::string command = prefix + shell_quote(cli_path()) + " " + arguments + " > " + shell_quote(target) +
+                                " 2> " + shell_quote(err.string()) + " < /dev/null";
+    const int status = std::system(command.c_str());
+    CliResult result;
+    result.exit_code = status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.out = stdout_target.empty() ? read_text(out) : std::string();
+    result.err = read_text(err);
+    return result;
+}
+
+std::size_t occurrences(const std::string& text, const std::string& what)
+{
+    std::size_t n = 0;
+    for (std::size_t pos = text.find(what); pos != std::string::npos; pos = text.find(what, pos + 1))
+        ++n;
+    return n;
+}
+
+// Issue 32: what a command prints on stdout and could not write (a full device) was
+// lost with exit 0. Now every command says so on stderr and exits 2.
+TEST(Cli, StandardOutputThatCannotBeWrittenIsAnError)
+{
+    if (!fs::exists("/dev/full"))
+        GTEST_SKIP() << "no /dev/full";
+    const auto dir = scratch_dir("stdout_full");
+    const fs::path run = dir / "run.h5";
+    run_lame(run, dir);
+    if (HasFatalFailure())
+        return;
+    const std::vector<std::string> commands{
+        shell_quote(lame_deck()) + " -q --summary json -o " + shell_quote((dir / "again.h5").string()),
+        "check " + shell_quote(lame_deck()),
+        "compare -v " + shell_quote(run.string()) + " " + shell_quote(run.string()),
+        "keys",
+    };
+    for (const std::string& command : commands) {
+        const CliResult r = run_cli_to("", command, "/dev/full", dir);
+        EXPECT_EQ(r.exit_code, 2) << command << "\n" << r.err;
+        EXPECT_NE(r.err.find("igacontact: error: cannot write to standard output"),
+                  std::string::npos)
+            << command << "\n" << r.err;
+    }
+}
+
+// Issue 32: under mpirun, `check` and `compare` printed their listing and verdict once
+// per rank; rank 0 alone prints.
+TEST(Cli, CheckAndCompareUnderMpirunPrintOnce)
+{
+    if (std::system("command -v mpirun > /dev/null 2>&1") != 0)
+        GTEST_SKIP() << "no mpirun";
+    const CliResult version = run_cli("--version", scratch_dir("mpirun_version"));
+    if (version.out.find("petsc") == std::string::npos)
+        GTEST_SKIP() << "a build without MPI (PETSc)";
+    const auto dir = scratch_dir("mpirun_print_once");
+    const fs::path run = dir / "run.h5";
+    run_lame(run, dir);
+    if (HasFatalFailure())
+        return;
+    const std::string mpirun = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader "
+                               "mpirun -np 2 --oversubscribe ";
+    const CliResult check = run_cli_to(mpirun, "check " + shell_quote(lame_deck()), "", dir);
+    EXPECT_EQ(check.exit_code, 0) << check.err;
+    EXPECT_EQ(occurrences(check.out, "# resolved deck:"), 1u) << check.out;
+    EXPECT_EQ(occurrences(check.err, ": ok"), 1u) << check.err;
+    const CliResult compare =
+        run_cli_to(mpirun, "compare " + shell_quote(run.string()) + " " + shell_quote(run.string()), "", dir);
+    EXPECT_EQ(compare.exit_code, 0) << compare.err;
+    EXPECT_EQ(occurrences(compare.out, "compare: "), 1u) << compare.out;
+}
+
 TEST(Cli, SummaryJsonIsOneParsableLine)
 {
     const auto dir = scratch_dir("summary");

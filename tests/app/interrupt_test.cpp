@@ -298,6 +298,75 @@ TEST(Interrupt, SigtermInsideALongIncrementAbandonsIt)
     EXPECT_TRUE(std::regex_search(message, abandoned)) << message;
 }
 
+// Issue 32: SIGTERM at any moment of a run -- while the deck is read, during set-up,
+// the increments or the writing of the results -- ends it with a non-zero exit and
+// either no new file (the previous results byte-identical, no temporary file left) or
+// a complete file with status "failed"; a run that completed before the signal arrived
+// may exit 0. The signal goes at a sweep of delays across a short run; today's code
+// answered a signal during the final write with exit 0 and a "completed" file.
+TEST(Interrupt, SigtermAtAnyMomentNeverLeavesACompletedFileOrExitZero)
+{
+    const fs::path dir = scratch_dir("interrupt_sigterm_sweep");
+    const fs::path out = dir / "sweep.h5";
+    const std::string deck = std::string(IGA_SOURCE_DIR) + "/inputs/block_stretch_finite_2d.yaml";
+    const CliResult previous = run_cli(shell_quote(std::string(IGA_SOURCE_DIR) + "/inputs/lame_cylinder_2d.yaml") +
+                                           " -q -o " + shell_quote(out.string()),
+                                       dir);
+    ASSERT_EQ(previous.exit_code, 0) << previous.err;
+    std::string previous_bytes = read_text(out);
+    // Delays from 0 (before main) until a run ends before its signal; 15 ms apart covers
+    // the set-up, each increment and the final write of a run of ~0.1-1 s many times over.
+    constexpr auto delay_step = 15ms;
+    constexpr int max_tries = 200;
+    int interrupted_runs = 0;
+    for (int k = 0; k < max_tries; ++k) {
+        const Child child = start_run({cli_path(), deck, "-o", out.string(), "--set", "steps.count=8", "--set",
+                                       "steps.adaptive=false", "--set", "output.paraview=true"},
+                                      dir);
+        ASSERT_GT(child.pid, 0);
+        std::this_thread::sleep_for(k * delay_step);
+        int status = 0;
+        const bool ended_before = ::waitpid(child.pid, &status, WNOHANG) == child.pid;
+        if (!ended_before) {
+            ::kill(child.pid, SIGTERM);
+            const std::optional<int> end = wait_for_end(child);
+            ASSERT_TRUE(end.has_value()) << "no end after SIGTERM at " << k * delay_step.count() << " ms";
+            status = *end;
+        }
+        const std::string log = read_text(child.err);
+        const std::string when = "SIGTERM at " + std::to_string(k * delay_step.count()) + " ms:\n" + log;
+        EXPECT_TRUE(temp_files(dir, "sweep.h5").empty()) << when;
+        if (ended_before) {
+            ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << when;
+            break;  // every later delay would find the run ended too
+        }
+        ++interrupted_runs;
+        const bool killed_before_main = WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM;
+        ASSERT_TRUE(killed_before_main || (WIFEXITED(status) && WEXITSTATUS(status) == 1))
+            << "exit " << (WIFEXITED(status) ? WEXITSTATUS(status) : -1) << ", " << when;
+        if (read_text(out) == previous_bytes)
+            continue;  // no new file: the previous one intact
+        std::string file_status, message;
+        ASSERT_TRUE(status_readable(out)) << when;
+        {
+            io::h5::ErrorSilencer silence;
+            io::h5::Handle f(H5Fopen(out.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "open " + out.string());
+            file_status = string_attribute(f.id(), "status");
+            message = string_attribute(f.id(), "message");
+        }
+        EXPECT_EQ(file_status, "failed") << when;
+        EXPECT_NE(message.find("interrupted (SIGINT/SIGTERM)"), std::string::npos) << message;
+        fs::remove(out);
+        ASSERT_EQ(run_cli(shell_quote(std::string(IGA_SOURCE_DIR) + "/inputs/lame_cylinder_2d.yaml") + " -q -o " +
+                              shell_quote(out.string()),
+                          dir)
+                      .exit_code,
+                  0);
+        previous_bytes = read_text(out);  // the "previous results" of the next try
+    }
+    EXPECT_GT(interrupted_runs, 3) << "the sweep never reached inside the run";
+}
+
 TEST(Interrupt, SigkillLeavesThePreviousResultsUntouched)
 {
     const fs::path dir = scratch_dir("interrupt_sigkill");
