@@ -251,9 +251,10 @@ TEST(Transform, AxisAndNormalOfAnyFiniteLengthGiveTheSameMap)
     const Affine mirror_y = mirror(vec({0.0, 1.0}), vec({0.0, 1.0}));
     for (double length : {1e300, 1.7e308, 5e-324, 1e-310}) {
         EXPECT_TRUE(same(rotation(vec({0.0, 0.0, length}), 30.0, vec({1.0, 2.0, 0.0})), about_z)) << length;
-        if (std::isfinite(2.0 * length))
+        if (std::isfinite(2.0 * length)) {
             EXPECT_TRUE(same(rotation(vec({length, -2.0 * length, 2.0 * length}), 30.0, vec({1.0, 2.0, 0.0})), oblique))
                 << length;
+        }
         EXPECT_TRUE(same(mirror(vec({0.0, length}), vec({0.0, 1.0})), mirror_y)) << length;
     }
     EXPECT_THROW(rotation(vec({0.0, 0.0, std::numeric_limits<double>::infinity()}), 10.0, vec({0.0, 0.0, 0.0})),
