@@ -435,6 +435,33 @@ contact::ContactPair contact_pair(const io::Deck& deck, const Scene& scene, cons
     }
 }
 
+/// A penalty times h/E' beyond 1/machine epsilon: the contact stiffness swamps the
+/// body's in double precision (the tangent cannot see the body any more), and the
+/// products eps * gap overflow long before eps does (1e300 left inf in the slip).
+/// `penalty: auto` is at most 1e3 E'/h.
+constexpr double max_penalty_over_stiffness = 1e16;
+
+/// A normal or tangential penalty out of that range is bad input, at its key.
+void check_penalty_range(const io::Deck& deck, const io::ContactPair& c, const contact::PairSettings& settings,
+                         const AutoPenalty& rule)
+{
+    if (!(rule.modulus > 0.0 && rule.element_size > 0.0))
+        return;
+    const double stiffness = rule.modulus / rule.element_size;
+    auto check = [&](double penalty, const std::string& key) {
+        if (penalty > max_penalty_over_stiffness * stiffness)
+            throw DeckError(body_issue(
+                deck, "contact." + c.name + "." + key,
+                fmt::format("{:.3g} is {:.3g} times E'/h ({:.3g}): beyond {:g} the contact stiffness swamps the "
+                            "bodies' in double precision; penalty: auto gives {:.3g}",
+                            penalty, penalty / stiffness, stiffness, max_penalty_over_stiffness, rule.penalty)));
+    };
+    if (settings.law.as_penalty() && !c.penalty_auto)
+        check(settings.law.stiffness(), "penalty");
+    if (settings.friction.coefficient > 0.0 && !c.friction.tangential_penalty_auto)
+        check(settings.friction.tangential_penalty, "friction.tangential_penalty");
+}
+
 /// Contact pair c of the deck, its dofs and its candidate couplings as pattern blocks.
 PairModel pair_model(const io::Deck& deck, Scene& scene, const io::ContactPair& c,
                      std::vector<std::vector<int>>& blocks)
@@ -447,6 +474,7 @@ PairModel pair_model(const io::Deck& deck, Scene& scene, const io::ContactPair& 
     AutoPenalty rule;  // E', h and the auto penalty of the pair's deformable sides
     PairSurfaces s;
     contact::ContactPair pair = contact_pair(deck, scene, c, settings, rule, s);
+    check_penalty_range(deck, c, settings, rule);
     PairModel model{c.name, std::move(pair), s.body, s.parent, s.label, s.piece_label, {}, {}, -1, settings.formulation};
     model.penalty_auto = c.penalty_auto;
     model.initial_penalty = settings.law.stiffness();
