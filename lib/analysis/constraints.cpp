@@ -21,6 +21,30 @@ std::string item_label(const io::Constraint& c, std::size_t index)
     return fmt::format("constraints.{} ({}.{})", index, c.body, io::side_text(c.patch, c.side, c.surface));
 }
 
+/// Side s of constraint item k: an interface side is bad input; a side collapsed to a
+/// point or a line is a warning (it holds that point or line only).
+nurbs::SidePatch checked_side(const io::Deck& deck, const BodyModel& body, const io::Constraint& c, std::size_t k,
+                              const BodySide& s, std::vector<std::string>& warnings)
+{
+    for (const nurbs::Interface& i : body.interfaces)
+        if ((i.patch_a == s.patch && i.side_a == s.side) || (i.patch_b == s.patch && i.side_b == s.side))
+            throw DeckError(io::located_issue(deck.source_file, fmt::format("constraints.{}.side", k), "",
+                                              fmt::format("the side {} of body '{}' is an interface between two "
+                                                          "patches (inside the body), not a boundary side",
+                                                          body_side_text(body.patch_names(), s), c.body)));
+    const nurbs::Patch& patch = body.patches[static_cast<std::size_t>(s.patch)].patch;
+    nurbs::SidePatch sp = nurbs::extract_side(patch, s.side);
+    const double tolerance = nurbs::coincidence_tolerance(patch.control_points());
+    const bool point = nurbs::is_collapsed(sp, tolerance);
+    if (point || nurbs::is_collapsed_to_line(sp, tolerance))
+        warnings.push_back(fmt::format(
+            "constraints.{}.side: the side {} of body '{}' is collapsed to a {} {}: the constraint holds that {}, not "
+            "a face; for a symmetry condition name the face (`check` lists every side with its corners)",
+            k, body_side_text(body.patch_names(), s), c.body, point ? "point at" : "line through",
+            point_text(sp.patch.control_points(), Index{0}), point ? "single point (a pin)" : "line only"));
+    return sp;
+}
+
 }  // namespace
 
 DirichletData dirichlet_data(const io::Deck& deck, const std::vector<BodyModel>& bodies,
@@ -49,24 +73,8 @@ DirichletData dirichlet_data(const io::Deck& deck, const std::vector<BodyModel>&
         const std::vector<BodySide> sides = resolve_sides(*deck_body, body.patch_names(), c.patch, c.side, c.surface);
         std::vector<int> side_nodes;  // each once, in side order
         for (const BodySide& s : sides) {
-            for (const nurbs::Interface& i : body.interfaces)
-                if ((i.patch_a == s.patch && i.side_a == s.side) || (i.patch_b == s.patch && i.side_b == s.side))
-                    throw DeckError(io::located_issue(
-                        deck.source_file, fmt::format("constraints.{}.side", k), "",
-                        fmt::format("the side {} of body '{}' is an interface between two patches (inside the "
-                                    "body), not a boundary side",
-                                    body_side_text(body.patch_names(), s), c.body)));
+            const nurbs::SidePatch sp = checked_side(deck, body, c, k, s, out.warnings);
             const PatchModel& patch = body.patches[static_cast<std::size_t>(s.patch)];
-            const nurbs::SidePatch sp = nurbs::extract_side(patch.patch, s.side);
-            const double tolerance = nurbs::coincidence_tolerance(patch.patch.control_points());
-            const bool point = nurbs::is_collapsed(sp, tolerance);
-            if (point || nurbs::is_collapsed_to_line(sp, tolerance))
-                out.warnings.push_back(fmt::format(
-                    "constraints.{}.side: the side {} of body '{}' is collapsed to a {} {}: the constraint holds "
-                    "that {}, not a face; for a symmetry condition name the face (`check` lists every side with its "
-                    "corners)",
-                    k, body_side_text(body.patch_names(), s), c.body, point ? "point at" : "line through",
-                    point_text(sp.patch.control_points(), Index{0}), point ? "single point (a pin)" : "line only"));
             for (const int a : sp.parent_index) {
                 const int node = patch.node[static_cast<std::size_t>(a)];
                 if (std::find(side_nodes.begin(), side_nodes.end(), node) == side_nodes.end())

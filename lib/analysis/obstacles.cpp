@@ -38,7 +38,7 @@ void check_obstacle_side(const io::Deck& deck, const Scene& scene, const io::Con
     const RowMatrix& points = body.node_points;
     // Points on the surface count as inside: a body that touches a flipped plane at
     // its lowest point (the usual Hertz set-up) lies wholly behind it all the same.
-    const double on_surface = touching_tolerance * (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+    const double on_surface = touching_tolerance * body.size();
     for (Index a = 0; a < points.rows(); ++a)
         if (!(obstacle.foot(points.row(a).transpose(), 0.0).gap >= -on_surface))
             return;  // a control point outside the obstacle: the body is not all inside

@@ -311,10 +311,8 @@ void add_load(const io::Deck& deck, std::size_t load_index, Scene& scene, Vector
     // A side collapsed to a point (or a face to a line) has no length or area: a traction
     // or pressure on it adds nothing, a force cannot be spread over it.
     const double measure = mechanics::reference_measure(side);
-    const RowMatrix& nodes = scene.bodies[static_cast<std::size_t>(b)].node_points;
-    const double size = (nodes.colwise().maxCoeff() - nodes.colwise().minCoeff()).norm();
     constexpr double collapsed_measure = 1e-12;  // of size^(d-1): round-off of coincident control points
-    if (!(measure > collapsed_measure * std::pow(size, d - 1)))
+    if (!(measure > collapsed_measure * std::pow(scene.bodies[static_cast<std::size_t>(b)].size(), d - 1)))
         throw DeckError(body_issue(deck, fmt::format("loads.{}.side", load_index),
                                    fmt::format("the side is collapsed to a {} (zero {}): a traction or pressure on it applies nothing, a force cannot be spread over it; "
                                                "`check` lists every side with its corners",

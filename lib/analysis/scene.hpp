@@ -72,6 +72,8 @@ struct BodyModel {
     int first_block = 0;                         ///< pattern block of elements[0]
 
     std::vector<std::string> patch_names() const;
+    /// Bounding-box diagonal of the reference control points.
+    double size() const { return (node_points.colwise().maxCoeff() - node_points.colwise().minCoeff()).norm(); }
     /// (side, meaning) as `check` prints them: what each parametric side is on the shape.
     std::vector<std::pair<std::string, std::string>> side_names;
 };

@@ -202,11 +202,13 @@ std::string vector_text(const VecN& v)
 std::vector<std::string> check_sides_face(const io::Deck& deck, const Scene& scene, const io::ContactPair& pair,
                                           const PairModel& model)
 {
+    // Each surface as the other's partner (a deformable side sampled once).
+    const std::array<Partner, 2> surface{partner_of(model, 0), partner_of(model, 1)};
     std::array<std::optional<Facing>, 2> found;
     for (int k = 0; k < 2; ++k)
         if (model.body[static_cast<std::size_t>(k)] >= 0) {
-            const Facing f = facing(samples(std::get<contact::DeformableSide>(model.pair.surface(k))),
-                                    partner_of(model, 1 - k));
+            const Facing f = facing(surface[static_cast<std::size_t>(k)].points,
+                                    surface[static_cast<std::size_t>(1 - k)]);
             if (f.judged())
                 found[static_cast<std::size_t>(k)] = f;
         }
@@ -230,7 +232,7 @@ std::vector<std::string> check_sides_face(const io::Deck& deck, const Scene& sce
         }
         const int b = model.body[static_cast<std::size_t>(k)];
         const std::vector<std::string> better = facing_sides(scene.bodies[static_cast<std::size_t>(b)],
-                                                             partner_of(model, 1 - k));
+                                                             surface[static_cast<std::size_t>(1 - k)]);
         std::string hint;
         if (!better.empty()) {
             std::string list;

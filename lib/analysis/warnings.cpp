@@ -13,12 +13,6 @@ namespace iga::analysis {
 
 namespace {
 
-double body_size(const BodyModel& body)
-{
-    const RowMatrix& p = body.node_points;
-    return (p.colwise().maxCoeff() - p.colwise().minCoeff()).norm();
-}
-
 /// The largest imposed travel at pseudo-time t: prescribed displacements and
 /// obstacle motions, each scaled by its amplitude.
 double imposed_travel(const RunSettings& settings, double t)
@@ -313,7 +307,7 @@ std::vector<std::string> pair_warnings(const Scene& scene, const PairModel& mode
         for (int k = 0; k < 2; ++k)
             if (model.label[static_cast<std::size_t>(k)] == side.side_name)
                 b = model.body[static_cast<std::size_t>(k)];
-        const double size = b >= 0 ? body_size(scene.bodies[static_cast<std::size_t>(b)]) : 0.0;
+        const double size = b >= 0 ? scene.bodies[static_cast<std::size_t>(b)].size() : 0.0;
         std::string against;
         if (zone > 0.0 && penetration > penetration_to_zone * zone)
             against = fmt::format("{:.0f} % of the contact zone ({:.3g})", 100.0 * penetration / zone, zone);
@@ -332,7 +326,7 @@ std::vector<std::string> pair_warnings(const Scene& scene, const PairModel& mode
         const double scale = std::max(std::abs(f1), std::abs(f2));
         // Grazing contact leaves forces at round-off level, whose ratio means nothing.
         const BodyModel& body = scene.bodies[static_cast<std::size_t>(model.body[0])];
-        const double material_force = body.material.E * std::pow(body_size(body), d - 1);
+        const double material_force = body.material.E * std::pow(body.size(), d - 1);
         if (scale > negligible_contact_force * material_force && std::abs(f1 - f2) > half_pass_disagreement * scale)
             out.push_back(fmt::format("contact pair '{}': the two half passes disagree in normal force by {:.1f} % "
                                       "({}: {:.6g}, {}: {:.6g}); {}",
