@@ -196,6 +196,13 @@ int run_command(int argc, char** argv, const Communicator& comm)
     const int code = outcome.status == "completed" ? exit_ok : exit_failed;
     if (summary == "json")
         std::cout << summary_json(outcome, code) << std::endl;
+    // The run has said everything: a signal from here on ends the process as usual.
+    // One that came after the results file was closed complete stopped nothing; said,
+    // so that an exit 0 after SIGTERM is no mystery.
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+    if (outcome.status == "completed" && interrupt_requested.load())
+        std::cerr << "igacontact: SIGINT/SIGTERM arrived after the results were complete; the run stands as completed\n";
     return code;
 }
 
