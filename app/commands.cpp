@@ -129,11 +129,11 @@ int run_command(int argc, char** argv, const Communicator& comm)
         // The size check of the deck (analysis/size_estimate.hpp) sees the deck's own
         // refinement; each halving multiplies the model by about 2^d.
         const double bytes = analysis::estimate_size(deck).bytes * std::exp2(deck.analysis.dimension * refine_levels);
-        const double memory = analysis::machine_memory_bytes();
-        if (memory > 0 && bytes > memory)
-            throw UsageError(fmt::format("--refine-levels {}: the refined model needs about {:.3g} GB, more than this "
-                                         "machine's {:.3g} GB",
-                                         refine_levels, bytes / 1e9, memory / 1e9));
+        const analysis::SizeLimits limits = analysis::machine_limits();
+        if (limits.memory_bytes > 0 && bytes > limits.memory_bytes)
+            throw UsageError(fmt::format("--refine-levels {}: the refined model needs about {:.3g} GB, more than {} "
+                                         "{:.3g} GB",
+                                         refine_levels, bytes / 1e9, limits.memory_name, limits.memory_bytes / 1e9));
         // /deck in the results file says how the run was refined.
         deck.resolved_yaml += fmt::format("# run with --refine-levels {}: every knot span halved {} time(s) after the "
                                           "refinement above\n",

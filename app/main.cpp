@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <new>
 #include <iostream>
 #include <string>
 
@@ -68,6 +69,16 @@ int run_main(int argc, char** argv, const iga::Communicator& comm)
         if (speaks)
             std::cerr << e.what() << '\n';
         return fail("bad_input", e.what(), exit_bad_input);
+    } catch (const std::bad_alloc&) {
+        // Outside the increments (set-up, the final write), or on several ranks: no
+        // file of converged increments to keep. Each rank that ran out says so; one ends them all.
+        const std::string message =
+            "out of memory (an allocation failed): the model needs more memory than this process may use, the "
+            "machine's or a limit such as ulimit -v; no results were written. Refine less, or spread the model over "
+            "more memory with mpirun (docs/parallel.md)";
+        std::cerr << "igacontact: failed: " << rank_prefix(comm) << message << '\n';
+        iga::parallel::abort_all(exit_failed);
+        return fail("failed", message, exit_failed);
     } catch (const iga::Error& e) {
         // Not necessarily met by every rank: this rank ends them all (below).
         std::cerr << "igacontact: error: " << rank_prefix(comm) << e.what() << "\nThis is a bug in igacontact "

@@ -324,7 +324,7 @@ int study_command(int argc, char** argv)
         throw UsageError("cannot create " + study_dir.string() + ": " + ec.message());
 
     const double level0_bytes = analysis::estimate_size(deck).bytes;
-    const double memory = analysis::machine_memory_bytes();
+    const double memory = analysis::machine_limits().memory_bytes;
     const double budget = memory > 0 ? 0.5 * memory : 0.0;  // the estimate is a lower bound: keep half free
     const int d = deck.analysis.dimension;
     std::vector<Level> levels(static_cast<std::size_t>(n_levels));

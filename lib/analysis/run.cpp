@@ -85,7 +85,7 @@ RunOutcome outcome_of(const RunModel& m, const IncrementSteps& steps, const solv
     outcome.status = result.completed ? "completed" : "failed";
     outcome.message = result.message;
     // Name the cause of a Newton failure, read from its history, and what to change.
-    if (!result.completed && !result.stopped && result.last_failure.status != solver::NewtonStatus::converged)
+    if (!result.completed && !result.stopped && !result.out_of_memory && result.last_failure.status != solver::NewtonStatus::converged)
         outcome.message += failure_advice(solver::failure_cause(result.last_failure),
                                           failure_context(m.scene, steps.last_step() ? &*steps.last_step() : nullptr));
     outcome.results_file = m.settings.output.file;

@@ -110,6 +110,10 @@ RunModel::RunModel(const io::Deck& deck, const RunOptions& options_, RunContext&
     log_solver(context, *linear);
     open_results();
     write_geometry();
+    if (options.threads > assembly::hardware_threads())
+        warn({fmt::format("--threads {}: this machine runs {} threads at once, and the run uses {} (more would only "
+                          "cost memory)",
+                          options.threads, assembly::hardware_threads(), assembly::hardware_threads())});
     warn(scene.setup_warnings);
     warn(duplicate_pair_warnings(scene));
     // An initial overlap is pushed out by the first increment; should that need a

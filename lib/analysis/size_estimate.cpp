@@ -5,10 +5,12 @@
 
 #include <fmt/format.h>
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <optional>
 
@@ -248,6 +250,20 @@ SizeLimits machine_limits()
 {
     SizeLimits limits;
     limits.memory_bytes = machine_memory_bytes();
+    auto lower = [&](double bytes, const char* name) {
+        if (bytes > 0 && (limits.memory_bytes <= 0 || bytes < limits.memory_bytes)) {
+            limits.memory_bytes = bytes;
+            limits.memory_name = name;
+        }
+    };
+    if (rlimit r{}; ::getrlimit(RLIMIT_AS, &r) == 0 && r.rlim_cur != RLIM_INFINITY)
+        lower(static_cast<double>(r.rlim_cur), "the address-space limit (ulimit -v) of");
+    // cgroup v2: "max" or a number of bytes.
+    if (std::ifstream in("/sys/fs/cgroup/memory.max"); in) {
+        double bytes = 0;
+        if (in >> bytes)
+            lower(bytes, "the container's memory limit (cgroup memory.max) of");
+    }
     return limits;
 }
 
@@ -255,6 +271,7 @@ SizeEstimate estimate_size(const io::Deck& deck)
 {
     SizeEstimate e;
     const double d = deck.analysis.dimension;
+    double largest_element_matrix = 0;
     for (const io::Body& body : deck.bodies) {
         if (body.rigid)
             continue;
@@ -283,6 +300,7 @@ SizeEstimate estimate_size(const io::Deck& deck)
             e.element_gauss_points += s.elements * gauss_per_element;
             e.bytes += s.elements * gauss_per_element * (n_local * (d + 1) + 1) * 8;  // element geometry
             e.bytes += s.elements * 4 * (d * n_local) * (d * n_local);             // assembly positions
+            largest_element_matrix = std::max(largest_element_matrix, 8 * (d * n_local) * (d * n_local));
             for (std::size_t i = 0; i < dirs.size(); ++i) {  // the largest over the patches
                 if (b.degrees.size() <= i) {
                     b.degrees.push_back(0);
@@ -300,6 +318,7 @@ SizeEstimate estimate_size(const io::Deck& deck)
         e.bodies.push_back(std::move(b));
     }
     e.bytes += 2 * 12 * e.nonzeros;  // tangent and (at least as large) factor
+    e.bytes += largest_element_matrix;  // one dense element matrix at a time (per thread: at least one)
     for (const io::ContactPair& pair : deck.contact) {
         const std::optional<SideSize> sides[2] = {side_size(deck, pair.first), side_size(deck, pair.second)};
         for (const std::optional<SideSize>& side : sides) {
@@ -413,9 +432,9 @@ void check_size(const io::Deck& deck, const SizeLimits& limits)
     }
     const std::string reason = fmt::format(
         "the model would need at least {} of memory ({:.3g} dofs, {:.3g} stiffness nonzeros, {:.3g} element Gauss "
-        "points, {:.3g} contact Gauss points, {:.3g} pressure samples), more than this machine's {}",
+        "points, {:.3g} contact Gauss points, {:.3g} pressure samples), more than {} {}",
         format_bytes(e.bytes), e.dofs, e.nonzeros, e.element_gauss_points, e.contact_gauss_points, e.samples,
-        format_bytes(limits.memory_bytes));
+        limits.memory_name, format_bytes(limits.memory_bytes));
     if (culprit != nullptr)
         refuse(deck, culprit->path, culprit->value, reason);
     const auto biggest = std::max_element(e.bodies.begin(), e.bodies.end(),

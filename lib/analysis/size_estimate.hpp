@@ -22,6 +22,9 @@
 // the model is built, so a deck with spans: [1e8, 1e8] is judged in microseconds):
 //   element geometry   elements * prod(p_i+1) Gauss points * (prod(p_i+1) (d+1) + 1) * 8
 //   assembly positions elements * 4 (d prod(p_i+1))^2
+//   element matrix     8 (d prod(p_i+1))^2 of the largest element, held while it is
+//                      assembled (once: a lower bound for several threads); 6 GB at
+//                      degree 20 in 3D
 //   tangent + factor   2 * 12 * nonzeros, nonzeros of a patch = d^2 prod_i (n_i (2 p_i + 1)
 //                      - p_i (p_i + 1)) (basis pairs sharing a span, simple knots: exact
 //                      over all dofs, so above the free-dof pattern by the constrained rows)
@@ -55,7 +58,8 @@
 namespace iga::analysis {
 
 struct SizeLimits {
-    double memory_bytes = 0.0;  ///< the machine's memory; 0 = unknown (no memory check)
+    double memory_bytes = 0.0;  ///< the memory this process may use; 0 = unknown (no memory check)
+    std::string memory_name = "this machine's";  ///< whose limit memory_bytes is, for messages
     int max_degree = 20;
     int max_quadrature = 64;
     int max_samples_per_span = 1000;
@@ -64,7 +68,9 @@ struct SizeLimits {
 /// Physical memory of this machine in bytes (sysconf: MemTotal), or 0 if unknown.
 double machine_memory_bytes();
 
-/// The limits for this machine: its memory and the hard limits above.
+/// The limits for this process: the least of the machine's memory, its address-space
+/// limit (ulimit -v) and its container's memory limit (cgroup v2 memory.max), and the
+/// hard limits above.
 SizeLimits machine_limits();
 
 /// One patch after the body's and its own refinement.

@@ -17,8 +17,8 @@ namespace iga::assembly {
 
 int choose_threads(int requested, std::int64_t work, int hardware_threads, double load)
 {
-    if (requested >= 1)
-        return requested;
+    if (requested >= 1)  // the user's call on a loaded machine, but never more than it has:
+        return std::min(requested, std::max(1, hardware_threads));  // each thread costs memory, and the libraries' threads fail to start
     if (work < parallel_work_threshold)
         return 1;
     const int busy = load > 0.0 ? static_cast<int>(std::lround(std::min(load, 1e6))) : 0;  // !(NaN > 0)

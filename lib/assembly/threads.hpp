@@ -32,8 +32,8 @@ inline constexpr std::int64_t parallel_work_threshold = 200'000;
 /// Upper bound of the automatic thread count (the loop stops scaling past a few).
 inline constexpr int max_automatic_threads = 4;
 
-/// Threads for a loop of `work` element-tangent entries: `requested` when >= 1,
-/// else (0 = automatic) 1 below parallel_work_threshold, else
+/// Threads for a loop of `work` element-tangent entries: `requested` when >= 1
+/// (at most hardware_threads: more only cost memory, per thread of OpenBLAS too), else (0 = automatic) 1 below parallel_work_threshold, else
 /// clamp(hardware_threads - round(load), 1, max_automatic_threads).
 /// hardware_threads <= 0 means unknown (1); a negative or NaN load counts as 0.
 int choose_threads(int requested, std::int64_t work, int hardware_threads, double load);

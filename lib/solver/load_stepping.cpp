@@ -1,11 +1,13 @@
 #include "solver/load_stepping.hpp"
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <new>
 
 namespace iga::solver {
 
@@ -121,6 +123,13 @@ public:
                     restore_converged();
                     return stopped(index, ", during " + increment_text(index, lambda_, attempt.target) +
                                               ", which was abandoned");
+                } catch (const std::bad_alloc&) {
+                    // On one process the converged increments are still worth a results
+                    // file (the failed attempt's memory is free again); on several ranks the
+                    // others wait in a collective, and main() ends them all.
+                    if (Communicator::world().size() > 1)
+                        throw;
+                    return out_of_memory(index, attempt.target);
                 }
                 if (attempt.converged())
                     break;
@@ -145,6 +154,7 @@ private:
     void log_increment(const IncrementRecord& record) const;
     void size_next_increment(int iterations);
     SteppingResult stopped(int index, const std::string& during);
+    SteppingResult out_of_memory(int index, double target);
 
     const NonlinearSystem& system_;
     NonlinearSystem referenced_;  ///< system_ with force scales raised to reference_force_
@@ -327,6 +337,20 @@ SteppingResult LoadStepper::stopped(int index, const std::string& during)
                       during;
     result_.last_failure = NewtonReport{};  // a stop, not a failure of Newton
     result_.stopped = true;
+    return result_;
+}
+
+/// Ends the run when an allocation failed inside an increment: a smaller increment
+/// needs the same matrices, so there is nothing to cut back.
+SteppingResult LoadStepper::out_of_memory(int index, double target)
+{
+    restore_converged();
+    result_.message = increment_text(index, lambda_, target) +
+                      ": out of memory (an allocation failed; the increment was abandoned): the model needs more "
+                      "memory than this process may use, the machine's or a limit such as ulimit -v. Refine less, "
+                      "or spread the model over more memory with mpirun (docs/parallel.md)";
+    result_.last_failure = NewtonReport{};  // not a failure of Newton
+    result_.out_of_memory = true;
     return result_;
 }
 

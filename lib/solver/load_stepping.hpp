@@ -132,6 +132,7 @@ struct SteppingCallbacks {
 struct SteppingResult {
     bool completed = false;  ///< the end T of the path reached
     bool stopped = false;    ///< a stop request (SIGINT/SIGTERM) ended the run: no failure to diagnose
+    bool out_of_memory = false;  ///< an allocation failed inside an increment: nothing to diagnose either
     /// Empty when completed; else why, e.g. "increment 7 (load factor 0.44 -> 0.47):
     /// Newton did not converge after 8 cutbacks; last relative residual 3.1e-04
     /// (tolerance 1e-10)", or that a stop was requested.

@@ -9,6 +9,7 @@
 #include <Eigen/UmfPackSupport>
 
 #include <algorithm>
+#include <new>
 
 namespace iga::solver {
 
@@ -218,6 +219,16 @@ struct SuiteSparseSolver::Backend {
     // and reaches it from the lower one by a second transposed copy of the matrix
     // (measured on the 3D sphere octant, 31.7k dofs: 29 MB less peak RSS).
     Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> llt;
+
+    /// A factorization that ran out of memory is no statement about the matrix:
+    /// Eigen reports it as a numerical issue, which would read as a singular tangent
+    /// and send Newton cutting back. It is an allocation failure, thrown as one.
+    void throw_if_out_of_memory(Kind kind)
+    {
+        if (kind == Kind::lu ? lu.statistic(UMFPACK_STATUS) == UMFPACK_ERROR_out_of_memory
+                             : llt.cholmod().status == CHOLMOD_OUT_OF_MEMORY)
+            throw std::bad_alloc();
+    }
 
     Backend()
     {
@@ -509,10 +520,12 @@ LinearStatus SuiteSparseSolver::factorize_with(Kind kind)
         ++n_symbolic_;
         if (kind == Kind::lu) {
             b.lu.analyzePattern(A);
+            b.throw_if_out_of_memory(kind);
             if (b.lu.info() != Eigen::Success)
                 return LinearStatus::failed;
         } else {
             b.llt.analyzePattern(reference_);
+            b.throw_if_out_of_memory(kind);
             // Eigen reports Success even when cholmod_analyze failed (and left no
             // factor, which factorize() would dereference): check CHOLMOD's status.
             if (b.llt.info() != Eigen::Success || b.llt.cholmod().status < 0)
@@ -524,12 +537,14 @@ LinearStatus SuiteSparseSolver::factorize_with(Kind kind)
     ++n_numeric_;
     if (kind == Kind::lu) {
         b.lu.factorize(A);
+        b.throw_if_out_of_memory(kind);
         if (b.lu.info() != Eigen::Success)
             return LinearStatus::singular;
         factor_flops_ = b.lu.statistic(UMFPACK_FLOPS);
         factor_entries_ = b.lu.statistic(UMFPACK_LNZ) + b.lu.statistic(UMFPACK_UNZ);
     } else {
         b.llt.factorize(reference_);
+        b.throw_if_out_of_memory(kind);
         if (b.llt.info() != Eigen::Success)
             return LinearStatus::failed;
         release(lu_matrix_);  // an earlier LU's whole matrix is needed no more

@@ -189,6 +189,33 @@ TEST(SizeEstimate, BuildSceneRefusesBeforeAllocating)
     EXPECT_THROW(build_scene(base_deck({"bodies.block.refine.spans=[1e8, 1e8]"})), DeckError);
 }
 
+// Issue 32: one element of degree 20 in 3D (21^3 control points) holds a dense element
+// matrix of (3 * 21^3)^2 doubles, 6.2 GB, while it is assembled. The estimate left it
+// out and let the deck through to a bad_alloc on a 25 GB machine.
+TEST(SizeEstimate, AHighDegreeElementCountsItsDenseElementMatrix)
+{
+    const auto dir = test::scratch_dir("size_estimate_degree20");
+    {
+        std::ofstream out(dir / "deck.yaml");
+        out << R"(format: 1
+analysis: {dimension: 3, kinematics: small}
+materials: [{name: m, E: 100.0, nu: 0.3}]
+bodies:
+  - name: cube
+    material: m
+    shape: {type: box, corner: [0, 0, 0], size: [1, 1, 1]}
+    refine: {elevate: [19, 19, 19]}
+constraints:
+  - {body: cube, side: w0, fix: [x, y, z]}
+)";
+    }
+    const io::Deck deck = io::read_deck((dir / "deck.yaml").string());
+    const double element_dofs = 3 * std::pow(21.0, 3);
+    const double element_matrix_bytes = 8 * element_dofs * element_dofs;
+    const double tangent_bytes = 2 * 12 * estimate_size(deck).nonzeros;
+    EXPECT_GE(estimate_size(deck).bytes, tangent_bytes + element_matrix_bytes);
+}
+
 TEST(SizeEstimate, MachineMemoryIsKnown)
 {
     // Any machine that runs the tests has more than 64 MB and less than 1 PB.

@@ -17,7 +17,8 @@ constexpr double idle = 0.0;
 TEST(Threads, RequestedCountIsUsedAsGiven)
 {
     EXPECT_EQ(choose_threads(1, 10 * parallel_work_threshold, 8, idle), 1);
-    EXPECT_EQ(choose_threads(3, 0, 2, 5.0), 3);  // more than the cores, a loaded machine: the user's call
+    EXPECT_EQ(choose_threads(2, 0, 2, 5.0), 2);  // a loaded machine: the user's call
+    EXPECT_EQ(choose_threads(1024, 0, 2, 0.0), 2);  // more than the cores: the cores (threads cost memory)
 }
 
 TEST(Threads, AutomaticIsSerialBelowTheWorkThreshold)

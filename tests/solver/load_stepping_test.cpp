@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -159,6 +160,39 @@ TEST(LoadStepping, FailureLeavesTheLastConvergedState)
     EXPECT_EQ(u, recorder.states.back()) << "u must be the last converged state";
     EXPECT_TRUE(test::near(u(0), 0.5625, solution_tolerance));
     EXPECT_NE(result.message.find("increment 4 (load factor 0.5625 -> 0.625)"), std::string::npos)
+        << result.message;
+}
+
+// Issue 32: an allocation that fails inside an increment (a factorization out of
+// memory) ended the run as an internal error, exit 3, with nothing written. It ends
+// the path like a failure, with the converged increments and the state of the last
+// one kept, and no cutback: a smaller increment needs the same matrices.
+TEST(LoadStepping, AnAllocationFailureEndsThePathKeepingTheConvergedIncrements)
+{
+    NonlinearSystem system;
+    system.evaluate = [](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+        if (lambda > 0.6)
+            throw std::bad_alloc();
+        out.residual = Vector::Constant(1, u(0) - lambda);
+        out.force_scale = 1.0;
+        if (need_tangent)
+            out.tangent = scalar_matrix(1.0);
+    };
+    NewtonSettings newton;
+    SteppingSettings stepping;
+    stepping.count = 4;
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
+    Recorder recorder;
+    SteppingCallbacks callbacks = recorder.callbacks();
+    Vector u = Vector::Zero(1);
+    const SteppingResult result = run_load_steps(system, u, stepping, newton, solver, callbacks, nullptr);
+    EXPECT_FALSE(result.completed);
+    EXPECT_TRUE(result.out_of_memory);
+    EXPECT_EQ(result.total_cutbacks, 0);
+    ASSERT_EQ(result.increments.size(), 2u);
+    EXPECT_EQ(u, recorder.states.back()) << "u must be the last converged state";
+    EXPECT_EQ(recorder.rollbacks, 1);
+    EXPECT_NE(result.message.find("increment 3 (load factor 0.5 -> 0.75): out of memory"), std::string::npos)
         << result.message;
 }
 
