@@ -26,6 +26,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <unistd.h>
 
@@ -124,6 +125,8 @@ int run_command(int argc, char** argv, const Communicator& comm)
     // before the results file is opened ends the run with exit 1 and writes nothing.
     std::signal(SIGINT, on_interrupt);
     std::signal(SIGTERM, on_interrupt);
+    if (comm.parallel())
+        require_rereadable_deck(deck_path, fmt::format("the {} ranks of mpirun each", comm.size()));
     io::Deck deck = io::read_deck(deck_path, overrides);
     if (refine_levels > 0) {
         // The size check of the deck (analysis/size_estimate.hpp) sees the deck's own
@@ -206,6 +209,18 @@ int run_command(int argc, char** argv, const Communicator& comm)
     return code;
 }
 
+void require_rereadable_deck(const std::string& deck_path, const std::string& readers)
+{
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::file_status status = fs::status(deck_path, ec);
+    if (ec || status.type() == fs::file_type::not_found || status.type() == fs::file_type::regular)
+        return;  // a missing file is the deck reader's error, with its own message
+    throw UsageError(fmt::format("deck {}: not a regular file (standard input, a pipe or a device can be read only "
+                                 "once), and {} read the deck: save it to a file and give its path",
+                                 deck_path, readers));
+}
+
 int check_command(int argc, char** argv, const Communicator& comm)
 {
     std::ostream& out = out_stream(comm);
@@ -219,6 +234,8 @@ int check_command(int argc, char** argv, const Communicator& comm)
     if (const int code = parse_command_line(cli, argc, argv); code >= 0)
         return code;
 
+    if (comm.parallel())
+        require_rereadable_deck(deck_path, fmt::format("the {} ranks of mpirun each", comm.size()));
     const io::Deck deck = io::read_deck(deck_path, overrides);
     io::check_output_paths(deck, io::input_files(deck), io::output_origin(false, overrides));
     analysis::check_size(deck);  // before describe_bodies builds the geometry

@@ -33,13 +33,19 @@ std::string rank_prefix(const Communicator& comm);
 /// errors), rank 0 alone prints the listing and the verdict.
 int check_command(int argc, char** argv, const Communicator& comm);
 int compare_command(int argc, char** argv, const Communicator& comm);
-int study_command(int argc, char** argv);  ///< app/study.cpp
+/// `study` starts its levels itself: under mpirun (several ranks) it is a usage error.
+int study_command(int argc, char** argv, const Communicator& comm);  ///< app/study.cpp
 int keys_command(int argc, char** argv);   ///< app/keys.cpp (not in --help: a tool of the docs)
 
 /// Where a command prints: std::cout / std::cerr on rank 0 (or a plain run), a stream
 /// that drops everything on the other ranks.
 std::ostream& out_stream(const Communicator& comm);
 std::ostream& err_stream(const Communicator& comm);
+
+/// Refuses (UsageError, exit 2) a deck that can be read only once -- standard input, a
+/// pipe, a device -- where it is read more than once: by every rank under mpirun, by
+/// every level of a study. `readers` says who reads it, for the message.
+void require_rereadable_deck(const std::string& deck_path, const std::string& readers);
 
 /// Parses with CLI11; returns -1 when parsing succeeded, 0 after --help/--version
 /// (CLI11 printed them). A usage error throws UsageError.

@@ -51,7 +51,7 @@ int run_main(int argc, char** argv, const iga::Communicator& comm)
         if (first == "compare")
             return compare_command(argc - 1, argv + 1, comm);
         if (first == "study")
-            return study_command(argc - 1, argv + 1);
+            return study_command(argc - 1, argv + 1, comm);
         if (first == "keys")
             return keys_command(argc - 1, argv + 1);
         return run_command(argc, argv, comm);

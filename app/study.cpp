@@ -14,7 +14,10 @@
 // then end at once). A failed level is reported, not fatal.
 //
 // Before anything runs, a table, plot, level results or log path that exists and is
-// not a regular file (a folder, a symbolic link, a device) is bad input (exit 2).
+// not a regular file (a folder, a symbolic link, a device) is bad input (exit 2), and
+// so are a deck that can be read only once (a pipe, standard input) and mpirun. Every
+// file is written new (a temporary renamed over it, or unlinked first), never through
+// an existing one: a hard link there keeps its other names' contents.
 // Writes <deck>_study.csv beside the deck (io/study_csv.hpp), prints the table,
 // and draws <deck>_study.png with scripts/plot_study.py (Debian's python3 with
 // matplotlib) when it can; else it says how to draw it.
@@ -133,7 +136,10 @@ pid_t spawn(const std::string& exe, const std::vector<std::string>& args, const 
         ::sigaction(SIGTERM, &defaults, nullptr);
         // Close-on-exec: only the dup2 copies (0, 1, 2) reach the level.
         const int in = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
-        const int out = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NOFOLLOW | O_CLOEXEC, 0644);
+        // A new file, never writing through what is there: a log path hard-linked to the
+        // deck must not empty the deck (unlink removes this name only).
+        ::unlink(log_path.c_str());
+        const int out = ::open(log_path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
         if (in >= 0 && out >= 0 && ::dup2(in, STDIN_FILENO) >= 0 && ::dup2(out, STDOUT_FILENO) >= 0 &&
             ::dup2(out, STDERR_FILENO) >= 0)
             ::execve(exe.c_str(), argv.data(), environ);
@@ -268,7 +274,7 @@ std::string failure_reason(const fs::path& log)
 
 }  // namespace
 
-int study_command(int argc, char** argv)
+int study_command(int argc, char** argv, const Communicator& comm)
 {
     CLI::App cli{"Refinement study of a deck: runs it and N-1 uniformly h-refined versions (every knot span halved\n"
                  "per level), estimates each quantity's discretization error by Richardson extrapolation and writes\n"
@@ -289,6 +295,11 @@ int study_command(int argc, char** argv)
     cli.add_flag("-q,--quiet", quiet, "print only the table and errors");
     if (const int code = parse_command_line(cli, argc, argv); code >= 0)
         return code;
+    if (comm.parallel())
+        throw UsageError(fmt::format("study under mpirun: each of the {} ranks would run every level and write the "
+                                     "same files. Run 'igacontact study' without mpirun",
+                                     comm.size()));
+    require_rereadable_deck(deck_path, fmt::format("the study and each of its {} level(s)", n_levels));
 
     // Bad input is found here, before any level runs (exit 2).
     const io::Deck deck = io::read_deck(deck_path, overrides);
@@ -465,10 +476,24 @@ int study_command(int argc, char** argv)
     // The plot: scripts/plot_study.py with Debian's python3 (numpy, matplotlib).
     const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
     const auto script = plot_script();
-    const std::string command = fmt::format("{} {} {} {}", python, script ? shell_quote(script->string())
-                                                                                : std::string("scripts/plot_study.py"),
-                                            shell_quote(csv.string()), shell_quote(png.string()));
-    if (script && std::system((command + " > /dev/null 2>&1").c_str()) == 0) {
+    auto plot_command = [&](const fs::path& target) {
+        return fmt::format("{} {} {} {}", python,
+                           script ? shell_quote(script->string()) : std::string("scripts/plot_study.py"),
+                           shell_quote(csv.string()), shell_quote(target.string()));
+    };
+    const std::string command = plot_command(png);
+    // Drawn beside it, then renamed over it: a png path hard-linked to the deck must
+    // not turn the deck into a picture.
+    const fs::path drawn = folder / fmt::format("{}_study.tmp-{}.png", stem, ::getpid());
+    bool plotted = script && std::system((plot_command(drawn) + " > /dev/null 2>&1").c_str()) == 0;
+    if (plotted) {
+        std::error_code renamed;
+        fs::rename(drawn, png, renamed);
+        plotted = !renamed;
+    }
+    if (std::error_code ignored; !plotted)
+        fs::remove(drawn, ignored);
+    if (plotted) {
         std::cout << "plot: " << png.string() << '\n';
     } else {
         std::cerr << "warning: study: no plot written (needs python3 with matplotlib); draw it with:\n  " << command

@@ -393,6 +393,35 @@ TEST(Cli, CheckAndCompareUnderMpirunPrintOnce)
     EXPECT_EQ(occurrences(compare.out, "compare: "), 1u) << compare.out;
 }
 
+// Issue 32: under mpirun a deck on standard input (or a FIFO) hung, one rank reading it
+// and the others waiting; `mpirun ... study` ran a study on every rank. Both are refused.
+TEST(Cli, UnderMpirunADeckReadOnlyOnceAndAStudyAreRefused)
+{
+    if (std::system("command -v mpirun > /dev/null 2>&1") != 0)
+        GTEST_SKIP() << "no mpirun";
+    const CliResult version = run_cli("--version", scratch_dir("mpirun_version"));
+    if (version.out.find("petsc") == std::string::npos)
+        GTEST_SKIP() << "a build without MPI (PETSc)";
+    const auto dir = scratch_dir("mpirun_read_once");
+    const std::string mpirun = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader "
+                               "timeout 60 mpirun -np 2 --oversubscribe ";
+    const std::string out = " -q -o " + shell_quote((dir / "r.h5").string());
+    const fs::path err = dir / "err.txt";
+    const int status = std::system(("cat " + shell_quote(lame_deck()) + " | " + mpirun + shell_quote(cli_path()) +
+                                    " /dev/stdin" + out + " > /dev/null 2> " + shell_quote(err.string()))
+                                       .c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 2) << read_text(err);
+    EXPECT_EQ(occurrences(read_text(err), "not a regular file"), 1u) << read_text(err);
+    EXPECT_FALSE(fs::exists(dir / "r.h5"));
+    const fs::path deck = dir / "lame.yaml";
+    fs::copy_file(lame_deck(), deck);
+    const CliResult study = run_cli_to(mpirun, "study " + shell_quote(deck.string()) + " -q", "", dir);
+    EXPECT_EQ(study.exit_code, 2) << study.err;
+    EXPECT_EQ(occurrences(study.err, "study under mpirun"), 1u) << study.err;
+    EXPECT_FALSE(fs::exists(dir / "lame_study"));
+}
+
 TEST(Cli, SummaryJsonIsOneParsableLine)
 {
     const auto dir = scratch_dir("summary");

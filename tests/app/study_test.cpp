@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -167,6 +168,40 @@ TEST(Study, BadDeckIsExit2AndWritesNothing)
     EXPECT_NE(r.err.find("did you mean 'penalty'"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir / "bad_study"));
     EXPECT_FALSE(fs::exists(dir / "bad_study.csv"));
+}
+
+// Issue 32: the study wrote its level logs and its plot through whatever was at their
+// paths: a log or png hard-linked to the deck emptied the deck or turned it into a PNG.
+// Each is written new; the other name keeps its contents.
+TEST(Study, HardLinksAtItsPathsKeepTheDeck)
+{
+    const fs::path dir = scratch_dir("study_hard_links");
+    const fs::path deck = dir / "tiny.yaml";
+    std::ofstream(deck) << tiny_hertz;
+    fs::create_directories(dir / "tiny_study");
+    fs::create_hard_link(deck, dir / "tiny_study" / "level0.log");
+    fs::create_hard_link(deck, dir / "tiny_study.png");
+    const CliResult r = run_cli("study " + shell_quote(deck.string()) + " --levels 2 -q", dir);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(read_text(deck), tiny_hertz) << "the deck changed";
+    EXPECT_NE(read_text(dir / "tiny_study" / "level0.log"), tiny_hertz) << "level 0 wrote no log of its own";
+}
+
+// Issue 32: `study` of a FIFO hung (the study read the deck, each level waited for
+// another writer). A deck that can be read only once is refused before anything runs.
+TEST(Study, ADeckThatCanBeReadOnlyOnceIsRefused)
+{
+    const fs::path dir = scratch_dir("study_fifo");
+    const fs::path fifo = dir / "deck.yaml";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    // No writer: a study that opens the FIFO waits; timeout ends it (exit 124).
+    const std::string command = "timeout 30 " + shell_quote(cli_path()) + " study " + shell_quote(fifo.string()) +
+                                " > /dev/null 2> " + shell_quote((dir / "err.txt").string());
+    const int status = std::system(command.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 2) << read_text(dir / "err.txt");
+    EXPECT_NE(read_text(dir / "err.txt").find("not a regular file"), std::string::npos) << read_text(dir / "err.txt");
+    EXPECT_FALSE(fs::exists(dir / "deck_study"));
 }
 
 TEST(Study, SigintKeepsTheFinishedLevels)
