@@ -19,6 +19,7 @@
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "core/stop.hpp"
+#include "io/h5_file.hpp"
 #include "version.hpp"
 
 #include <cerrno>
@@ -69,6 +70,15 @@ int run_main(int argc, char** argv, const iga::Communicator& comm)
         if (speaks)
             std::cerr << e.what() << '\n';
         return fail("bad_input", e.what(), exit_bad_input);
+    } catch (const iga::StorageError& e) {
+        // The results file is a temporary until complete: its fate is in e.what().
+        const std::string message =
+            std::string(e.what()) +
+            " (the file system refused a write: full disk, quota, file size limit, read-only or I/O error)";
+        if (speaks)
+            std::cerr << "igacontact: failed: " << message << '\n';
+        iga::parallel::abort_all(exit_failed);  // rank 0 writes: the others may wait for it
+        return fail("failed", message, exit_failed);
     } catch (const std::bad_alloc&) {
         // Outside the increments (set-up, the final write), or on several ranks: no
         // file of converged increments to keep. Each rank that ran out says so; one ends them all.
@@ -117,6 +127,7 @@ int main(int argc, char** argv)
     iga::restore_allocator_defaults();  // before any large allocation (core/allocator.hpp)
     // Under mpirun (or srun) MPI first: every rank then builds the same scene and
     // works on its part (core/parallel.hpp). A plain run starts no MPI.
+    iga::io::h5::no_shutdown_at_exit();
     iga::parallel::initialize();
     const int code = check_standard_output(run_main(argc, argv, iga::Communicator::world()),
                                            iga::app::summary_json_requested(argc, argv));

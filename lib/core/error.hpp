@@ -4,7 +4,9 @@
 //    key.path = value: reason"; several may travel together in one DeckError;
 //  - numerical failure (the run's fate): a returned status, never an exception;
 //  - a bug (ours): IGA_ASSERT (debug builds, hot paths) / IGA_CHECK (always),
-//    which throw iga::Error with the source location.
+//    which throw iga::Error with the source location;
+//  - the file system refusing a write (full disk, quota, read-only, I/O error):
+//    StorageError, the run's fate, not a bug.
 // Only app/ prints messages and chooses exit codes.
 
 #include <stdexcept>
@@ -17,6 +19,13 @@ namespace iga {
 class Error : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
+};
+
+/// A write the file system refused (errno ENOSPC, EDQUOT, EFBIG, EROFS or EIO): the
+/// run failed (exit code 1), nothing is wrong with the program or the deck.
+class StorageError : public Error {
+public:
+    using Error::Error;
 };
 
 /// Where a deck value came from. line/column are 1-based; 0 means unknown

@@ -3,6 +3,9 @@
 #include "core/error.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <numeric>
 
@@ -42,10 +45,53 @@ std::string last_error_description()
     return description;
 }
 
+namespace {
+
+/// The errno of a failed system call as HDF5's file driver describes it
+/// ("... errno = 28, error message = 'No space left on device' ..."), or 0.
+int described_errno(const std::string& description)
+{
+    const std::string key = "errno = ";
+    const std::size_t at = description.find(key);
+    return at == std::string::npos ? 0 : std::atoi(description.c_str() + at + key.size());
+}
+
+/// The file HDF5's file driver names ("... filename = 'r.h5.tmp-12', ..."), or "".
+std::string described_file(const std::string& description)
+{
+    const std::string key = "filename = '";
+    const std::size_t at = description.find(key);
+    if (at == std::string::npos)
+        return {};
+    const std::size_t end = description.find('\'', at + key.size());
+    return end == std::string::npos ? std::string() : description.substr(at + key.size(), end - at - key.size());
+}
+
+}  // namespace
+
+[[noreturn]] void throw_described(const std::string& what, const std::string& description)
+{
+    // A write the file system refused is the run's fate, not a bug of ours: said in
+    // a line (the driver's description also lists buffers and offsets).
+    const int code = described_errno(description);
+    if (code == ENOSPC || code == EDQUOT || code == EFBIG || code == EROFS || code == EIO) {
+        const std::string file = described_file(description);
+        throw StorageError(what + (file.empty() ? "" : " (" + file + ")") + ": " + std::strerror(code));
+    }
+    throw Error(description.empty() ? what : what + ": " + description);
+}
+
 void throw_error(const std::string& what)
 {
-    const std::string description = last_error_description();
-    throw Error(description.empty() ? what : what + ": " + description);
+    throw_described(what, last_error_description());
+}
+
+void no_shutdown_at_exit()
+{
+    // HDF5 closes the files still open at exit; one whose close failed (a full disk)
+    // it closes again and crashes in (HDF5 1.10). Every file igacontact writes is
+    // closed explicitly, so there is nothing left for the exit to do.
+    H5dont_atexit();
 }
 
 // --- Handle ------------------------------------------------------------------
@@ -122,8 +168,7 @@ std::string object_name(hid_t location, const std::string& name)
 [[noreturn]] void fail_on(const char* action, hid_t location, const std::string& name, const std::string& suffix = "")
 {
     const std::string description = last_error_description();
-    const std::string what = std::string(action) + " " + object_name(location, name) + suffix;
-    throw Error(description.empty() ? what : what + ": " + description);
+    throw_described(std::string(action) + " " + object_name(location, name) + suffix, description);
 }
 
 Handle string_type()

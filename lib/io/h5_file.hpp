@@ -40,8 +40,14 @@ private:
 /// (e.g. "unable to open file: name = 'x.h5', errno = 2, ..."), or "" if none.
 std::string last_error_description();
 
-/// Throws iga::Error("<what>: <last_error_description()>").
+/// Throws iga::Error("<what>: <last_error_description()>"), a StorageError when the
+/// description is of a write the file system refused (full disk, quota, I/O error).
 [[noreturn]] void throw_error(const std::string& what);
+/// The same with a description taken earlier (a later HDF5 call clears the stack).
+[[noreturn]] void throw_described(const std::string& what, const std::string& description);
+
+/// Before any other HDF5 call: no HDF5 shutdown at exit (see h5_file.cpp).
+void no_shutdown_at_exit();
 
 /// Owns one HDF5 identifier (file, group, dataset, attribute, dataspace,
 /// datatype or property list) and closes it with the matching H5?close.

@@ -548,6 +548,10 @@ std::string ResultsWriter::finish(const RunSummary& summary, const std::function
             mark_failed(again.id());
             again.close();
         }
+    } catch (const StorageError& error) {
+        std::remove(temp_path_.c_str());
+        throw StorageError("cannot complete results file " + final_path_ + ": " + error.what() +
+                           "; it was not written, and a file already there is untouched");
     } catch (const Error& error) {
         std::remove(temp_path_.c_str());
         throw Error("cannot complete results file " + final_path_ + ": " + error.what());

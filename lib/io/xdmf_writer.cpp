@@ -6,7 +6,9 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <unistd.h>
 
@@ -195,10 +197,16 @@ void write_xdmf(const std::string& path, const std::string& text)
     {
         std::ofstream file(temp, std::ios::binary | std::ios::trunc);
         if (!file)
-            throw Error("cannot write the ParaView file " + path);
+            throw StorageError("cannot write the ParaView index " + path + ": " + std::strerror(errno) +
+                               " (the results file beside it is complete)");
         file << text;
-        if (!file.flush())
-            throw Error("cannot write the ParaView file " + path);
+        file.close();
+        if (!file) {
+            const int error = errno;
+            std::remove(temp.c_str());
+            throw StorageError("cannot write the ParaView index " + path + ": " + std::strerror(error) +
+                               " (the results file beside it is complete)");
+        }
     }
     if (std::rename(temp.c_str(), path.c_str()) != 0) {
         std::remove(temp.c_str());

@@ -393,6 +393,37 @@ TEST(Cli, CheckAndCompareUnderMpirunPrintOnce)
     EXPECT_EQ(occurrences(compare.out, "compare: "), 1u) << compare.out;
 }
 
+// Issue 32: a write the file system refused (a full disk) was "a bug in igacontact",
+// exit 3, then a SIGSEGV in HDF5's exit. A file size limit (ulimit -f, SIGXFSZ
+// ignored) makes the writes fail the same way without a disk to fill: at every
+// limit below the file's size the run fails cleanly, exit 1, saying why, and the
+// previous results stay byte for byte, with no temporary left.
+TEST(Cli, AWriteTheFileSystemRefusesFailsCleanlyAndKeepsThePreviousFile)
+{
+    const auto dir = scratch_dir("refused_write");
+    const fs::path out = dir / "r.h5";
+    run_lame(out, dir);
+    if (HasFatalFailure())
+        return;
+    const std::string previous = read_text(out);
+    // 512-byte blocks: 10 kB (the first flush) to 150 kB (the final write of the Hertz deck's ~180 kB).
+    for (const int blocks : {20, 100, 300}) {
+        SCOPED_TRACE("ulimit -f " + std::to_string(blocks));
+        const fs::path err = dir / "err.txt";
+        const std::string command = "trap '' XFSZ; ulimit -f " + std::to_string(blocks) + "; " +
+                                    shell_quote(cli_path()) + " " + shell_quote(source_path("inputs/hertz.yaml")) +
+                                    " -q -o " + shell_quote(out.string()) + " 2> " + shell_quote(err.string());
+        const int status = std::system(command.c_str());
+        ASSERT_TRUE(WIFEXITED(status)) << "killed by signal " << WTERMSIG(status);
+        EXPECT_EQ(WEXITSTATUS(status), 1) << read_text(err);
+        EXPECT_NE(read_text(err).find("igacontact: failed: "), std::string::npos) << read_text(err);
+        EXPECT_NE(read_text(err).find("File too large"), std::string::npos) << read_text(err);
+        EXPECT_EQ(read_text(err).find("bug"), std::string::npos) << read_text(err);
+        EXPECT_EQ(read_text(out), previous) << "the previous results changed";
+        EXPECT_TRUE(files_starting_with(dir, "r.h5.tmp").empty());
+    }
+}
+
 // Issue 32: under mpirun a deck on standard input (or a FIFO) hung, one rank reading it
 // and the others waiting; `mpirun ... study` ran a study on every rank. Both are refused.
 TEST(Cli, UnderMpirunADeckReadOnlyOnceAndAStudyAreRefused)
