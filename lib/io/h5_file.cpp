@@ -56,7 +56,7 @@ int described_errno(const std::string& description)
     return at == std::string::npos ? 0 : std::atoi(description.c_str() + at + key.size());
 }
 
-/// The file HDF5's file driver names ("... filename = 'r.h5.tmp-12', ..."), or "".
+/// The file HDF5's file driver names ("... filename = '<path>', ..."), or "".
 std::string described_file(const std::string& description)
 {
     const std::string key = "filename = '";

@@ -31,6 +31,41 @@ bool has_attribute(hid_t object, const std::string& name)
     return std::find(names.begin(), names.end(), name) != names.end();
 }
 
+/// The contact zone against Hertz, per carrying side of `pair` (results.md,
+/// /reference/<pair>): its half-width (2D) or radius (3D), a (1 + the run's signed
+/// relative error), with a as the reference value, and the relative L2 error of the
+/// post-processed pressure (its reference is 0: no relative error of it is formed).
+/// The first carrying side's errors are stored unprefixed, a second side's with its
+/// name in front; the first is the side whose normal force the reference repeats.
+void add_hertz_zone(hid_t reference, hid_t pair_group, const std::string& pair, LevelResults& out)
+{
+    if (!has_attribute(reference, "a"))
+        return;
+    const double a = number(h5::read_attribute(reference, "a"));
+    const std::string size = has_attribute(reference, "contact_radius") ? "contact_radius" : "half_width";
+    const double first_force =
+        has_attribute(reference, "normal_force") ? number(h5::read_attribute(reference, "normal_force")) : 0.0;
+    for (const std::string& side : h5::link_names(pair_group)) {
+        const h5::Handle side_group = h5::open_object(pair_group, side);
+        if (h5::object_kind(side_group.id()) != h5::ObjectKind::group)
+            continue;
+        std::string prefix = side + ".";
+        if (!has_attribute(reference, prefix + size)) {
+            const bool first = has_attribute(side_group.id(), "normal_force") &&
+                               number(h5::read_attribute(side_group.id(), "normal_force")) == first_force;
+            if (!first || !has_attribute(reference, size))
+                continue;
+            prefix.clear();
+        }
+        const std::string zone = size + ":" + pair + ":" + side;
+        out.quantities.emplace_back(zone, a * (1 + number(h5::read_attribute(reference, prefix + size))));
+        out.reference_values[zone] = a;
+        if (has_attribute(reference, prefix + "l2"))
+            out.quantities.emplace_back("pressure_l2_error:" + pair + ":" + side,
+                                        number(h5::read_attribute(reference, prefix + "l2")));
+    }
+}
+
 /// Lowest degree of the patch group `g` (degrees dataset), or of its patches/<p>/ (multi-patch bodies).
 int lowest_degree(hid_t body)
 {
@@ -97,6 +132,9 @@ LevelResults read_level_results(const std::string& path)
                         out.quantities.emplace_back("peak_pressure:" + pair + ":" + side,
                                                     *std::max_element(p.reals.begin(), p.reals.end()));
                 }
+                if (has_attribute(side_group.id(), "contact_area"))
+                    out.quantities.emplace_back("contact_area:" + pair + ":" + side,
+                                                number(h5::read_attribute(side_group.id(), "contact_area")));
             }
             if (has_attribute(pair_group.id(), "max_penetration"))
                 penetrations.emplace_back("max_penetration:" + pair,
@@ -107,6 +145,7 @@ LevelResults read_level_results(const std::string& path)
                     for (const auto& [name, value] : out.quantities)
                         if (name.rfind("peak_pressure:" + pair + ":", 0) == 0)
                             out.reference_values[name] = number(h5::read_attribute(reference.id(), "p0"));
+                add_hertz_zone(reference.id(), pair_group.id(), pair, out);
             }
         }
     }

@@ -146,6 +146,24 @@ TEST(Study, TinyHertzWritesTheDocumentedCsv)
     constexpr double hertz_p0_digits = 1e-4;  // p0 = 59.1431... printed with 10 digits
     EXPECT_TRUE(near_rel(number(peak[0][8]), 59.1431, hertz_p0_digits));
     EXPECT_TRUE(std::isfinite(number(peak[0][9])));
+    // Issue 32: the quantities users refine for. The half-width against Hertz (a = 0.1076
+    // for F = 10 on R = 1, E* = 1098.9), the length in contact and the pressure's L2 error
+    // at every level; the half-width's true error is formed, the L2 error's is not (0).
+    const auto& half_width = by_quantity["half_width:cyl_floor:cylinder.v0"];
+    ASSERT_EQ(half_width.size(), 3u);
+    constexpr double hertz_a_digits = 1e-3;  // a = 2 sqrt(F R / (pi E*)) = 0.107640...
+    EXPECT_TRUE(near_rel(number(half_width[0][8]), 0.10764, hertz_a_digits)) << half_width[0][8];
+    // 16 spans on a quarter circle put about one span across the zone at level 0: the
+    // half-width is resolved to a span, and its true error shrinks level by level.
+    EXPECT_GT(std::fabs(number(half_width[0][9])), std::fabs(number(half_width[1][9])));
+    EXPECT_GT(std::fabs(number(half_width[1][9])), std::fabs(number(half_width[2][9])));
+    ASSERT_EQ(by_quantity["contact_area:cyl_floor:cylinder.v0"].size(), 3u);
+    const auto& l2 = by_quantity["pressure_l2_error:cyl_floor:cylinder.v0"];
+    ASSERT_EQ(l2.size(), 3u);
+    for (const auto& row : l2) {
+        EXPECT_GT(number(row[4]), 0.0);
+        EXPECT_EQ(row[9], "") << "no relative error of an error";
+    }
     // The symmetry side's reaction is round-off: left out. The levels' files are in <deck>_study/.
     EXPECT_EQ(by_quantity.count("reaction:cylinder.u0:x"), 0u);
     for (int k = 0; k < 3; ++k) {
