@@ -399,6 +399,60 @@ io::StepData step_data(const Scene& scene, SceneSystem& system, const Vector& u_
     return step;
 }
 
+namespace {
+
+/// The point-wise disagreement of two half passes: the largest |p_1(x) - p_2(x')| over
+/// the post-processed samples x of either side, x' the other side's nearest sample,
+/// relative to the larger peak; NaN when neither side is pressed. Only samples in the
+/// box of the pressed ones (widened by a tenth) are compared: the zone, not the sides.
+double half_pass_pressure_difference(const io::PostProcessedData& first, const io::PostProcessedData& second)
+{
+    const Index d = first.coordinates.cols();
+    double peak = 0.0;
+    Eigen::VectorXd lower = Eigen::VectorXd::Constant(d, std::numeric_limits<double>::infinity());
+    Eigen::VectorXd upper = -lower;
+    for (const io::PostProcessedData* side : {&first, &second})
+        for (Index i = 0; i < side->pressure.size(); ++i)
+            if (side->pressure(i) > 0.0) {
+                peak = std::max(peak, side->pressure(i));
+                lower = lower.cwiseMin(side->coordinates.row(i).transpose());
+                upper = upper.cwiseMax(side->coordinates.row(i).transpose());
+            }
+    if (!(peak > 0.0))
+        return std::numeric_limits<double>::quiet_NaN();
+    const double margin = 0.1 * (upper - lower).norm();
+    auto in_zone = [&](const io::PostProcessedData& side) {
+        std::vector<Index> out;
+        for (Index i = 0; i < side.pressure.size(); ++i)
+            if (((side.coordinates.row(i).transpose() - lower).array() >= -margin).all() &&
+                ((side.coordinates.row(i).transpose() - upper).array() <= margin).all())
+                out.push_back(i);
+        return out;
+    };
+    const std::vector<Index> zone[2] = {in_zone(first), in_zone(second)};
+    const io::PostProcessedData* sides[2] = {&first, &second};
+    double largest = 0.0;
+    for (int s = 0; s < 2; ++s) {
+        const io::PostProcessedData& here = *sides[s];
+        const io::PostProcessedData& there = *sides[1 - s];
+        for (Index i : zone[s]) {
+            double nearest = std::numeric_limits<double>::infinity(), p = 0.0;
+            for (Index j : zone[1 - s]) {
+                const double distance = (here.coordinates.row(i) - there.coordinates.row(j)).squaredNorm();
+                if (distance < nearest) {
+                    nearest = distance;
+                    p = there.pressure(j);
+                }
+            }
+            if (std::isfinite(nearest))
+                largest = std::max(largest, std::abs(here.pressure(i) - p));
+        }
+    }
+    return largest / peak;
+}
+
+}  // namespace
+
 io::ContactPairResult pair_result(const Scene& scene, int p, const contact::PairEvaluation& state,
                                   const Vector& u_full, double load_factor, int samples_per_span)
 {
@@ -412,6 +466,11 @@ io::ContactPairResult pair_result(const Scene& scene, int p, const contact::Pair
                                            side_displacement(scene, model, u_full, carrier.surface), load_factor,
                                            samples_per_span));
     }
+    if (result.sides.size() == 2)  // two half passes: how far apart their pressures are, point by point
+        if (const double difference = half_pass_pressure_difference(result.sides[0].postprocessed,
+                                                                     result.sides[1].postprocessed);
+            std::isfinite(difference))
+            result.attributes["half_pass_pressure_difference"] = difference;
     return result;
 }
 

@@ -327,11 +327,20 @@ std::vector<std::string> pair_warnings(const Scene& scene, const PairModel& mode
         // Grazing contact leaves forces at round-off level, whose ratio means nothing.
         const BodyModel& body = scene.bodies[static_cast<std::size_t>(model.body[0])];
         const double material_force = body.material.E * std::pow(body.size(), d - 1);
+        const auto pointwise = pair.attributes.find("half_pass_pressure_difference");
+        const double apart = pointwise == pair.attributes.end() ? 0.0 : pointwise->second;
         if (scale > negligible_contact_force * material_force && std::abs(f1 - f2) > half_pass_disagreement * scale)
             out.push_back(fmt::format("contact pair '{}': the two half passes disagree in normal force by {:.1f} % "
-                                      "({}: {:.6g}, {}: {:.6g}); {}",
+                                      "({}: {:.6g}, {}: {:.6g}; their pressures point-wise by up to {:.0f} % of the "
+                                      "peak); {}",
                                       pair.name, 100.0 * std::abs(f1 - f2) / scale, pair.sides[0].side_name, f1,
-                                      pair.sides[1].side_name, f2, half_pass_cause(model, pair, d)));
+                                      pair.sides[1].side_name, f2, 100.0 * apart, half_pass_cause(model, pair, d)));
+        else if (scale > negligible_contact_force * material_force && apart > half_pass_pressure_apart)
+            out.push_back(fmt::format("contact pair '{}': the two half passes' pressures differ point-wise by up to "
+                                      "{:.0f} % of the peak ({} and {}, post-processed), though their forces agree: "
+                                      "the pressure of either side is uncertain by that much; {}",
+                                      pair.name, 100.0 * apart, pair.sides[0].side_name, pair.sides[1].side_name,
+                                      half_pass_cause(model, pair, d)));
     }
     return out;
 }

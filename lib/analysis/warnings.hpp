@@ -9,7 +9,8 @@
 //    imposed by displacements and obstacle motion: the penalty is too soft for
 //    the answer to mean much;
 //  - two-half-pass sides whose contact forces disagree by more than
-//    half_pass_disagreement, with the cause the run shows: a penalty far stiffer than
+//    half_pass_disagreement, or whose pressures differ point-wise by more than
+//    half_pass_pressure_apart of the peak, with the cause the run shows: a penalty far stiffer than
 //    `penalty: auto` or the augmented Lagrangian (both over-constrain the two half
 //    passes), a contact zone held by few pressed Gauss points, or two sides that
 //    sample it differently;
@@ -45,6 +46,11 @@ constexpr double penetration_to_travel = 0.1;
 /// Relative disagreement of the two half passes' normal forces (0.35 % on matched
 /// two-cylinder meshes): a few per cent flags a real resolution mismatch.
 constexpr double half_pass_disagreement = 0.03;
+/// The two half passes' post-processed pressures apart at one point by more than this
+/// fraction of the peak (results attribute half_pass_pressure_difference): the matched
+/// Hertz cylinders are 0.4 % apart, the three-body squeeze 2.9 %; at a tenth a user
+/// reading one side's pressure reads a different answer from the other's.
+constexpr double half_pass_pressure_apart = 0.1;
 /// A penalty above this multiple of `penalty: auto`'s is named as the cause of a
 /// half-pass disagreement: on a steel half disc pressed into an aluminium block
 /// (tests/analysis/decks/disc_into_block_2d.yaml at 160 spans), 1.7 % with auto's, 6.0 %
