@@ -53,6 +53,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -272,51 +273,10 @@ std::string failure_reason(const fs::path& log)
     return reason.empty() ? last : reason;
 }
 
-}  // namespace
-
-int study_command(int argc, char** argv, const Communicator& comm)
+/// Every file the study writes, checked before anything runs or is created; then
+/// the levels' folder created.
+void check_study_paths(const fs::path& csv, const fs::path& png, const fs::path& study_dir, int n_levels)
 {
-    CLI::App cli{"Refinement study of a deck: runs it and N-1 uniformly h-refined versions (every knot span halved\n"
-                 "per level), estimates each quantity's discretization error by Richardson extrapolation and writes\n"
-                 "<deck>_study.csv (and <deck>_study.png) beside the deck; the runs go to <deck>_study/.",
-                 "igacontact study"};
-    std::string deck_path;
-    std::vector<std::string> overrides;
-    int n_levels = 3, jobs = 1;
-    bool quiet = false;
-    cli.add_option("deck", deck_path, "deck file (YAML)")->required();
-    cli.add_option("--levels", n_levels, "refinement levels 0..N-1 (level k halves every span k times)")
-        ->capture_default_str()
-        ->check(CLI::Range(1, 8));
-    cli.add_option("--jobs", jobs, "levels run at once, as far as the memory estimate allows")
-        ->capture_default_str()
-        ->check(CLI::Range(1, 64));
-    cli.add_option("--set", overrides, "override a deck value, PATH=VALUE; repeatable")->allow_extra_args(false);
-    cli.add_flag("-q,--quiet", quiet, "print only the table and errors");
-    if (const int code = parse_command_line(cli, argc, argv); code >= 0)
-        return code;
-    if (comm.parallel())
-        throw UsageError(fmt::format("study under mpirun: each of the {} ranks would run every level and write the "
-                                     "same files. Run 'igacontact study' without mpirun",
-                                     comm.size()));
-    require_rereadable_deck(deck_path, fmt::format("the study and each of its {} level(s)", n_levels));
-
-    // Bad input is found here, before any level runs (exit 2).
-    const io::Deck deck = io::read_deck(deck_path, overrides);
-    if (deck.solver.backend == io::SolverBackend::petsc) {
-        try {
-            checked_environment_options();  // each level would refuse PETSC_OPTIONS alike, into its log
-        } catch (const PetscOptionsError& e) {
-            throw DeckError(e.environment_issue());
-        }
-    }
-    const fs::path deck_file(deck_path);
-    const fs::path folder = deck_file.parent_path();
-    const std::string stem = deck_file.stem().string();
-    const fs::path study_dir = folder / (stem + "_study");
-    const fs::path csv = folder / (stem + "_study.csv");
-    const fs::path png = folder / (stem + "_study.png");
-    // Every file the study writes, checked before anything runs or is created.
     check_study_file(csv, "its table");
     check_study_file(png, "its plot");
     if (std::error_code e; fs::exists(study_dir, e) && !fs::is_directory(study_dir, e)) {
@@ -333,10 +293,13 @@ int study_command(int argc, char** argv, const Communicator& comm)
     fs::create_directories(study_dir, ec);
     if (ec)
         throw UsageError("cannot create " + study_dir.string() + ": " + ec.message());
+}
 
+/// Levels 0..n-1, not run yet: their files in `study_dir` and memory estimates (level
+/// k about 2^(d k) times the deck's).
+std::vector<Level> planned_levels(const io::Deck& deck, const fs::path& study_dir, int n_levels)
+{
     const double level0_bytes = analysis::estimate_size(deck).bytes;
-    const double memory = analysis::machine_limits().memory_bytes;
-    const double budget = memory > 0 ? 0.5 * memory : 0.0;  // the estimate is a lower bound: keep half free
     const int d = deck.analysis.dimension;
     std::vector<Level> levels(static_cast<std::size_t>(n_levels));
     for (int k = 0; k < n_levels; ++k) {
@@ -347,16 +310,15 @@ int study_command(int argc, char** argv, const Communicator& comm)
         l.log = study_dir / fmt::format("level{}.log", k);
         l.outcome = "not run";
     }
+    return levels;
+}
 
-    const std::string exe = self_executable();
-    install_interrupt_handler();
-    auto say = [&](const std::string& line) {
-        if (!quiet)
-            std::cerr << line << '\n';
-    };
-    say(fmt::format("study: {} level(s) of {}, up to {} at once; runs in {}", n_levels, deck_path, jobs,
-                    study_dir.string()));
-
+/// Runs the levels, up to `jobs` at once while their memory estimates fit in
+/// `budget` (0: no limit), passing each Ctrl-C on; fills each level's outcome.
+void run_levels(std::vector<Level>& levels, const std::string& exe, const std::string& deck_path,
+                const std::vector<std::string>& overrides, int jobs, double budget,
+                const std::function<void(const std::string&)>& say)
+{
     std::size_t next = 0;
     std::vector<std::size_t> running;
     int interrupts_passed_on = 0;
@@ -423,10 +385,13 @@ int study_command(int argc, char** argv, const Communicator& comm)
                         l.message.empty() ? "" : ": " + l.message));
     }
 
-    // Read the completed levels.
+}
+
+/// The completed levels' results; a file that does not read as completed marks its
+/// level failed. `formal_order` is the lowest degree of their patches.
+std::vector<analysis::StudyLevel> read_levels(std::vector<Level>& levels, int& formal_order, bool& with_reference)
+{
     std::vector<analysis::StudyLevel> completed;
-    int formal_order = 0;
-    bool with_reference = false;
     for (Level& l : levels) {
         if (l.outcome != "completed")
             continue;
@@ -447,6 +412,103 @@ int study_command(int argc, char** argv, const Communicator& comm)
         with_reference = with_reference || !r.reference_values.empty();
         completed.push_back({l.index, r.dofs, l.wall_s, std::move(r.quantities), std::move(r.reference_values)});
     }
+    return completed;
+}
+
+/// The plot: scripts/plot_study.py with Debian's python3 (numpy, matplotlib), drawn
+/// to `drawn` beside it and renamed over `png`; else the command to draw it.
+void draw_plot(const fs::path& csv, const fs::path& png, const fs::path& drawn)
+{
+    const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    const auto script = plot_script();
+    auto plot_command = [&](const fs::path& target) {
+        return fmt::format("{} {} {} {}", python,
+                           script ? shell_quote(script->string()) : std::string("scripts/plot_study.py"),
+                           shell_quote(csv.string()), shell_quote(target.string()));
+    };
+    const std::string command = plot_command(png);
+    // Drawn beside it, then renamed over it: a png path hard-linked to the deck must
+    // not turn the deck into a picture.
+    bool plotted = script && std::system((plot_command(drawn) + " > /dev/null 2>&1").c_str()) == 0;
+    if (plotted) {
+        std::error_code renamed;
+        fs::rename(drawn, png, renamed);
+        plotted = !renamed;
+    }
+    if (std::error_code ignored; !plotted)
+        fs::remove(drawn, ignored);
+    if (plotted) {
+        std::cout << "plot: " << png.string() << '\n';
+    } else {
+        std::cerr << "warning: study: no plot written (needs python3 with matplotlib); draw it with:\n  " << command
+                  << '\n';
+    }
+}
+
+}  // namespace
+
+int study_command(int argc, char** argv, const Communicator& comm)
+{
+    CLI::App cli{"Refinement study of a deck: runs it and N-1 uniformly h-refined versions (every knot span halved\n"
+                 "per level), estimates each quantity's discretization error by Richardson extrapolation and writes\n"
+                 "<deck>_study.csv (and <deck>_study.png) beside the deck; the runs go to <deck>_study/.",
+                 "igacontact study"};
+    std::string deck_path;
+    std::vector<std::string> overrides;
+    int n_levels = 3, jobs = 1;
+    bool quiet = false;
+    cli.add_option("deck", deck_path, "deck file (YAML)")->required();
+    cli.add_option("--levels", n_levels, "refinement levels 0..N-1 (level k halves every span k times)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 8));
+    cli.add_option("--jobs", jobs, "levels run at once, as far as the memory estimate allows")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 64));
+    cli.add_option("--set", overrides, "override a deck value, PATH=VALUE; repeatable")->allow_extra_args(false);
+    cli.add_flag("-q,--quiet", quiet, "print only the table and errors");
+    if (const int code = parse_command_line(cli, argc, argv); code >= 0)
+        return code;
+    if (comm.parallel())
+        throw UsageError(fmt::format("study under mpirun: each of the {} ranks would run every level and write the "
+                                     "same files. Run 'igacontact study' without mpirun",
+                                     comm.size()));
+    require_rereadable_deck(deck_path, fmt::format("the study and each of its {} level(s)", n_levels));
+
+    // Bad input is found here, before any level runs (exit 2).
+    const io::Deck deck = io::read_deck(deck_path, overrides);
+    if (deck.solver.backend == io::SolverBackend::petsc) {
+        try {
+            checked_environment_options();  // each level would refuse PETSC_OPTIONS alike, into its log
+        } catch (const PetscOptionsError& e) {
+            throw DeckError(e.environment_issue());
+        }
+    }
+    const fs::path deck_file(deck_path);
+    const fs::path folder = deck_file.parent_path();
+    const std::string stem = deck_file.stem().string();
+    const fs::path study_dir = folder / (stem + "_study");
+    const fs::path csv = folder / (stem + "_study.csv");
+    const fs::path png = folder / (stem + "_study.png");
+    check_study_paths(csv, png, study_dir, n_levels);
+
+    const double memory = analysis::machine_limits().memory_bytes;
+    const double budget = memory > 0 ? 0.5 * memory : 0.0;  // the estimate is a lower bound: keep half free
+    std::vector<Level> levels = planned_levels(deck, study_dir, n_levels);
+
+    const std::string exe = self_executable();
+    install_interrupt_handler();
+    auto say = [&](const std::string& line) {
+        if (!quiet)
+            std::cerr << line << '\n';
+    };
+    say(fmt::format("study: {} level(s) of {}, up to {} at once; runs in {}", n_levels, deck_path, jobs,
+                    study_dir.string()));
+
+    run_levels(levels, exe, deck_path, overrides, jobs, budget, say);
+
+    int formal_order = 0;
+    bool with_reference = false;
+    const std::vector<analysis::StudyLevel> completed = read_levels(levels, formal_order, with_reference);
     int n_failed = 0;
     for (const Level& l : levels)
         if (l.outcome != "completed")
@@ -473,32 +535,7 @@ int study_command(int argc, char** argv, const Communicator& comm)
                              formal_order);
     std::cout << "table: " << csv.string() << '\n';
 
-    // The plot: scripts/plot_study.py with Debian's python3 (numpy, matplotlib).
-    const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-    const auto script = plot_script();
-    auto plot_command = [&](const fs::path& target) {
-        return fmt::format("{} {} {} {}", python,
-                           script ? shell_quote(script->string()) : std::string("scripts/plot_study.py"),
-                           shell_quote(csv.string()), shell_quote(target.string()));
-    };
-    const std::string command = plot_command(png);
-    // Drawn beside it, then renamed over it: a png path hard-linked to the deck must
-    // not turn the deck into a picture.
-    const fs::path drawn = folder / fmt::format("{}_study.tmp-{}.png", stem, ::getpid());
-    bool plotted = script && std::system((plot_command(drawn) + " > /dev/null 2>&1").c_str()) == 0;
-    if (plotted) {
-        std::error_code renamed;
-        fs::rename(drawn, png, renamed);
-        plotted = !renamed;
-    }
-    if (std::error_code ignored; !plotted)
-        fs::remove(drawn, ignored);
-    if (plotted) {
-        std::cout << "plot: " << png.string() << '\n';
-    } else {
-        std::cerr << "warning: study: no plot written (needs python3 with matplotlib); draw it with:\n  " << command
-                  << '\n';
-    }
+    draw_plot(csv, png, folder / fmt::format("{}_study.tmp-{}.png", stem, ::getpid()));
     return n_failed == 0 ? exit_ok : exit_failed;
 }
 
