@@ -367,22 +367,32 @@ TEST(Cli, StandardOutputThatCannotBeWrittenIsAnError)
     }
 }
 
+/// Why the tests under mpirun cannot run here ("" when they can).
+std::string no_mpirun()
+{
+    if (std::system("command -v mpirun > /dev/null 2>&1") != 0)
+        return "no mpirun";
+    if (run_cli("--version", scratch_dir("mpirun_version")).out.find("petsc") == std::string::npos)
+        return "a build without MPI (PETSc)";
+    return "";
+}
+
+/// The prefix that runs a command on two ranks (as root too, shared memory only).
+const std::string two_ranks = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader "
+                              "timeout 60 mpirun -np 2 --oversubscribe ";
+
 // Issue 32: under mpirun, `check` and `compare` printed their listing and verdict once
 // per rank; rank 0 alone prints.
 TEST(Cli, CheckAndCompareUnderMpirunPrintOnce)
 {
-    if (std::system("command -v mpirun > /dev/null 2>&1") != 0)
-        GTEST_SKIP() << "no mpirun";
-    const CliResult version = run_cli("--version", scratch_dir("mpirun_version"));
-    if (version.out.find("petsc") == std::string::npos)
-        GTEST_SKIP() << "a build without MPI (PETSc)";
+    if (const std::string why = no_mpirun(); !why.empty())
+        GTEST_SKIP() << why;
     const auto dir = scratch_dir("mpirun_print_once");
     const fs::path run = dir / "run.h5";
     run_lame(run, dir);
     if (HasFatalFailure())
         return;
-    const std::string mpirun = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader "
-                               "mpirun -np 2 --oversubscribe ";
+    const std::string& mpirun = two_ranks;
     const CliResult check = run_cli_to(mpirun, "check " + shell_quote(lame_deck()), "", dir);
     EXPECT_EQ(check.exit_code, 0) << check.err;
     EXPECT_EQ(occurrences(check.out, "# resolved deck:"), 1u) << check.out;
@@ -428,14 +438,10 @@ TEST(Cli, AWriteTheFileSystemRefusesFailsCleanlyAndKeepsThePreviousFile)
 // and the others waiting; `mpirun ... study` ran a study on every rank. Both are refused.
 TEST(Cli, UnderMpirunADeckReadOnlyOnceAndAStudyAreRefused)
 {
-    if (std::system("command -v mpirun > /dev/null 2>&1") != 0)
-        GTEST_SKIP() << "no mpirun";
-    const CliResult version = run_cli("--version", scratch_dir("mpirun_version"));
-    if (version.out.find("petsc") == std::string::npos)
-        GTEST_SKIP() << "a build without MPI (PETSc)";
+    if (const std::string why = no_mpirun(); !why.empty())
+        GTEST_SKIP() << why;
     const auto dir = scratch_dir("mpirun_read_once");
-    const std::string mpirun = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl=self,vader "
-                               "timeout 60 mpirun -np 2 --oversubscribe ";
+    const std::string& mpirun = two_ranks;
     const std::string out = " -q -o " + shell_quote((dir / "r.h5").string());
     const fs::path err = dir / "err.txt";
     const int status = std::system(("cat " + shell_quote(lame_deck()) + " | " + mpirun + shell_quote(cli_path()) +
@@ -637,21 +643,6 @@ TEST(Cli, ThreadsBeyondTheMachineAreLoweredWithAWarning)
     EXPECT_LE(std::stoi(m[1].str()), static_cast<int>(std::max(1u, std::thread::hardware_concurrency()))) << line;
 }
 
-/// Runs the CLI with `arguments` under an address-space limit of `kilobytes` (ulimit -v).
-CliResult run_cli_limited(long kilobytes, const std::string& arguments, const fs::path& dir)
-{
-    const auto out = dir / "cli_stdout.txt", err = dir / "cli_stderr.txt";
-    const std::string command = "ulimit -v " + std::to_string(kilobytes) + " && " + shell_quote(cli_path()) + " " +
-                                arguments + " > " + shell_quote(out.string()) + " 2> " + shell_quote(err.string()) +
-                                " < /dev/null";
-    const int status = std::system(command.c_str());
-    CliResult result;
-    result.exit_code = status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    result.out = read_text(out);
-    result.err = read_text(err);
-    return result;
-}
-
 // Issue 32: under `ulimit -v` the size check compared with the machine's memory, and a
 // run then died of std::bad_alloc as an internal error (exit 3), or a factorization out
 // of memory was reported as a singular tangent. The size check uses the limit; a run
@@ -666,14 +657,16 @@ TEST(Cli, AMemoryLimitIsHeededAndRunningOutOfMemoryIsSaid)
     const std::string out = " -q -o " + shell_quote((dir / "r.h5").string());
     // Degree 3 x 4 x 3: estimated at about 2.9 GB, refused under a 1 GB limit by its key.
     constexpr long one_gigabyte = 1000000;
-    const CliResult big = run_cli_limited(one_gigabyte, sphere + out + " --set 'bodies.ball.refine.elevate=[1, 2, 1]'", dir);
+    const CliResult big = run_cli_to("ulimit -v " + std::to_string(one_gigabyte) + " && ",
+                                     sphere + out + " --set 'bodies.ball.refine.elevate=[1, 2, 1]'", "", dir);
     EXPECT_EQ(big.exit_code, 2) << big.err;
     EXPECT_NE(big.err.find("error: bodies.ball.refine."), std::string::npos) << big.err;
     EXPECT_NE(big.err.find("more than the address-space limit (ulimit -v)"), std::string::npos) << big.err;
     // The deck as it is (estimated at 0.67 GB, a lower bound) needs more than 0.8 GB:
     // it passes the check and runs out of memory in set-up or in the first factorization.
     constexpr long less_than_it_needs = 800000;
-    const CliResult short_of_memory = run_cli_limited(less_than_it_needs, sphere + out, dir);
+    const CliResult short_of_memory =
+        run_cli_to("ulimit -v " + std::to_string(less_than_it_needs) + " && ", sphere + out, "", dir);
     EXPECT_EQ(short_of_memory.exit_code, 1) << short_of_memory.err;
     EXPECT_NE(short_of_memory.err.find("out of memory (an allocation failed"), std::string::npos) << short_of_memory.err;
     EXPECT_EQ(short_of_memory.err.find("internal error"), std::string::npos) << short_of_memory.err;
