@@ -53,6 +53,16 @@ solver::NonlinearSystem SceneSystem::nonlinear_system()
     system.symmetric = !half_passes && !follower && !friction;
     if (comm_.parallel())
         system.sum_over_ranks = [this](Vector& v) { comm_.sum(v); };
+    system.prescribed_motion_between = [this](double t0, double t1) {
+        const Vector none = Vector::Zero(scene_.dofs->n_free());
+        double motion = (scene_.dofs->expand(none, t1) - scene_.dofs->expand(none, t0)).lpNorm<Eigen::Infinity>();
+        for (const PairModel& pair : scene_.pairs)
+            if (pair.obstacle >= 0) {
+                const auto& obstacle = std::get<contact::RigidObstacle>(pair.pair.surface(pair.obstacle));
+                motion = std::max(motion, (obstacle.shift(t1) - obstacle.shift(t0)).lpNorm<Eigen::Infinity>());
+            }
+        return motion;
+    };
     // A trust radius only where a singular first touch can send a step far away.
     system.max_step = scene_.has_contact() ? 0.05 * scene_.model_size : 0.0;
     const assembly::DofMap& dofs = *scene_.dofs;

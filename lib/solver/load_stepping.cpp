@@ -147,6 +147,7 @@ public:
 private:
     double next_target() const;
     void solve_increment(int index, Attempt& attempt);
+    double increment_trust_radius(const PredictionReport& prediction, double target) const;
     void outer_loop(Attempt& attempt);
     bool cut_back(int index, const Attempt& attempt, int& cutbacks);
     void restore_converged();
@@ -187,12 +188,40 @@ double LoadStepper::next_target() const
     return lambda_ + increment_ > stop - end_snap * path_.end ? stop : lambda_ + increment_;
 }
 
+/// The iterations a solve took until its residual was within the tolerance or within
+/// round_off_margin of its round-off floor (the header's step control): the iterations
+/// after that only polish round-off, and whether one is needed depends on the last bits
+/// (an MPI rank's sums): counted, they sized the next increment differently on 3 ranks.
+static int iterations_to_round_off_band(const NewtonReport& report, double tolerance)
+{
+    const std::vector<double>& r = report.residual_history;
+    const std::vector<double>& floor = report.floor_history;
+    for (std::size_t k = 0; k < r.size() && k < floor.size(); ++k)
+        if (r[k] <= std::max(tolerance, round_off_margin * floor[k]))
+            return std::min(static_cast<int>(k), report.iterations);
+    return report.iterations;
+}
+
+/// The trust radius of Newton in this attempt (the header's "Trust radius of an
+/// increment"): predicted_step_trust times the increment's own scale where the predictor
+/// solved the increment, the system's radius otherwise. u_ holds the predicted state.
+double LoadStepper::increment_trust_radius(const PredictionReport& prediction, double target) const
+{
+    if (!prediction.used || !(system_.max_step > 0))
+        return system_.max_step;
+    double scale = (u_ - u_converged_).lpNorm<Eigen::Infinity>();
+    if (system_.prescribed_motion_between)
+        scale = std::max(scale, system_.prescribed_motion_between(lambda_, target));
+    return scale > 0.0 ? std::min(system_.max_step, predicted_step_trust * scale) : system_.max_step;
+}
+
 /// Predicts the state at the target, solves it by Newton, then runs the outer loop.
 void LoadStepper::solve_increment(int index, Attempt& attempt)
 {
     PredictionReport prediction;
     u_ = predict(referenced_, stepping_.predictor, u_converged_, lambda_, attempt.target,
                  {u_previous_.size() > 0 ? &u_previous_ : nullptr, lambda_previous_}, solver_, context_, prediction);
+    referenced_.max_step = increment_trust_radius(prediction, attempt.target);
     if (!prediction.note.empty()) {
         ++result_.predictor_fallbacks;
         if (context_)
@@ -201,7 +230,7 @@ void LoadStepper::solve_increment(int index, Attempt& attempt)
     }
     attempt.report = solve_newton(referenced_, attempt.target, u_, newton_, solver_, context_);
     result_.total_iterations += attempt.report.iterations;
-    attempt.first_solve_iterations = attempt.report.iterations;
+    attempt.first_solve_iterations = iterations_to_round_off_band(attempt.report, newton_.tolerance);
     outer_loop(attempt);
 }
 

@@ -131,6 +131,10 @@ struct NonlinearSystem {
     /// a product K x is the sum of the ranks' products, which this sums in place.
     /// Empty on one process.
     std::function<void(Vector&)> sum_over_ranks;
+    /// The largest motion the load path prescribes between two load factors (constrained
+    /// dofs, moving obstacles), ||.||_inf; the load stepper sizes an increment's trust
+    /// radius with it (solver/load_stepping.hpp). May be empty (none).
+    std::function<double(double, double)> prescribed_motion_between;
 };
 
 struct NewtonSettings {

@@ -403,6 +403,63 @@ TEST(LoadStepping, PredictorSpreadsAPrescribedDisplacementIntoTheInterior)
     }
 }
 
+// r(u) = atan(u) - 1.4 lambda, prescribed-motion style: the linearized predictor from
+// u = 0 (tangent 1) predicts u = 1.4, where the residual is smaller than at the start,
+// and Newton's full step from there is 1.33 (the tangent is 1 / (1 + u^2) = 0.34). The
+// increment's trust radius caps every step of that attempt at 0.25 x 1.4 = 0.35 (the
+// predicted step, no motion prescribed); without a prediction the system's radius stands.
+TEST(LoadStepping, AnIncrementsTrustRadiusIsAQuarterOfItsPredictedStep)
+{
+    constexpr double load = 1.4;
+    std::vector<double> states;
+    NonlinearSystem system;
+    system.prescribed_motion = true;
+    system.max_step = 100.0;
+    system.evaluate = [&](const Vector& u, double lambda, bool need_tangent, Evaluation& out) {
+        states.push_back(u(0));
+        out.residual = Vector::Constant(1, std::atan(u(0)) - lambda * load);
+        out.force_scale = load;
+        if (need_tangent)
+            out.tangent = scalar_matrix(1.0 / (1.0 + u(0) * u(0)));
+    };
+    NewtonSettings newton;
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
+    SteppingCallbacks callbacks;
+    // The largest change between consecutive evaluated states from Newton's start on:
+    // the last evaluation of the predicted state (the predictor compares it with the
+    // unpredicted start first; on this path linear in lambda the prediction is exact).
+    auto largest_step_after_prediction = [&] {
+        std::size_t start = 0;
+        for (std::size_t k = 0; k < states.size(); ++k)
+            if (std::abs(states[k] - load) < 1e-12)
+                start = k;
+        double largest = 0.0;
+        for (std::size_t k = start + 1; k < states.size(); ++k)
+            largest = std::max(largest, std::abs(states[k] - states[k - 1]));
+        return largest;
+    };
+
+    SteppingSettings stepping;  // one increment, linearized predictor
+    Vector u = Vector::Zero(1);
+    const SteppingResult result = run_load_steps(system, u, stepping, newton, solver, callbacks, nullptr);
+    ASSERT_TRUE(result.completed) << result.message;
+    EXPECT_TRUE(test::near(u(0), std::tan(load), solution_tolerance));
+    const double radius = predicted_step_trust * load;
+    EXPECT_LE(largest_step_after_prediction(), radius * (1.0 + 1e-12));
+    EXPECT_GE(largest_step_after_prediction(), radius * (1.0 - 1e-12)) << "the cap was never reached";
+
+    states.clear();
+    SteppingSettings unpredicted;
+    unpredicted.predictor = Predictor::none;
+    u.setZero();
+    const SteppingResult plain = run_load_steps(system, u, unpredicted, newton, solver, callbacks, nullptr);
+    ASSERT_TRUE(plain.completed) << plain.message;
+    double largest = 0.0;
+    for (std::size_t k = 1; k < states.size(); ++k)
+        largest = std::max(largest, std::abs(states[k] - states[k - 1]));
+    EXPECT_GT(largest, 2.0 * radius) << "without a prediction the system's radius stands";
+}
+
 TEST(LoadStepping, InadmissiblePredictionIsScaledBack)
 {
     // Five increments of u_bar = -1.9 on the spring chain, extrapolating: from the
