@@ -14,6 +14,8 @@ namespace iga::analysis {
 namespace {
 
 /// The round-off of a pair's contact forces that |r_c| does not show (see the header).
+/// `penalty`: the normal and the tangential penalty summed (a sticking point's
+/// traction is eps_T times a difference of points of size |x|).
 double contact_gap_round_off(const contact::PairEvaluation& c, double penalty)
 {
     double sum2 = 0.0;
@@ -76,7 +78,9 @@ void ContactTerm::add_to(ModelAssembly& a)
             a.magnitude(model_.local_to_full[k]) += std::abs(c.residual(static_cast<Index>(k)));
         }
     a.contact_norm += c.residual.norm();
-    a.gap_round_off += contact_gap_round_off(c, model_.pair.settings().law.stiffness());
+    const contact::PairSettings& settings = model_.pair.settings();
+    a.gap_round_off += contact_gap_round_off(
+        c, settings.law.stiffness() + (settings.friction.active() ? settings.friction.tangential_penalty : 0.0));
     if (a.tangent)
         for (const contact::LocalBlock& block : c.tangent)
             a.add_block(model_.blocks.at(block.element), block.K);

@@ -13,7 +13,8 @@
 //
 // Round-off: the gap of an active Gauss point is a difference of coordinates of size
 // |x|, so its pressure carries an error of about eps_mach (|lambda| + eps |x|), and W
-// times that lands on the point's dofs; independent errors add in quadrature
+// times that lands on the point's dofs; with friction a sticking traction, eps_T times
+// such a difference, adds eps_mach eps_T |x|. Independent errors add in quadrature
 // (ModelAssembly::gap_round_off).
 
 #include "analysis/term.hpp"

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <mutex>
 
@@ -93,7 +94,9 @@ void add_symmetric_product(const SparseMatrix& A_upper, const Vector& u, Vector&
 }  // namespace
 
 ElasticTerm::ElasticTerm(const Scene& scene, RunContext& context, int requested_threads)
-    : scene_(scene), element_force_(static_cast<std::size_t>(scene.n_element_blocks))
+    : scene_(scene),
+      element_force_(static_cast<std::size_t>(scene.n_element_blocks)),
+      element_round_off_(static_cast<std::size_t>(scene.n_element_blocks))
 {
     std::int64_t work = 0;  // entries of all element tangents
     for (std::size_t b = 0; b < scene.bodies.size(); ++b)
@@ -186,6 +189,7 @@ void ElasticTerm::assemble_finite(const Vector& u_full, Vector& f_out, Vector& m
             stop.check();  // every block after a stop throws: for_each_block rethrows once all have returned
             const std::vector<int>& dofs = dofs_of(block);
             Vector& f = element_force_[static_cast<std::size_t>(block)];
+            Vector& round_off = element_round_off_[static_cast<std::size_t>(block)];
             const Matrix u_local = local_displacement(u_full, dofs, d);
             const mechanics::ElementResponse response =
                 mechanics::element_response(element_of(block), body_of(block).material, scene_.kinematics, u_local);
@@ -197,9 +201,15 @@ void ElasticTerm::assemble_finite(const Vector& u_full, Vector& f_out, Vector& m
                     failure = inadmissible_message(body_of(block).name, element_of(block), response, u_local);
                 }
                 f = Vector::Zero(static_cast<Index>(dofs.size()));
+                round_off = f;
                 return;
             }
             f = response.f_int;
+            Vector u_size(static_cast<Index>(dofs.size()));  // |u_e| in the order of K_e's columns
+            for (Index a = 0; a < u_local.rows(); ++a)
+                for (Index i = 0; i < d; ++i)
+                    u_size(a * d + i) = std::abs(u_local(a, i));
+            round_off = f.cwiseAbs() + response.K.cwiseAbs() * u_size;
             if (tangent)
                 pattern.add(block, response.K, *tangent);
         },
@@ -213,9 +223,10 @@ void ElasticTerm::assemble_finite(const Vector& u_full, Vector& f_out, Vector& m
             continue;
         const std::vector<int>& dofs = dofs_of(block);
         const Vector& f = element_force_[static_cast<std::size_t>(block)];
+        const Vector& round_off = element_round_off_[static_cast<std::size_t>(block)];
         for (std::size_t k = 0; k < dofs.size(); ++k) {
             f_out(dofs[k]) += f(static_cast<Index>(k));
-            magnitude(dofs[k]) += std::abs(f(static_cast<Index>(k)));
+            magnitude(dofs[k]) += round_off(static_cast<Index>(k));
         }
     }
 }

@@ -254,6 +254,8 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
             continue;
         const DeformableSide& surface = std::get<DeformableSide>(surfaces_[i]);
         reference_points_[static_cast<std::size_t>(i)] = surface.control_points();
+        trial_points_[static_cast<std::size_t>(i)] = committed_points_[static_cast<std::size_t>(i)] =
+            surface.control_points();
         for (const SidePiece& piece : surface.pieces) {
             const nurbs::Patch& patch = piece.side.patch;
             const std::vector<nurbs::Element> elements = patch.elements();
@@ -378,6 +380,7 @@ void ContactPair::adopt(PairState trial)
         IGA_CHECK(trial.carriers[c].size() == trial_[c].size(),
                   "contact: a pair adopts the state of its own evaluation");
     trial_ = std::move(trial.carriers);
+    trial_points_ = std::move(trial.points);
 }
 
 void ContactPair::commit()
@@ -388,6 +391,7 @@ void ContactPair::commit()
             if (point.status == StickSlip::open)
                 point.tangential_multiplier.setZero();
     committed_ = trial_;
+    committed_points_ = trial_points_;
 }
 
 FrictionState ContactPair::friction_state(const std::vector<ContactPointState>& points) const
@@ -608,6 +612,7 @@ PairEvaluation ContactPair::evaluate(const RowMatrix& disp_first, const RowMatri
         if (const auto* side = std::get_if<DeformableSide>(&surfaces_[i]))
             current[i] = current_points(*side, *disp[i]);
 
+    ev.trial.points = current;
     Sweep sweep{ev, current, need_tangent, load_factor,
                 KernelSettings{.law = settings_.law, .master_rows = false, .need_tangent = need_tangent},
                 {}, {}, {}, {}};
@@ -792,6 +797,7 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr,
         for (int g = 0; g < n_g; ++g) {
             points[g].friction = committed_[ci][g].friction;
             points[g].friction.anchored = false;
+            points[g].friction.open_gap = 0.0;
         }
     if (!may_touch)  // the slave side's hull misses every inflated master span box
         return true;
@@ -824,7 +830,8 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr,
         const MasterReference reference = friction ? master_reference(c.master, proj.basis) : MasterReference{};
         if (!settings_.law.active(foot.gap - kernel_settings.gap_offset, kernel_settings.multiplier)) {
             if (friction)
-                points[g].friction = open_history(committed_[ci][g].friction, reference);
+                points[g].friction = open_history(committed_[ci][g].friction, reference,
+                                                  foot.gap - kernel_settings.gap_offset);
             continue;
         }
         Vector dW;
@@ -838,9 +845,11 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr,
                               "minimum); try a stiffer contact law or smaller load steps");
         cr.pressure(g) = kr.pressure;
         if (friction) {
-            const TangentialResponse t = gpts_friction(kr, gp.N, W, foot, reference, settings_.friction,
-                                                       committed_[ci][g].friction, points[g].tangential_multiplier,
-                                                       kernel_settings, sweep.need_tangent ? dW : Vector());
+            const TangentialResponse t =
+                gpts_friction(kr, gp.N, W, foot, reference, settings_.friction, committed_[ci][g].friction,
+                              points[g].tangential_multiplier, kernel_settings, sweep.need_tangent ? dW : Vector(),
+                              committed_[ci][g].friction.anchored ? ConvergedPositions{}
+                                                                  : converged_positions(c, gp, proj.basis));
             points[g].record(t);
             ev.max_elastic_slip = std::max(ev.max_elastic_slip, t.elastic_slip);
         }
@@ -849,6 +858,19 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr,
         scatter(kr, c, gp, proj.basis.indices, proj.element, sweep);
     }
     return true;
+}
+
+ConvergedPositions ContactPair::converged_positions(const Carrier& c, const GaussPoint& gp,
+                                                   const nurbs::BasisValues& foot) const
+{
+    const RowMatrix& slave = committed_points_[static_cast<std::size_t>(c.slave)];
+    const RowMatrix& master = committed_points_[static_cast<std::size_t>(c.master)];
+    ConvergedPositions out{VecN::Zero(dim_), RowMatrix(static_cast<Index>(foot.indices.size()), dim_)};
+    for (std::size_t a = 0; a < gp.indices.size(); ++a)
+        out.slave += gp.N(static_cast<Index>(a)) * slave.row(gp.indices[a]).transpose();
+    for (std::size_t b = 0; b < foot.indices.size(); ++b)
+        out.master.row(static_cast<Index>(b)) = master.row(foot.indices[b]);
+    return out;
 }
 
 MasterReference ContactPair::master_reference(int master_surface, const nurbs::BasisValues& basis) const

@@ -227,6 +227,7 @@ struct ContactPointState {
 /// The per-point state of a pair: per carrier (PairEvaluation::carriers order), n_g points.
 struct PairState {
     std::vector<std::vector<ContactPointState>> carriers;
+    std::array<RowMatrix, 2> points;  ///< the control points of each deformable surface it was evaluated at
 };
 
 /// A coupling: element number on the first and second surface (-1 on a rigid obstacle).
@@ -296,7 +297,11 @@ public:
     /// points, multipliers, friction anchors and slip, and the tangential response.
     void commit();
     /// Returns to the state of the last commit() (after a cutback).
-    void rollback() { trial_ = committed_; }
+    void rollback()
+    {
+        trial_ = committed_;
+        trial_points_ = committed_points_;
+    }
     /// The friction state of carrier c at the last committed increment (what the
     /// results report; an evaluation after the commit measures slip from there).
     FrictionState converged_friction(int carrier) const;
@@ -361,6 +366,9 @@ private:
     using Foot = ContactPointState::Foot;
     std::vector<std::vector<ContactPointState>> committed_;  ///< per carrier, n_g
     std::vector<std::vector<ContactPointState>> trial_;      ///< in use: the last adopted evaluation's
+    /// The control points of each deformable surface in use and at the last commit (a
+    /// first touch measures its slide from the committed ones).
+    std::array<RowMatrix, 2> trial_points_, committed_points_;
     std::vector<Vector> initial_overlap_;       ///< per carrier, n_g: g_0 >= 0, released up to release_end_
     double release_end_ = 1.0;                  ///< load factor by which the initial overlap is released
     bool releasing_ = false;                    ///< release_overlap() called
@@ -395,6 +403,10 @@ private:
     void anchor_on_reference_masters();
     /// The reference geometry of a deformable master at a foot with basis `basis` (surface numbering).
     MasterReference master_reference(int master_surface, const nurbs::BasisValues& basis) const;
+    /// Where a slave Gauss point and the master control points of its foot's basis were
+    /// at the last commit (a first touch measures its slide from there).
+    ConvergedPositions converged_positions(const Carrier& c, const GaussPoint& gp,
+                                           const nurbs::BasisValues& foot) const;
     MasterView master_view(const DeformableSide& master, const RowMatrix& points, double distance) const;
     /// The nearest foot of x over the master's pieces (surface numbering); nullopt when
     /// no piece has a candidate element; `failed` when a projection failed.

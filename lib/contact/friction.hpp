@@ -52,10 +52,15 @@ enum class StickSlip : int { open = 0, stick = 1, slip = 2 };
 struct FrictionHistory {
     VecN anchor;           ///< the master-frame point the slave sticks to, d
     double slip = 0.0;     ///< accumulated slip length
-    bool anchored = true;  ///< false: no anchor yet (never touched a deformable master); it sticks where it touches
+    bool anchored = true;  ///< false: no anchor yet (open against a deformable master; gpts_friction.hpp, "First touch")
     /// It slipped in the increment that made this history, so its trial traction starts
     /// on the Coulomb cone: there (to round-off) it is read as slipping on, not sticking.
     bool slipping = false;
+    /// Not anchored, open, with a foot on a deformable master: its gap g_N < 0 (a
+    /// separation; g_N > 0 is penetration) at the converged state. The increment in
+    /// which it first presses takes from it when the gap closed (gpts_friction.hpp).
+    /// 0: none known.
+    double open_gap = 0.0;
 };
 
 /// The tangential response at one Gauss point.

@@ -25,11 +25,30 @@
 // with F_s Lambda = lambda_T: it shifts the anchor, c = M^-1 G^T (A + Lambda / eps_T - Xbar),
 // and changes nothing else above (Lambda is fixed within Newton). An Uzawa update adopts
 // Lambda <- G m^-1 a^T t_T (frame_traction), and a slipping anchor then reproduces t_T
-// with Lambda kept: A = Xbar + (G m^-1 a^T t_T - Lambda) / eps_T. An open point has no anchor: where
-// it will touch is not its foot while open (on a curved master the closest point moves
-// as the gap closes, and anchoring there would load two identical cylinders pressed
-// together with tangential tractions). In the increment in which it first presses it
-// sticks without traction, and is anchored where it touches when that increment converges.
+// with Lambda kept: A = Xbar + (G m^-1 a^T t_T - Lambda) / eps_T.
+//
+// First touch. An open point has no anchor: its foot while open is not where it will
+// touch (on a curved master the closest point moves as the gap closes, and anchoring
+// there would load two identical cylinders pressed together with tangential
+// tractions). It keeps its converged gap g_n < 0, and in the increment in which it
+// first presses (g > 0) it carries the traction of its slide since touching: the
+// increment taken as linear, the gap closed at theta = g_n / (g_n - g), and the slide
+// since is (1 - theta) of the increment's tangential relative motion of the slave
+// point and the master's MATERIAL point under its foot. With y_n and X_n(xi) the
+// converged positions of the slave point and of the master surface, and
+// P (y - x_m(xibar)) = 0 at the foot, that motion is P (X_n(xibar) - y_n), and the
+// traction opposes it (as s = -eps_T P (y - anchor) against an obstacle):
+//
+//   s = eps_T (1 - theta) P w,   w = y_n - X_n(xibar).
+//
+// Identical cylinders pressed together move their facing material points apart only
+// along the normal, so they take none; a die's leading edge, sliding over the points
+// it presses in every increment, gives them their traction at once (without it they
+// carried none, and the die's friction force dipped with their number). The point is
+// then anchored where its traction is reproduced, as after a slip. A point with no
+// converged gap (it came from out of reach) sticks without traction in the increment
+// it touches, anchored where it touches. The linearization is touch_trial's
+// (gpts_friction.cpp).
 
 #include "contact/friction.hpp"
 #include "contact/gpts_kernel.hpp"
@@ -45,20 +64,30 @@ struct MasterReference {
     Matrix second;   ///< d x q(q+1)/2
 };
 
+/// The converged positions a first touch measures its slide from: the slave point y_n
+/// (d) and the master's control points of the foot's basis (n_m x d, in its order).
+/// Empty: not known (the point sticks where it touches).
+struct ConvergedPositions {
+    VecN slave;
+    RowMatrix master;
+};
+
 /// Adds the tangential traction of a slave Gauss point against a deformable
 /// master foot (gpts_kernel's `master`, with `second` filled) to `result`, the
 /// normal kernel's result at the same point (its pressure is used); rows as
 /// settings.master_rows, dW as in gpts_kernel; `multiplier` is the tangential
 /// multiplier Lambda (d, master reference space; zeros for the penalty law). Returns
-/// the response (status, traction, slip increment, the history to commit).
+/// the response (status, traction, slip increment, the history to commit). `before`:
+/// the converged positions, used at a first touch.
 TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W, const MasterFoot& master,
                                  const MasterReference& reference, const FrictionLaw& law,
                                  const FrictionHistory& committed, const VecN& multiplier,
-                                 const KernelSettings& settings, const Vector& dW = Vector());
+                                 const KernelSettings& settings, const Vector& dW = Vector(),
+                                 const ConvergedPositions& before = {});
 
-/// The history of a point that does not press (open): no anchor; it will stick
-/// where it touches (its slip is kept).
-FrictionHistory open_history(const FrictionHistory& committed, const MasterReference& reference);
+/// The history of a point that does not press (open) at effective gap g_N <= 0: no
+/// anchor, its foot and gap kept for the increment in which it touches (its slip is kept).
+FrictionHistory open_history(const FrictionHistory& committed, const MasterReference& reference, double gap);
 
 /// Adds a slave Gauss point's tangential traction (basis N, fixed weight W) to a
 /// rigid-obstacle kernel result: r_a -= W N_a t_T and K_ab -= W N_a N_b dt_T/dy

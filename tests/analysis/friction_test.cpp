@@ -564,8 +564,8 @@ ContactZone contact_zone(const Results& results, const std::string& side, double
     std::sort(pressed.begin(), pressed.end());
     z.half_width = 0.5 * (pressed.back().first - pressed.front().first);
     // The stick zone of the theory is the central one: the run of sticking points around
-    // the middle. A point at the edge that has just come into contact sticks where it
-    // first pressed (with no traction yet) but is not part of it.
+    // the middle. A point at the edge that has just come into contact may stick (with
+    // the traction of its slide since touching) but is not part of it.
     const double middle = 0.5 * (pressed.back().first + pressed.front().first);
     std::size_t centre = 0;
     for (std::size_t k = 1; k < pressed.size(); ++k)

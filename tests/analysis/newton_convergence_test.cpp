@@ -45,6 +45,26 @@ TEST(NewtonConvergence, SoftPenaltyDeckCompletesAtItsRoundOffFloor)
     EXPECT_LT(top, 0.0) << "the top is pushed down: its reaction points down";
 }
 
+// A finite-strain block carried 1000 sideways and pulled by 1e-3 at its top: its F is
+// computed from displacements of 1000, so its residual stagnates near 5e-7 of the
+// pull. The floor estimate counts that cancellation (|K_e| |u_e| per element): the
+// run completes. Without it the estimate was 1e9 times too small and the run failed
+// after 8 cutbacks. The base's reaction balances the pull to the accepted residual,
+// <= round_off_margin x floor ~ 6e-5 of the force.
+TEST(NewtonConvergence, ABodyCarriedFarCompletesAtItsRoundOffFloor)
+{
+    const auto dir = scratch_dir("block_carried_far");
+    const analysis::RunOutcome outcome =
+        run_deck(source_path("tests/analysis/decks/block_carried_far_2d.yaml"), {}, dir / "run.h5");
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    const auto base = std::find_if(outcome.reactions.begin(), outcome.reactions.end(),
+                                   [](const io::Reaction& r) { return r.name == "block.v0"; });
+    ASSERT_NE(base, outcome.reactions.end());
+    constexpr double pull = 1e-3;                 // traction 1e-3 over a top of length 1
+    constexpr double balance_tolerance = 1e-4;    // above the accepted residual, 10 x floor ~ 6e-5
+    EXPECT_NEAR(base->force[1], -pull, balance_tolerance * pull);
+}
+
 // The extreme penalty (eps = 1e12 E) without line search or cutbacks: the full
 // first step dives deep into the plane and the residual grows 1e10-fold. The
 // message says so, and does not blame round-off, which the history does not show.

@@ -67,6 +67,10 @@ struct Scene {
     double W0 = 0.7;
     Vector dW;             ///< W = W0 + dW . u_slave (a stand-in for the current area element); empty: fixed
     bool master_rows = false;
+    /// A first touch: the converged slave point y_n and master control points (all of
+    /// them, fixed under the perturbation); empty otherwise.
+    VecN slave_before;
+    RowMatrix master_before;
 };
 
 /// The residual over [all slave cps ; all master cps] (and the tangent), with the
@@ -111,8 +115,15 @@ Evaluation evaluate(const Scene& s, const FrictionHistory& committed, const Vect
         .law = NormalLaw::penalty(normal_penalty), .master_rows = s.master_rows, .need_tangent = need_tangent};
     KernelResult kr = gpts_kernel(s.N, W, foot, settings, need_tangent ? s.dW : Vector());
     Evaluation out;
+    ConvergedPositions before;
+    if (s.master_before.size() > 0) {
+        before.slave = s.slave_before;
+        before.master.resize(static_cast<Index>(proj.basis.indices.size()), d);
+        for (std::size_t b = 0; b < proj.basis.indices.size(); ++b)
+            before.master.row(static_cast<Index>(b)) = s.master_before.row(proj.basis.indices[b]);
+    }
     out.response = gpts_friction(kr, s.N, W, foot, reference, {coefficient, tangential_penalty}, committed,
-                                 multiplier, settings, need_tangent ? s.dW : Vector());
+                                 multiplier, settings, need_tangent ? s.dW : Vector(), before);
     out.foot_xi = proj.xi;
     out.reference_foot = reference.point;
     // Kernel numbering [slave ; the foot's master basis] -> [all slave ; all master].
@@ -217,11 +228,69 @@ Case make_case(int d, double slide, bool half_pass)
     return out;
 }
 
-/// `multiplier`: the tangential multiplier Lambda (empty: none).
-void expect_tangent_is_derivative(int d, double slide, bool half_pass, StickSlip expected,
-                                  const VecN& multiplier = VecN())
+/// A first touch: the point was open at the converged state, at gap -2 depth, so it
+/// touched at theta = 2/3 of the increment. The master was elsewhere then: 3 `slide`
+/// back along the surface and a little bent (1e-3, so that its converged shape differs
+/// from the current one), and the slave point 2 depth out along the current normal
+/// from where it is: relative to the master it slid (1 - theta) P (X_n(xibar) - y_n)
+/// since touching, about -3 (1 - theta) slide along the surface.
+constexpr double touch_gap = -2.0 * depth;
+constexpr double touch_theta = touch_gap / (touch_gap - depth);
+
+/// The outward normal of the case's current master at xi.
+VecN current_normal(const Scene& s, const VecN& xi)
 {
-    const Case st = make_case(d, slide, half_pass);
+    const nurbs::Patch current = s.master.with_control_points(s.master.control_points() + s.master_disp);
+    const nurbs::PointDerivatives at = nurbs::combine(nurbs::rational_basis(current, xi, 1), current.control_points());
+    const Index d = xi.size() + 1;
+    VecN normal(d);
+    if (d == 2)
+        normal << -at.dx(1, 0), at.dx(0, 0);
+    else
+        normal = Eigen::Vector3d(at.dx.col(0)).cross(Eigen::Vector3d(at.dx.col(1)));
+    return normal.normalized();
+}
+
+/// The direction the master slides in touching(), projected on the plane normal to n.
+Vector master_slide(Index d, const VecN& normal)
+{
+    Vector along = Vector::Zero(d);
+    along(0) = 1.0;
+    if (d == 3)
+        along(1) = -0.6;
+    const Vector n = normal;
+    return along - n.dot(along) * n;
+}
+
+Case touching(Case st, double slide)
+{
+    Scene& s = st.scene;
+    const Index d = s.slave.cols();
+    st.anchor.anchored = false;
+    st.anchor.open_gap = touch_gap;
+    VecN along = VecN::Zero(d);
+    along(0) = 1.0;
+    if (d == 3)
+        along(1) = -0.6;
+    s.master_before = s.master.control_points() + s.master_disp;
+    for (Index b = 0; b < s.master_before.rows(); ++b)
+        for (Index i = 0; i < d; ++i)
+            s.master_before(b, i) += -3.0 * slide * along(i) + 1e-3 * std::sin(1.7 * static_cast<double>(b + 2 * i));
+    VecN x = VecN::Zero(d);
+    for (Index a = 0; a < s.N.size(); ++a)
+        x += s.N(a) * s.slave.row(a).transpose();
+    VecN xi = VecN::Constant(d - 1, 0.45);
+    if (d == 3)
+        xi(1) = 0.55;
+    s.slave_before = x + 2.0 * depth * current_normal(s, xi);
+    return st;
+}
+
+/// `multiplier`: the tangential multiplier Lambda (empty: none); `touch`: a first touch.
+void expect_tangent_is_derivative(int d, double slide, bool half_pass, StickSlip expected,
+                                  const VecN& multiplier = VecN(), bool touch = false)
+{
+    const Case st = touch ? touching(make_case(d, slide, half_pass), slide) : make_case(d, slide, half_pass);
     const Index n = (st.scene.slave.rows() + st.scene.master.n_control_points()) * d;
     const Vector u0 = Vector::Zero(n);
     const Evaluation ev = evaluate(st.scene, st.anchor, u0, true, multiplier);
@@ -340,7 +409,74 @@ TEST(GptsFriction, ARigidTranslationOfBothBodiesKeepsTheTraction)
     }
 }
 
-TEST(GptsFriction, AFirstTouchSticksWithoutTraction)
+// A first touch carries (1 - theta) of the increment's tangential relative motion: its
+// tangent, with theta moving with the gap, the normal turning and the master's
+// converged point following the foot, against central differences. The master moved
+// 3 slide along the surface: |s| ~ 1 (stick_slide) and ~ 15 (slip_slide) against mu p = 8.
+TEST(GptsFriction, ATouchingPointsTangentIsDerivative)
+{
+    for (const int d : {2, 3})
+        for (const bool half_pass : {true, false}) {
+            SCOPED_TRACE(std::to_string(d) + (half_pass ? "D half pass" : "D single pass"));
+            expect_tangent_is_derivative(d, stick_slide, half_pass, StickSlip::stick, VecN(), true);
+            expect_tangent_is_derivative(d, slip_slide, half_pass, StickSlip::slip, VecN(), true);
+        }
+}
+
+// The increment a point first presses in: it carries eps_T (1 - theta) P (y_n - X_n(xibar)),
+// the traction that opposes its slide since touching (the master slid 3 slide along the
+// surface under it, so it is dragged along), and is anchored where that traction is
+// reproduced. Round-off of O(1) products.
+TEST(GptsFriction, ATouchingPointCarriesTheTractionOfItsSlideSinceTouching)
+{
+    constexpr double round_off = 1e-12;
+    for (const int d : {2, 3}) {
+        SCOPED_TRACE(d);
+        const Case st = touching(make_case(d, stick_slide, true), stick_slide);
+        const Index n = (st.scene.slave.rows() + st.scene.master.n_control_points()) * d;
+        const Evaluation touch = evaluate(st.scene, st.anchor, Vector::Zero(n), false);
+        ASSERT_EQ(touch.response.status, StickSlip::stick);
+        // The expected traction from the converged positions at the foot's parameters.
+        const VecN X_n = nurbs::combine(nurbs::rational_basis(st.scene.master, touch.foot_xi, 0),
+                                        st.scene.master_before).x;
+        const VecN normal = current_normal(st.scene, touch.foot_xi);
+        const VecN w = st.scene.slave_before - X_n;
+        const VecN expected = tangential_penalty * (1.0 - touch_theta) * (w - normal.dot(w) * normal);
+        EXPECT_GT(expected.norm(), 0.5);
+        const Vector slid = master_slide(d, normal);
+        EXPECT_GT(touch.response.traction.dot(slid), 0.5 * touch.response.traction.norm() * slid.norm())
+            << "the traction does not drag the slave along with the master";
+        EXPECT_LE((touch.response.traction - expected).norm(), 1e-9 * expected.norm());
+        EXPECT_TRUE(touch.response.next.anchored);
+        const Evaluation anchored = evaluate(st.scene, touch.response.next, Vector::Zero(n), false);
+        EXPECT_LE((anchored.response.traction - touch.response.traction).norm(),
+                  round_off * touch.response.traction.norm());
+    }
+}
+
+// Two surfaces that approached along the normal only (the slave point straight above the
+// master's material point under it, neither slid) take no traction at their first touch:
+// identical bodies pressed together stay free of tangential traction.
+TEST(GptsFriction, ATouchAlongTheNormalCarriesNoTraction)
+{
+    for (const int d : {2, 3}) {
+        SCOPED_TRACE(d);
+        Case st = touching(make_case(d, stick_slide, true), 0.0);
+        const Index n = (st.scene.slave.rows() + st.scene.master.n_control_points()) * d;
+        st.scene.master_before = st.scene.master.control_points() + st.scene.master_disp;  // the master stayed
+        const Evaluation first = evaluate(st.scene, st.anchor, Vector::Zero(n), false);
+        const nurbs::Patch current = st.scene.master.with_control_points(st.scene.master_before);
+        const VecN foot = nurbs::combine(nurbs::rational_basis(current, first.foot_xi, 0), current.control_points()).x;
+        st.scene.slave_before = foot + 3.0 * depth * current_normal(st.scene, first.foot_xi);  // straight down the normal
+        const Evaluation touch = evaluate(st.scene, st.anchor, Vector::Zero(n), false);
+        EXPECT_EQ(touch.response.status, StickSlip::stick);
+        EXPECT_LE(touch.response.traction.norm(), 1e-9 * coefficient * normal_penalty * depth);
+    }
+}
+
+// Without a converged gap (it came from out of reach) it sticks where it touches, with
+// no traction in that increment.
+TEST(GptsFriction, AFirstTouchWithoutAFootSticksWithoutTraction)
 {
     Case st = make_case(2, slip_slide, true);
     st.anchor.anchored = false;
