@@ -99,7 +99,8 @@ PlacedPointContact two_spheres(const Scene& scene, const PairModel& model, const
         for (const VecN& x : face_samples(pa.side.patch, 4))
             for (const contact::SidePiece& pb : b->pieces) {
                 const contact::Projection p = contact::project_to_surface(pb.side.patch, pb.outward_sign, x);
-                if (p.status == contact::Projection::Status::failed || !(p.distance < best))
+                if (p.status == contact::Projection::Status::failed ||
+                    p.status == contact::Projection::Status::unsettled || !(p.distance < best))
                     continue;
                 best = p.distance;
                 out.center = 0.5 * (x + p.point);

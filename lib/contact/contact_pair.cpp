@@ -817,6 +817,20 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr,
         const Projection& proj = *best;
         points[g].foot = Foot{proj.xi, proj.element};
         cr.gap(g) = proj.gap;
+        if (proj.status == Projection::Status::unsettled) {
+            // Newton did not settle (near a collapsed pole), but the nearest point it found
+            // is clearly open: no force can depend on where exactly the foot is.
+            const NormalLaw::Shifted& law = law_input[static_cast<std::size_t>(g)];
+            if (settings_.law.active(proj.gap - law.gap_offset + unsettled_margin * view.size, law.multiplier))
+                return sweep.fail("contact: closest-point projection failed at " +
+                                  describe_point(c.slave, g, gp.xi, x));
+            cr.state[g] = PointState::ok;
+            if (friction)
+                points[g].friction = open_history(committed_[ci][g].friction,
+                                                  master_reference(c.master, proj.basis),
+                                                  proj.gap - law.gap_offset);
+            continue;
+        }
         if (proj.status != Projection::Status::ok) {
             cr.state[g] = proj.status == Projection::Status::off_end ? PointState::off_end : PointState::at_kink;
             continue;

@@ -114,6 +114,11 @@ inline constexpr double auto_search_fraction = 0.1;
 /// law's clearance c0) widens the search margin to at least this many times its reach,
 /// so that no point the law presses is pruned, with room for a step's motion.
 inline constexpr double search_reach_factor = 4.0;
+/// A projection that did not settle (Projection::Status::unsettled) is taken as open
+/// only where the law stays inactive with its gap this fraction of the master's size
+/// nearer: above the distance by which the nearest point found may miss the surface's
+/// nearest (2.2e-4 of a size of 1.4 near a shell's pole, tests/contact/projection_test.cpp).
+inline constexpr double unsettled_margin = 1e-3;
 
 using iga::Formulation;  // core/model_options.hpp
 

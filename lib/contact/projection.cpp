@@ -651,6 +651,7 @@ Projection project_to_surface(const nurbs::Patch& surface, int outward_sign, con
 
     int total_iterations = 0;
     std::optional<RegionResult> best;
+    std::optional<RegionResult> unsettled;  // the nearest finite point of a Newton that did not settle
     for (int region = 0; region < n_regions; ++region) {
         if (region_elements[region].empty())
             continue;
@@ -668,8 +669,10 @@ Projection project_to_surface(const nurbs::Patch& surface, int outward_sign, con
             RegionResult r = newton_in_region(surface, layout, region, x, sample_start, options, surface_size);
             total_iterations += r.iterations;
             if (!r.finite || !(r.converged || r.clamped)) {
+                if (r.finite && (!unsettled || r.distance < unsettled->distance))
+                    unsettled = std::move(r);
                 if (!result)
-                    return failed_projection(d, total_iterations, n_candidates);
+                    continue;  // another region may hold the foot
             } else if (!result || is_better(r, *result, surface_size)) {
                 result = std::move(r);
             }
@@ -677,6 +680,9 @@ Projection project_to_surface(const nurbs::Patch& surface, int outward_sign, con
         if (!best || is_better(*result, *best, surface_size))
             best = std::move(result);
     }
+    const bool settled = best.has_value();
+    if (!settled)
+        best = std::move(unsettled);
     if (!best)
         return failed_projection(d, total_iterations, n_candidates);
 
@@ -709,7 +715,9 @@ Projection project_to_surface(const nurbs::Patch& surface, int outward_sign, con
     p.iterations = total_iterations;
     p.candidates = n_candidates;
     p.basis = std::move(best->sample.basis);
-    if (best->converged)
+    if (!settled)
+        p.status = Projection::Status::unsettled;
+    else if (best->converged)
         p.status = Projection::Status::ok;
     else if (best->at_patch_end)
         p.status = Projection::Status::off_end;

@@ -85,6 +85,12 @@ struct Projection {
         off_end,  ///< nearest point on the patch boundary, gap vector not along the normal: inactive
         at_kink,  ///< nearest point on an interior C0 crease, x in the normal fan: inactive
         failed,   ///< no convergence or non-finite/degenerate data: a numerical failure of the step
+        /// Newton did not settle in any region (near a collapsed edge the parametrization
+        /// is singular and its steps can swing between two azimuths), but found finite
+        /// points: the nearest of them is reported, not necessarily the surface's nearest.
+        /// The caller may take the point as open where its gap is clearly open (with a
+        /// margin for that); elsewhere it is a failure.
+        unsettled,
     };
     Status status = Status::failed;
     VecN xi;            ///< d-1 parameters of the foot point
