@@ -25,6 +25,13 @@
 //   B^T D B per Gauss point (element_response)   656 us
 //   gradient moments (small_strain_stiffness)     68 us   (9.7x; the flop count says ~7x)
 // The moments are what assembles K0 once per small-kinematics run.
+//
+// element_response_finite_3d: the same element under finite kinematics, with and
+// without the tangent (a line-search probe forms no K_e; its round-off floor comes from
+// the cancellation bound, mechanics/element.hpp). Measured 2026-11-28 on the same
+// machine (an igacontact run on the other core), median of 3:
+//   with the tangent (a Newton iterate)           407 us
+//   force only (a line-search or predictor probe) 105 us   (3.9x less)
 
 #include "analysis/scene.hpp"
 #include "analysis/system.hpp"
@@ -104,5 +111,27 @@ void element_stiffness_3d(benchmark::State& state, bool moments)
 }
 BENCHMARK_CAPTURE(element_stiffness_3d, b_transpose_d_b, false)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(element_stiffness_3d, gradient_moments, true)->Unit(benchmark::kMicrosecond);
+
+/// One finite-strain response of the same element at a small non-zero displacement, with
+/// the tangent (a Newton iterate) and without it (a line-search probe: f_int and the
+/// round-off's cancellation bound, no K_e).
+void element_response_finite_3d(benchmark::State& state, bool need_tangent)
+{
+    const io::Deck deck = io::read_deck(std::string(IGA_SOURCE_DIR) + "/inputs/hertz_sphere_plane_3d.yaml");
+    const analysis::Scene scene = analysis::build_scene(deck);
+    const analysis::BodyModel& body = scene.bodies.front();
+    const mechanics::ElementGeometry& element = body.elements.front();
+    Matrix u(element.n_local(), element.dim);
+    for (Index a = 0; a < u.rows(); ++a)
+        for (Index i = 0; i < u.cols(); ++i)
+            u(a, i) = 1e-3 * std::sin(0.37 * static_cast<double>(a * u.cols() + i));
+    for (auto _ : state) {
+        const mechanics::ElementResponse r =
+            mechanics::element_response(element, body.material, mechanics::Kinematics::finite, u, need_tangent);
+        benchmark::DoNotOptimize(r.f_int.data());
+    }
+}
+BENCHMARK_CAPTURE(element_response_finite_3d, with_tangent, true)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(element_response_finite_3d, force_only, false)->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -192,7 +192,8 @@ void ElasticTerm::assemble_finite(const Vector& u_full, Vector& f_out, Vector& m
             Vector& round_off = element_round_off_[static_cast<std::size_t>(block)];
             const Matrix u_local = local_displacement(u_full, dofs, d);
             const mechanics::ElementResponse response =
-                mechanics::element_response(element_of(block), body_of(block).material, scene_.kinematics, u_local);
+                mechanics::element_response(element_of(block), body_of(block).material, scene_.kinematics, u_local,
+                                            tangent != nullptr);
             if (response.status != mechanics::ResponseStatus::ok || !response.f_int.allFinite()) {
                 failed.store(true);
                 std::lock_guard<std::mutex> lock(message_mutex);
@@ -205,11 +206,7 @@ void ElasticTerm::assemble_finite(const Vector& u_full, Vector& f_out, Vector& m
                 return;
             }
             f = response.f_int;
-            Vector u_size(static_cast<Index>(dofs.size()));  // |u_e| in the order of K_e's columns
-            for (Index a = 0; a < u_local.rows(); ++a)
-                for (Index i = 0; i < d; ++i)
-                    u_size(a * d + i) = std::abs(u_local(a, i));
-            round_off = f.cwiseAbs() + response.K.cwiseAbs() * u_size;
+            round_off = f.cwiseAbs() + response.cancellation;
             if (tangent)
                 pattern.add(block, response.K, *tangent);
         },

@@ -11,9 +11,10 @@
 // chooses the count: requested, or automatic from the element work) and scatters them.
 //
 // Round-off: per dof |K0| |u| (small kinematics, where a rigid motion cancels K0 u but
-// not its round-off), or |f_e| + |K_e| |u_e| per element (finite: F = I + grad u loses
-// eps |u| to the same cancellation where an element has travelled far, as a slid die
-// has), goes into the magnitudes.
+// not its round-off), or |f_e| + (a bound of |K_e| |u_e|) per element (finite: F = I +
+// grad u loses eps |u| to the same cancellation where an element has travelled far, as a
+// slid die has; ElementResponse::cancellation, formed without K_e, so that an evaluation
+// without the tangent forms no K_e), goes into the magnitudes.
 // A failed element evaluation (det F <= 0, a material that cannot be evaluated) is a
 // numerical failure naming the body, the parameter and the point (the lowest failed
 // block, so the message does not depend on the threads).
@@ -66,7 +67,7 @@ private:
     int library_threads_ = 1;
     std::optional<SparseMatrix> full_stiffness_;  // small kinematics: K0 over all dofs, upper triangle
     std::vector<Vector> element_force_;           // finite kinematics: f_int per block (reused storage)
-    std::vector<Vector> element_round_off_;       // finite kinematics: |f_e| + |K_e| |u_e| per block
+    std::vector<Vector> element_round_off_;       // finite kinematics: |f_e| + cancellation bound per block
 };
 
 }  // namespace iga::analysis

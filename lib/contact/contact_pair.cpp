@@ -817,37 +817,30 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr,
         const Projection& proj = *best;
         points[g].foot = Foot{proj.xi, proj.element};
         cr.gap(g) = proj.gap;
-        if (proj.status == Projection::Status::unsettled) {
-            // Newton did not settle (near a collapsed pole), but the nearest point it found
-            // is clearly open: no force can depend on where exactly the foot is.
-            const NormalLaw::Shifted& law = law_input[static_cast<std::size_t>(g)];
-            if (settings_.law.active(proj.gap - law.gap_offset + unsettled_margin * view.size, law.multiplier))
-                return sweep.fail("contact: closest-point projection failed at " +
-                                  describe_point(c.slave, g, gp.xi, x));
-            cr.state[g] = PointState::ok;
-            if (friction)
-                points[g].friction = open_history(committed_[ci][g].friction,
-                                                  master_reference(c.master, proj.basis),
-                                                  proj.gap - law.gap_offset);
-            continue;
-        }
-        if (proj.status != Projection::Status::ok) {
+        const bool unsettled = proj.status == Projection::Status::unsettled;
+        if (proj.status != Projection::Status::ok && !unsettled) {
             cr.state[g] = proj.status == Projection::Status::off_end ? PointState::off_end : PointState::at_kink;
             continue;
         }
-        const MasterFoot foot = master_foot(proj);
         cr.state[g] = PointState::ok;
         // Active where the law presses (p > 0): with a multiplier or the exponential law,
-        // also at an open gap.
+        // also at an open gap. An unsettled foot (Newton did not settle, near a collapsed
+        // pole) is only the nearest point found: it stands for an open point if the point
+        // stays open with the gap unsettled_margin of the master's size nearer, else the
+        // projection has failed (no force may depend on where exactly that foot is).
         kernel_settings.multiplier = law_input[static_cast<std::size_t>(g)].multiplier;
         kernel_settings.gap_offset = law_input[static_cast<std::size_t>(g)].gap_offset;
+        const double margin = unsettled ? unsettled_margin * view.size : 0.0;
         const MasterReference reference = friction ? master_reference(c.master, proj.basis) : MasterReference{};
-        if (!settings_.law.active(foot.gap - kernel_settings.gap_offset, kernel_settings.multiplier)) {
+        if (!settings_.law.active(proj.gap - kernel_settings.gap_offset + margin, kernel_settings.multiplier)) {
             if (friction)
                 points[g].friction = open_history(committed_[ci][g].friction, reference,
-                                                  foot.gap - kernel_settings.gap_offset);
+                                                  proj.gap - kernel_settings.gap_offset);
             continue;
         }
+        if (unsettled)
+            return sweep.fail("contact: closest-point projection failed at " + describe_point(c.slave, g, gp.xi, x));
+        const MasterFoot foot = master_foot(proj);
         Vector dW;
         double W = gp.weight;
         if (c.current_measure)

@@ -32,7 +32,10 @@ namespace iga::mechanics {
 
 struct ElementResponse {
     Vector f_int;    ///< n_local*d
-    Matrix K;        ///< (n_local*d) x (n_local*d)
+    Matrix K;        ///< (n_local*d) x (n_local*d); empty when the tangent was not asked for
+    /// An entrywise upper bound of |K| |u_e| (n_local*d), formed without K (see below):
+    /// the size of the round-off f_int carries where F = I + grad u loses eps |grad u|.
+    Vector cancellation;
     double energy = 0.0;
     ResponseStatus status = ResponseStatus::ok;
     int failed_point = -1;  ///< index into geometry.points of the first failed Gauss point, -1 if none
@@ -45,7 +48,14 @@ MatN displacement_gradient(const QuadraturePoint& point, const Matrix& u_local);
 /// Displacement sum_a R_a u_a (d) at a Gauss point.
 VecN point_displacement(const QuadraturePoint& point, const Matrix& u_local);
 
+/// f_int, the energy, the cancellation bound and, with need_tangent, K.
+///
+/// The cancellation bound sums, per Gauss point, |B_F|^T |C| |B_F| |u_e| (material part) and
+/// |dR| |S| |dR|^T |u_e| on each component (geometric part): by the triangle inequality an
+/// entrywise bound of |K| |u_e|, at the cost of matrix-vector products instead of K's
+/// (n_local d)^2 entries, so that a residual-only evaluation (a line-search probe) needs
+/// no K and still knows its round-off. Small kinematics: the same with F = I.
 ElementResponse element_response(const ElementGeometry& geometry, const Material& material, Kinematics kinematics,
-                                 const Matrix& u_local);
+                                 const Matrix& u_local, bool need_tangent = true);
 
 }  // namespace iga::mechanics

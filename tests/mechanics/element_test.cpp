@@ -143,6 +143,36 @@ TEST(Element, RigidRotationGivesNoInternalForce)
     }
 }
 
+TEST(Element, TheCancellationBoundHoldsWithoutTheTangent)
+{
+    // The cancellation bound is an entrywise upper bound of |K| |u_e| (triangle
+    // inequality), within a small factor of it (a bound that is needlessly loose would
+    // let Newton stop early at the round-off floor); a residual-only response has the
+    // same force, energy and bound, and no K.
+    std::mt19937 rng(21);
+    for (const int d : {2, 3}) {
+        const ElementGeometry g = random_element(d, 2, rng);
+        const Matrix u = Matrix::Random(g.n_local(), d) * 0.05;
+        for (const MaterialModel model : all_models)
+            for (const Kinematics kin : all_kinematics) {
+                const Material m{model, 3.0, 0.3, d == 2 ? PlaneMode::strain : PlaneMode::none};
+                const ElementResponse full = element_response(g, m, kin, u);
+                const ElementResponse force_only = element_response(g, m, kin, u, false);
+                ASSERT_EQ(full.status, ResponseStatus::ok);
+                ASSERT_EQ(force_only.status, ResponseStatus::ok);
+                const Vector u_flat = u.transpose().reshaped();
+                const Vector product = full.K.cwiseAbs() * u_flat.cwiseAbs();
+                const std::string what = label(model, m.plane, kin);
+                EXPECT_TRUE((full.cancellation.array() >= (1.0 - 1e-12) * product.array()).all()) << what;
+                EXPECT_LE(full.cancellation.sum(), 4.0 * product.sum()) << what;  // 1.6-2.4 measured
+                EXPECT_EQ(force_only.K.size(), 0) << what;
+                EXPECT_EQ((force_only.f_int - full.f_int).norm(), 0.0) << what;
+                EXPECT_EQ((force_only.cancellation - full.cancellation).norm(), 0.0) << what;
+                EXPECT_EQ(force_only.energy, full.energy) << what;
+            }
+    }
+}
+
 TEST(Element, InvertedElementIsReported)
 {
     // u = (M - I) X with M = diag(-1, 1) gives F = M, det F = -1: not admissible in
