@@ -35,6 +35,9 @@ constexpr double stalled_correction_tolerance = 1e-7;
 // Levenberg-Marquardt: mu = 1e-10 perturbs K at the level of its round-off for
 // a well-scaled K; x100 per retry up to mu = 1 (6 tries).
 constexpr double first_mu = 1e-10;
+/// A capped full Newton step whose ||r|| is above this fraction of the last one made no
+/// progress: the trust radius, not the direction, holds Newton back (NewtonSolve::iterate).
+constexpr double stalled_reduction = 0.9;
 constexpr double mu_growth = 100.0;
 constexpr int max_regularizations = 6;
 double largest_mu() { return first_mu * std::pow(mu_growth, max_regularizations - 1); }
@@ -416,7 +419,8 @@ public:
           settings_(settings),
           solver_(solver),
           context_(context),
-          line_search_(system, load_factor, settings, context, report_)
+          line_search_(system, load_factor, settings, context, report_),
+          radius_(system.max_step)
     {
     }
 
@@ -445,7 +449,7 @@ private:
     Progress iterate(int iteration);
     Progress evaluate_tangent(int iteration);
     StepResult solve_step(Vector& du);
-    void cap_step(Vector& du) const;
+    bool cap_step(Vector& du) const;
     Progress try_full_step(const Vector& du, int iteration, double& new_norm);
     void accept(const LineSearch::Result& line, Vector u_new);
     void record_residual(const Evaluation& e, double rel);
@@ -468,6 +472,7 @@ private:
     Evaluation trial_;    ///< at the full step u_ + du, with the tangent
     Evaluation probe_;    ///< at a shorter step, without
     double r_norm_ = 0;   ///< ||r(u_)||
+    double radius_ = 0;   ///< the trust radius in use: system.max_step, doubled after capped steps that stall
     double rel_ = 0;      ///< ||r(u_)|| / force scale
     double r_initial_ = 0;
     bool have_tangent_ = true;        ///< current_ holds the tangent at u_
@@ -600,7 +605,7 @@ Progress NewtonSolve::iterate(int iteration)
                           std::to_string(krylov_stops_in_a_row_) + " tangents in a row" +
                           (step.krylov_detail.empty() ? std::string() : " (" + step.krylov_detail + ")") +
                           "; last relative residual " + format_g(rel_) + tolerance_text());
-    cap_step(du);
+    const bool capped = cap_step(du);
 
     double new_norm = 0;
     if (try_full_step(du, iteration, new_norm) == Progress::finished)
@@ -615,7 +620,15 @@ Progress NewtonSolve::iterate(int iteration)
 
     const double correction = du.lpNorm<Eigen::Infinity>();  // the full Newton correction (capped)
     const double step_size = line.alpha * correction;
+    // A capped step that the line search took whole and that left ||r|| where it was: the
+    // radius, not the model, holds Newton back (still downhill at the radius, the
+    // correction it needs is longer). Double it for the next step; else Newton creeps by
+    // one radius per iteration and a cutback, which shrinks the radius, only makes it
+    // creep slower (the 3D ironing die stalled so with its residual at 5e-4).
+    const double r_before = r_norm_;
     accept(line, u_ + line.alpha * du);
+    if (capped && line.alpha == 1.0 && r_norm_ > stalled_reduction * r_before)
+        radius_ *= 2.0;
     report_.iterations = iteration;
     if (context_)
         context_->add_count("newton_iterations", 1);
@@ -646,14 +659,17 @@ StepResult NewtonSolve::solve_step(Vector& du)
                        accuracy);
 }
 
-/// The trust radius: ||du||_inf <= system.max_step.
-void NewtonSolve::cap_step(Vector& du) const
+/// The trust radius: ||du||_inf <= radius_ (system.max_step, grown by capped full
+/// steps). Whether it shortened du.
+bool NewtonSolve::cap_step(Vector& du) const
 {
-    if (system_.max_step > 0) {
-        const double size = du.lpNorm<Eigen::Infinity>();
-        if (size > system_.max_step)
-            du *= system_.max_step / size;
-    }
+    if (!(radius_ > 0))
+        return false;
+    const double size = du.lpNorm<Eigen::Infinity>();
+    if (!(size > radius_))
+        return false;
+    du *= radius_ / size;
+    return true;
 }
 
 /// The full step, with the tangent: it is accepted most of the time, and then the next

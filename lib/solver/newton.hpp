@@ -123,7 +123,9 @@ struct NonlinearSystem {
     std::function<void(const Vector& u, double load_factor, bool need_tangent, Evaluation& out)> evaluate;
     bool linear = false;     ///< r is affine in u: one solve per increment, refined with residuals r(u + du)
     bool symmetric = true;   ///< K symmetric: Cholesky may be used, else LU is forced
-    double max_step = 0;     ///< > 0: cap on ||du||_inf (trust radius); 0: no cap
+    /// > 0: cap on ||du||_inf (trust radius) at the start of a solve; a capped full step that
+    /// leaves ||r|| above 0.9 of the last doubles it for that solve (docs/solver.md); 0: no cap
+    double max_step = 0;
     /// The load factor moves constrained dofs (prescribed displacements): the load
     /// stepper predicts each increment's free dofs (solver/predictor.hpp).
     bool prescribed_motion = false;
