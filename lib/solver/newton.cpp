@@ -32,12 +32,12 @@ constexpr double correction_tolerance = 1e-9;
 // any discretisation error (measured: verification/friction/cattaneo_mindlin_2d.yaml
 // stalls at ||r|| ~ 0.3 of its floor with corrections 5e-9 to 5e-8 of u).
 constexpr double stalled_correction_tolerance = 1e-7;
-// Levenberg-Marquardt: mu = 1e-10 perturbs K at the level of its round-off for
-// a well-scaled K; x100 per retry up to mu = 1 (6 tries).
-constexpr double first_mu = 1e-10;
 /// A capped full Newton step whose ||r|| is above this fraction of the last one made no
 /// progress: the trust radius, not the direction, holds Newton back (NewtonSolve::iterate).
 constexpr double stalled_reduction = 0.9;
+// Levenberg-Marquardt: mu = 1e-10 perturbs K at the level of its round-off for
+// a well-scaled K; x100 per retry up to mu = 1 (6 tries).
+constexpr double first_mu = 1e-10;
 constexpr double mu_growth = 100.0;
 constexpr int max_regularizations = 6;
 double largest_mu() { return first_mu * std::pow(mu_growth, max_regularizations - 1); }
@@ -659,8 +659,8 @@ StepResult NewtonSolve::solve_step(Vector& du)
                        accuracy);
 }
 
-/// The trust radius: ||du||_inf <= radius_ (system.max_step, grown by capped full
-/// steps). Whether it shortened du.
+/// The trust radius: ||du||_inf <= radius_ (system.max_step, doubled where capped steps
+/// stall). Whether it shortened du.
 bool NewtonSolve::cap_step(Vector& du) const
 {
     if (!(radius_ > 0))
