@@ -274,25 +274,33 @@ TEST(Newton, NonFiniteResidualNeverEntersTheState)
     EXPECT_EQ(u(0), 10.0);
 }
 
-TEST(Newton, MaxStepCapsTheUpdate)
+/// Newton without a line search on r(u) = u - target (affine, solved as nonlinear) from
+/// u = 0 with the trust radius 1; `evaluated` records every state it evaluates.
+NewtonReport solve_capped_shift(double target, std::vector<double>& evaluated, Vector& u)
 {
-    // r(u) = u - 10 (affine, but solved as nonlinear): with a trust radius of 1 and
-    // no line search, the iterates are exactly 1, 2, ..., 10.
-    std::vector<double> evaluated;
     NonlinearSystem system;
     system.max_step = 1.0;
-    system.evaluate = [&](const Vector& u, double, bool need_tangent, Evaluation& out) {
-        evaluated.push_back(u(0));
-        out.residual = Vector::Constant(1, u(0) - 10.0);
-        out.force_scale = 10.0;
+    system.evaluate = [&evaluated, target](const Vector& v, double, bool need_tangent, Evaluation& out) {
+        evaluated.push_back(v(0));
+        out.residual = Vector::Constant(1, v(0) - target);
+        out.force_scale = target;
         if (need_tangent)
             out.tangent = sparse(Matrix::Identity(1, 1));
     };
     NewtonSettings settings;
     settings.line_search = false;
     SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
-    Vector u = Vector::Zero(1);
-    const NewtonReport report = solve_newton(system, 1.0, u, settings, solver, nullptr);
+    u = Vector::Zero(1);
+    return solve_newton(system, 1.0, u, settings, solver, nullptr);
+}
+
+TEST(Newton, MaxStepCapsTheUpdate)
+{
+    // r(u) = u - 10: with a trust radius of 1 and no line search, the iterates are
+    // exactly 1, 2, ..., 10 (each step removes at least 10 % of ||r||: the radius keeps).
+    std::vector<double> evaluated;
+    Vector u;
+    const NewtonReport report = solve_capped_shift(10.0, evaluated, u);
     ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
     EXPECT_EQ(report.iterations, 10);
     ASSERT_EQ(evaluated.size(), 11u);
@@ -309,20 +317,8 @@ TEST(Newton, ATrustRadiusThatStallsNewtonGrows)
     // progress, and Newton converges well within its 25 iterations. (MaxStepCapsTheUpdate
     // is the other side: steps that reduce ||r|| by 10 % or more keep the radius.)
     std::vector<double> evaluated;
-    NonlinearSystem system;
-    system.max_step = 1.0;
-    system.evaluate = [&](const Vector& u, double, bool need_tangent, Evaluation& out) {
-        evaluated.push_back(u(0));
-        out.residual = Vector::Constant(1, u(0) - 1000.0);
-        out.force_scale = 1000.0;
-        if (need_tangent)
-            out.tangent = sparse(Matrix::Identity(1, 1));
-    };
-    NewtonSettings settings;
-    settings.line_search = false;
-    SuiteSparseSolver solver(SuiteSparseSolver::Kind::cholesky);
-    Vector u = Vector::Zero(1);
-    const NewtonReport report = solve_newton(system, 1.0, u, settings, solver, nullptr);
+    Vector u;
+    const NewtonReport report = solve_capped_shift(1000.0, evaluated, u);
     ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
     ASSERT_GE(evaluated.size(), 3u);
     EXPECT_EQ(evaluated[1], 1.0);
