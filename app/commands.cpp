@@ -1,5 +1,6 @@
 #include "commands.hpp"
 
+#include "analysis/accuracy.hpp"
 #include "analysis/run.hpp"
 #include "analysis/contact_penalty.hpp"
 #include "analysis/describe.hpp"
@@ -179,7 +180,8 @@ int run_command(int argc, char** argv, const Communicator& comm)
     if (speaks)
         options.warning = [](const std::string& line) { std::cerr << "warning: " << line << '\n'; };
 
-    const analysis::RunOutcome outcome = analysis::run(deck, options, context);
+    const analysis::RunOutcome outcome =
+        deck.accuracy ? analysis::run_to_accuracy(deck, options, context) : analysis::run(deck, options, context);
     if (!speaks)
         return outcome.status == "completed" ? exit_ok : exit_failed;
 

@@ -77,6 +77,7 @@ RunOutcome outcome_of(const RunModel& m, const IncrementSteps& steps, const solv
     RunOutcome outcome;
     if (const std::optional<io::StepData>& last = steps.last_step()) {
         outcome.reactions = last->reactions;
+        outcome.contact = last->contact;
         for (const io::ContactPairResult& pair : last->contact)
             if (!pair.obstacle_force.empty())
                 outcome.obstacle_forces.emplace_back(pair.name, pair.obstacle_force);

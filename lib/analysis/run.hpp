@@ -61,6 +61,8 @@ struct RunOutcome {
     std::vector<io::Reaction> reactions;    ///< of the last converged increment
     /// (pair, d-vector) of the last converged increment: force on each rigid obstacle.
     std::vector<std::pair<std::string, std::vector<double>>> obstacle_forces;
+    /// Every pair's contact results of the last converged increment (accuracy.hpp measures them).
+    std::vector<io::ContactPairResult> contact;
 };
 
 RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& context);

@@ -35,6 +35,7 @@ enum class LawType { penalty, exponential };
 enum class ShapeType { half_disc, quarter_disc, rectangle, sphere_octant, box };
 enum class LoadKind { traction, force, pressure, gravity };
 enum class ReferenceType { hertz_cylinder_plane, hertz_two_cylinders, hertz_sphere_plane, hertz_two_spheres };
+enum class AccuracyQuantity { pressure_l2, force, contact_radius, stick_zone };
 
 struct Analysis {
     int dimension = 2;                        ///< 2 or 3 (required in the deck)
@@ -399,6 +400,19 @@ struct Output {
     bool operator==(const Output&) const = default;
 };
 
+/// `accuracy:` (docs/deck.md "Accuracy on demand"): refine toward the contact zone of `pair`
+/// until the estimated relative error of `quantity` is at most `error`, within the budget.
+struct Accuracy {
+    std::string pair;
+    AccuracyQuantity quantity = AccuracyQuantity::pressure_l2;
+    double error = 0.0;    ///< relative, > 0
+    int levels = 6;        ///< levels at most, the deck's mesh included
+    double dofs = 0.0;     ///< a level above this many dofs is not run; 0: no limit
+    double seconds = 0.0;  ///< no level starts that would end after this; 0: no limit
+
+    bool operator==(const Accuracy&) const = default;
+};
+
 struct Deck {
     int format = 1;
     std::string title;
@@ -412,6 +426,7 @@ struct Deck {
     Newton newton;
     Solver solver;
     Output output;
+    std::optional<Accuracy> accuracy;  ///< `accuracy:`; empty: the deck's mesh is solved once
 
     std::string source_file;  ///< path of the deck file as given
     std::string resolved_yaml;///< the resolved deck (after --set, defaults filled in), for /deck and `check`

@@ -81,6 +81,15 @@ struct DeckNames<ShapeType> {
 };
 
 template <>
+struct DeckNames<AccuracyQuantity> {
+    static constexpr std::array<EnumName<AccuracyQuantity>, 4> all{
+        {{"pressure_l2", AccuracyQuantity::pressure_l2},
+         {"force", AccuracyQuantity::force},
+         {"contact_radius", AccuracyQuantity::contact_radius},
+         {"stick_zone", AccuracyQuantity::stick_zone}}};
+};
+
+template <>
 struct DeckNames<ReferenceType> {
     static constexpr std::array<EnumName<ReferenceType>, 4> all{
         {{"hertz_cylinder_plane", ReferenceType::hertz_cylinder_plane},

@@ -566,6 +566,58 @@ Output read_output(const Cursor& root, const std::string& file_label, const std:
     return o;
 }
 
+/// Why the zone of `pair` cannot be refined (accuracy:): refinement toward it is written for
+/// single-patch bodies and patch sides; "" when it can.
+std::string zone_refinement_limit(const Deck& deck, const std::string& pair_name)
+{
+    for (const ContactPair& pair : deck.contact) {
+        if (pair.name != pair_name)
+            continue;
+        for (const ContactSurface* s : {&pair.first, &pair.second}) {
+            const Body* body = s->deformable() ? deck.find_body(s->body) : nullptr;
+            if (body && body->multi_patch())
+                return "body '" + s->body + "' has several patches: refining one would break the match of their "
+                       "interfaces, and refinement toward the zone is written for single-patch bodies only";
+            if (!s->surface.empty())
+                return "the side '" + s->body + "." + s->surface +
+                       "' is a named surface: refinement toward the zone is written for a patch side only";
+        }
+    }
+    return "";
+}
+
+std::optional<Accuracy> read_accuracy(const Cursor& root, const Deck& deck, const KnownNames& known)
+{
+    const Cursor c = root.child("accuracy");
+    if (!c.exists() || !c.check_keys())
+        return std::nullopt;
+    Accuracy a;
+    const Cursor target = c.child("target");
+    if (!target.exists())
+        c.fail_here("needs a target: {pair, quantity, error}");
+    else if (target.check_keys()) {
+        if (const auto pair = target.read_required<std::string>("pair")) {
+            a.pair = *pair;
+            if (std::find(known.pairs.begin(), known.pairs.end(), *pair) == known.pairs.end())
+                target.child("pair").fail("unknown contact pair '" + *pair + "'" +
+                                          hint_or_list(*pair, known.pairs, "pairs"));
+            else if (const std::string limit = zone_refinement_limit(deck, *pair); !limit.empty())
+                target.child("pair").fail(limit);
+        }
+        a.quantity = target.read_or("quantity", a.quantity);
+        if (a.quantity == AccuracyQuantity::stick_zone)
+            target.child("quantity").fail("stick_zone is not estimated yet; pressure_l2, force and contact_radius are");
+        a.error = target.read_required<double>("error").value_or(0.0);
+    }
+    const Cursor budget = c.child("budget");
+    if (budget.exists() && budget.check_keys()) {
+        a.levels = budget.read_or("levels", a.levels);
+        a.dofs = budget.read_or("dofs", a.dofs);
+        a.seconds = budget.read_or("seconds", a.seconds);
+    }
+    return a;
+}
+
 Deck read_tree(const Cursor& root, const std::string& file_label, const std::string& deck_dir)
 {
     Deck deck;
@@ -592,6 +644,7 @@ Deck read_tree(const Cursor& root, const std::string& file_label, const std::str
     deck.newton = read_newton(root);
     deck.solver = read_solver(root);
     deck.output = read_output(root, file_label, deck_dir, known);
+    deck.accuracy = read_accuracy(root, deck, known);
     return deck;
 }
 

@@ -284,6 +284,27 @@ constexpr Row deck_rows[] = {
     {"output.fields", boolean(), fallback("`false` (`true` when `paraview` is)"),
      "Cauchy stress and von Mises stress at the tessellation points of every stored increment "
      "(`/steps/<kkkk>/fields/<body>/`, docs/results.md), shown in the XDMF"},
+
+    {"accuracy", map(), fallback("none: the deck's mesh is solved once"),
+     "refine toward the contact zone until a contact quantity meets an error target: the deck's mesh is level 0, "
+     "each level halves the knot spans over and around the zone of `target.pair` and solves again "
+     "(docs/accuracy_on_demand.md)"},
+    {"accuracy.target", map(), required, "what to reach"},
+    {"accuracy.target.pair", text("name"), required, "the contact pair whose zone is refined and measured"},
+    {"accuracy.target.quantity", choice<AccuracyQuantity>(), fallback("`pressure_l2`"),
+     "`pressure_l2`: the post-processed pressure over the contact side, in the L2 norm. `force`: the contact "
+     "normal force. `contact_radius`: the contact zone's half-width (2D) or radius (3D). `stick_zone` is "
+     "refused for now (its estimate is not written yet)"},
+    {"accuracy.target.error", number(above(0)), required,
+     "the relative error allowed, e.g. `0.01`; the run ends at the first level whose estimated error, times the "
+     "safety factor 1.25, is at most this"},
+    {"accuracy.budget", map(), fallback("`{levels: 6}`"), "when to give up: exit 1, with the error reached"},
+    {"accuracy.budget.levels", integer(at_least(2, "level 0 has no estimate: at least two levels")),
+     fallback("`6`"), "levels at most, level 0 (the deck's mesh) included"},
+    {"accuracy.budget.dofs", number(at_least(0)), fallback("`0`: no limit"),
+     "a level with more dofs than this is not run"},
+    {"accuracy.budget.seconds", number(at_least(0)), fallback("`0`: no limit"),
+     "no level starts that would, at the pace of the last one, end after this many seconds of the run"},
 };
 
 }  // namespace

@@ -350,6 +350,24 @@ void write_output(YAML::Emitter& out, const Output& o)
     out << YAML::EndMap;
 }
 
+void write_accuracy(YAML::Emitter& out, const Accuracy& a)
+{
+    out << YAML::BeginMap;
+    out << YAML::Key << "target" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "pair" << YAML::Value << a.pair;
+    out << YAML::Key << "quantity" << YAML::Value << word(a.quantity);
+    out << YAML::Key << "error" << YAML::Value << format_number(a.error);
+    out << YAML::EndMap;
+    out << YAML::Key << "budget" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "levels" << YAML::Value << std::to_string(a.levels);
+    if (a.dofs > 0.0)
+        out << YAML::Key << "dofs" << YAML::Value << format_number(a.dofs);
+    if (a.seconds > 0.0)
+        out << YAML::Key << "seconds" << YAML::Value << format_number(a.seconds);
+    out << YAML::EndMap;
+    out << YAML::EndMap;
+}
+
 }  // namespace
 
 std::string write_resolved_yaml(const Deck& deck)
@@ -424,6 +442,10 @@ std::string write_resolved_yaml(const Deck& deck)
 
     out << YAML::Key << "output" << YAML::Value;
     write_output(out, deck.output);
+    if (deck.accuracy) {
+        out << YAML::Key << "accuracy" << YAML::Value;
+        write_accuracy(out, *deck.accuracy);
+    }
     out << YAML::EndMap;
     return std::string(out.c_str()) + "\n";
 }

@@ -265,6 +265,12 @@ Handle open_file(const std::string& path)
     return Handle(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.id()), H5Fclose, "cannot open HDF5 file " + path);
 }
 
+Handle open_file_for_update(const std::string& path)
+{
+    Handle fapl = strong_close_access();
+    return Handle(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.id()), H5Fclose, "cannot open HDF5 file " + path);
+}
+
 Handle create_group(hid_t parent, const std::string& name)
 {
     const hid_t id = H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);

@@ -83,6 +83,8 @@ private:
 Handle create_file(const std::string& path);
 /// Opens an existing file read-only.
 Handle open_file(const std::string& path);
+/// Opens an existing file to add to it (a finished results file's copy, before it is renamed into place).
+Handle open_file_for_update(const std::string& path);
 Handle create_group(hid_t parent, const std::string& name);
 /// Opens a group, dataset or named datatype by (relative or absolute) path.
 Handle open_object(hid_t parent, const std::string& path);

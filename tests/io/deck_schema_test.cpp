@@ -105,6 +105,9 @@ output:
   reference: {pair: block_floor, type: hertz_cylinder_plane, radius: 1, force: 2}
   paraview: true
   fields: false
+accuracy:
+  target: {pair: block_floor, quantity: force, error: 0.02}
+  budget: {levels: 3, dofs: 1.0e5, seconds: 60}
 )";
 
 /// The keys only a 3D deck has: an extrusion, a rotation axis, a rigid sphere, a point-contact reference.
@@ -265,6 +268,7 @@ contact:
   - {name: plain, between: [block.v0, floor], penalty: 1.0e4}
   - {name: more, between: [block.u1, floor], penalty: 1.0e4, enforcement: augmented_lagrangian,
      friction: {coefficient: 0.3}}
+accuracy: {target: {pair: plain, error: 0.01}}
 )";
     std::map<std::string, std::pair<std::string, std::string>> given, written;
     scalars(YAML::Load(deck), "", "", given);

@@ -89,7 +89,8 @@ TEST(OverridesErrors, PathsTheFormatDoesNotHave)
               "names: use an index)");
     EXPECT_EQ(issue_of(minimal_deck, {"precision.tolerance=1"}),
               "<command line>: error: precision.tolerance = 1: 'precision' is not a key of the deck (keys: format, "
-              "title, analysis, materials, bodies, constraints, loads, contact, steps, newton, solver, output)");
+              "title, analysis, materials, bodies, constraints, loads, contact, steps, newton, solver, output, "
+              "accuracy)");
     EXPECT_EQ(issue_of(minimal_deck, {"solvers.tolerance=1"}),
               "<command line>: error: solvers.tolerance = 1: 'solvers' is not a key of the deck (did you mean "
               "'solver'?)");

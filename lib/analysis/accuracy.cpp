@@ -1,0 +1,322 @@
+#include "analysis/accuracy.hpp"
+
+#include "analysis/geometry.hpp"
+#include "analysis/level_estimate.hpp"
+#include "analysis/multipatch.hpp"
+#include "analysis/size_estimate.hpp"
+#include "analysis/zone_refinement.hpp"
+#include "core/error.hpp"
+#include "io/deck_names.hpp"
+#include "io/deck_writer.hpp"
+#include "io/h5_file.hpp"
+#include "nurbs/side_patch.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <optional>
+
+namespace iga::analysis {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Level {
+    int index = 0;
+    long long dofs = 0;
+    double wall_s = 0.0;
+    double value = 0.0;
+    std::optional<double> estimate;  ///< the estimated relative error; empty at level 0
+    /// Where the levels converge more slowly than the estimate assumes, the larger error
+    /// their rate allows (level_estimate.hpp, slow_convergence); else the estimate.
+    std::optional<double> bound;
+    std::optional<double> reference_error;  ///< against the deck's analytic reference, where it has one
+    std::vector<std::string> refined;       ///< what the refinement after this level halved
+};
+
+/// The pair's first side that carries Gauss points in a run's last increment.
+const io::ContactSideResult* measured_side(const RunOutcome& outcome, const std::string& pair)
+{
+    for (const io::ContactPairResult& p : outcome.contact)
+        if (p.name == pair && !p.sides.empty())
+            return &p.sides.front();
+    return nullptr;
+}
+
+const io::ContactPairResult* pair_result(const RunOutcome& outcome, const std::string& pair)
+{
+    for (const io::ContactPairResult& p : outcome.contact)
+        if (p.name == pair)
+            return &p;
+    return nullptr;
+}
+
+/// The recovered pressure of a results side ("body.side") on the level's analysed side patch.
+SidePressure side_pressure(const io::Deck& deck, const io::ContactSideResult& result)
+{
+    const std::size_t dot = result.side_name.find('.');
+    const io::Body* body = deck.find_body(result.side_name.substr(0, dot));
+    const std::optional<Side> named = parse_side(result.side_name.substr(dot + 1));
+    IGA_CHECK(body != nullptr && named.has_value(), "accuracy: cannot find the contact side " + result.side_name);
+    const nurbs::Patch patch = build_patch(*body, deck.analysis.dimension);
+    SidePressure out{nurbs::extract_side(patch, named_side(*named, u_reversed(*body, 0))).patch,
+                     result.postprocessed.control_point_pressure};
+    IGA_CHECK(out.control_pressure.size() == out.side.n_control_points(),
+              "accuracy: the recovered pressure of " + result.side_name + " does not match its side");
+    return out;
+}
+
+/// The error of the same quantity against the deck's analytic reference, if any.
+std::optional<double> reference_error(const io::Deck& deck, const io::Accuracy& a, const RunOutcome& outcome)
+{
+    if (!deck.output.reference || deck.output.reference->pair != a.pair)
+        return std::nullopt;
+    const char* radius = deck.analysis.dimension == 2 ? "half_width" : "contact_radius";
+    const char* key = a.quantity == io::AccuracyQuantity::pressure_l2      ? "l2"
+                      : a.quantity == io::AccuracyQuantity::contact_radius ? radius
+                                                                           : nullptr;
+    if (!key)
+        return std::nullopt;
+    const auto it = outcome.errors.find(key);
+    return it == outcome.errors.end() ? std::nullopt : std::optional(std::abs(it->second));
+}
+
+std::string percent(double x) { return fmt::format("{:.3g} %", 100.0 * x); }
+
+/// The last completed level's results file, with /accuracy, into `final_path`
+/// (a temporary name first, renamed when complete).
+void write_results(const std::string& level_file, const std::string& final_path, const io::Accuracy& a,
+                   const std::vector<Level>& levels, bool reached, const std::string& deck_text)
+{
+    const fs::path target(final_path);
+    const fs::path temporary = target.parent_path() / ("." + target.filename().string() + ".accuracy.tmp");
+    fs::copy_file(level_file, temporary, fs::copy_options::overwrite_existing);
+    {
+        io::h5::Handle file = io::h5::open_file_for_update(temporary.string());
+        io::h5::Handle group = io::h5::create_group(file.id(), "accuracy");
+        io::h5::write_attribute(group.id(), "pair", a.pair);
+        io::h5::write_attribute(group.id(), "quantity", std::string(io::deck_name(a.quantity)));
+        io::h5::write_attribute(group.id(), "target", a.error);
+        io::h5::write_attribute(group.id(), "reached", reached ? 1 : 0);
+        const Level& last = levels.back();
+        io::h5::write_attribute(group.id(), "estimated_error",
+                                last.bound.value_or(std::numeric_limits<double>::quiet_NaN()));
+        // level, dofs, value, estimated_error (NaN at level 0), error_bound (the same, or the larger
+        // error slow convergence allows), reference_error (NaN: none); the wall times apart, as a
+        // timing (igacontact compare leaves them out)
+        RowMatrix table(static_cast<Index>(levels.size()), 6);
+        Vector wall(static_cast<Index>(levels.size()));
+        std::vector<std::string> refined;
+        const double none = std::numeric_limits<double>::quiet_NaN();
+        for (std::size_t k = 0; k < levels.size(); ++k) {
+            const Level& l = levels[k];
+            table.row(static_cast<Index>(k)) << l.index, static_cast<double>(l.dofs), l.value,
+                l.estimate.value_or(none), l.bound.value_or(none), l.reference_error.value_or(none);
+            wall(static_cast<Index>(k)) = l.wall_s;
+            std::string line;
+            for (const std::string& part : l.refined)
+                line += (line.empty() ? "" : "; ") + part;
+            refined.push_back(line);
+        }
+        io::h5::write_dataset(group.id(), "levels", table);
+        io::h5::write_dataset(group.id(), "wall_s", wall);
+        io::h5::write_string_dataset(group.id(), "refined", refined, {static_cast<hsize_t>(refined.size())});
+        io::h5::write_string_dataset(group.id(), "refine", deck_text);
+    }
+    fs::rename(temporary, target);
+}
+
+/// The levels of one accuracy run, and their state between levels.
+class AccuracyRun {
+public:
+    AccuracyRun(const io::Deck& input, const RunOptions& options, const RunContext& context)
+        : input_(input), a_(*input.accuracy), options_(options), context_(context), deck_(input),
+          start_(std::chrono::steady_clock::now())
+    {
+        const fs::path final_path(input.output.file);
+        folder_ = final_path.parent_path() / (final_path.stem().string() + "_levels");
+        fs::create_directories(folder_);
+    }
+
+    RunOutcome run()
+    {
+        for (int k = 0; k < a_.levels && stop_reason_.empty() && !reached_; ++k) {
+            if (k > 0 && !budget_allows(k))
+                break;
+            const RunOutcome level_run = run_level(k);
+            if (!measure(k, level_run) || reached_ || k + 1 == a_.levels)
+                break;
+            refine(k, level_run);
+        }
+        return finish();
+    }
+
+private:
+    double elapsed() const
+    {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    }
+
+    /// Whether level k fits the budget's dofs and seconds (else stop_reason_ says why not).
+    bool budget_allows(int k)
+    {
+        const double dofs = estimate_size(deck_).dofs;
+        if (a_.dofs > 0.0 && dofs > a_.dofs)
+            stop_reason_ = fmt::format("level {} would have {:.3g} dofs, above the budget's {:.3g}", k, dofs, a_.dofs);
+        const double expected = elapsed() + levels_.back().wall_s * std::exp2(deck_.analysis.dimension);
+        if (stop_reason_.empty() && a_.seconds > 0.0 && expected > a_.seconds)
+            stop_reason_ = fmt::format("level {} would end at about {:.3g} s, beyond the budget's {:.3g} s", k,
+                                       expected, a_.seconds);
+        return stop_reason_.empty();
+    }
+
+    /// The deck as refined so far, run into level k's file.
+    RunOutcome run_level(int k) const
+    {
+        io::Deck level_deck = deck_;
+        level_deck.output.file = (folder_ / fmt::format("level{}.h5", k)).string();
+        level_deck.accuracy.reset();
+        level_deck.resolved_yaml = io::write_resolved_yaml(level_deck);
+        RunContext level_context = context_;
+        // A coarse level's warnings (a zone a span or two across) are what the levels are
+        // for: -v shows them; the final level's are given as a run's are, at the end.
+        RunOptions level_options = options_;
+        const RunContext& context = context_;
+        level_options.warning = [&context, k](const std::string& line) {
+            context.log(Verbosity::verbose, fmt::format("  level {} warning: {}", k, line));
+        };
+        return analysis::run(level_deck, level_options, level_context);
+    }
+
+    /// Level k's quantity, its estimate and whether it meets the target; false when the
+    /// level failed (then stop_reason_ says so).
+    bool measure(int k, const RunOutcome& level_run)
+    {
+        if (level_run.status != "completed") {
+            stop_reason_ = fmt::format("level {} failed: {}", k, level_run.message);
+            if (levels_.empty())  // nothing better to keep: the failed level's file is the results
+                last_run_ = level_run;
+            return false;
+        }
+        const io::ContactSideResult* side = measured_side(level_run, a_.pair);
+        IGA_CHECK(side != nullptr, "accuracy: the results of level " + std::to_string(k) + " lack the pair " + a_.pair);
+        const SidePressure field = side_pressure(deck_, *side);
+        Level level;
+        level.index = k;
+        level.dofs = static_cast<long long>(level_run.numbers.at("dofs"));
+        level.wall_s = level_run.wall_s;
+        level.value = side_quantity(a_.quantity, *side, field);
+        level.reference_error = reference_error(deck_, a_, level_run);
+        if (previous_field_) {
+            differences_.push_back(a_.quantity == io::AccuracyQuantity::pressure_l2
+                                       ? relative_pressure_difference(*previous_field_, field)
+                                       : std::abs(level.value - levels_.back().value) / std::abs(level.value));
+            level.estimate = level_error(differences_.back());
+            const std::optional<double> rate = slow_convergence(differences_);
+            level.bound = rate ? std::max(*level.estimate, differences_.back() / (*rate - 1.0)) : *level.estimate;
+        }
+        previous_field_ = field;
+        last_run_ = level_run;
+        reached_ = level.bound && safety_factor * *level.bound <= a_.error;
+        log_level(level);
+        levels_.push_back(level);
+        return true;
+    }
+
+    void log_level(const Level& level) const
+    {
+        const std::string slow = level.bound && *level.bound > *level.estimate
+                                     ? fmt::format(" (up to {}: the levels converge slowly)", percent(*level.bound))
+                                     : std::string();
+        const std::string reference =
+            level.reference_error ? ", against the reference " + percent(*level.reference_error) : std::string();
+        context_.log(Verbosity::normal,
+                     fmt::format("accuracy level {}: {} dofs, {:.3g} s, {} {:.6g}, estimated error {}{}{}", level.index,
+                                 level.dofs, level.wall_s, io::deck_name(a_.quantity), level.value,
+                                 level.estimate ? percent(*level.estimate) : std::string("- (level 0)"), slow,
+                                 reference));
+    }
+
+    /// Halves the spans around level k's contact zone (else stop_reason_ says why not).
+    void refine(int k, const RunOutcome& level_run)
+    {
+        const io::ContactPairResult& pair = *pair_result(level_run, a_.pair);
+        const std::optional<ZoneBox> zone = pressed_zone(pair);
+        if (!zone) {
+            stop_reason_ = fmt::format("no Gauss point of pair '{}' presses at level {}: there is no zone to refine "
+                                       "toward",
+                                       a_.pair, k);
+            return;
+        }
+        double model_size = 0.0;  // the largest extent of a contact side
+        for (const io::ContactPairResult& p : level_run.contact)
+            for (const io::ContactSideResult& side : p.sides)
+                if (const RowMatrix& x = side.gauss_points.reference_coordinates; x.rows() > 0)
+                    model_size = std::max(model_size, (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm());
+        levels_.back().refined = refine_toward_zone(deck_, a_.pair, *zone, model_size);
+        for (const std::string& line : levels_.back().refined)
+            context_.log(Verbosity::verbose, "  refined " + line);
+    }
+
+    /// The results file and the outcome: the last completed level's, with the verdict.
+    RunOutcome finish()
+    {
+        if (stop_reason_.empty() && !reached_)
+            stop_reason_ = fmt::format("the budget's {} levels are spent", a_.levels);
+        if (reached_)
+            context_.log(Verbosity::normal,
+                         fmt::format("accuracy: {} of pair '{}' estimated at {} (target {}, with the safety factor "
+                                     "{:g}) at level {}, {} dofs, {:.3g} s for all levels; the levels are in {}",
+                                     io::deck_name(a_.quantity), a_.pair, percent(*levels_.back().bound),
+                                     percent(a_.error), safety_factor, levels_.back().index, levels_.back().dofs,
+                                     elapsed(), folder_.string()));
+        RunOutcome outcome = last_run_;
+        if (options_.warning)
+            for (const std::string& line : last_run_.warnings)
+                options_.warning(line);
+        if (!levels_.empty()) {
+            if (options_.comm.root())  // rank 0 writes the results (run.hpp)
+                write_results(last_run_.results_file, input_.output.file, a_, levels_, reached_,
+                              refine_text(deck_, a_.pair));
+            outcome.results_file = input_.output.file;
+        }
+        if (!reached_) {
+            const Level* last = levels_.empty() ? nullptr : &levels_.back();
+            outcome.status = "failed";
+            outcome.message = fmt::format(
+                "accuracy target {} on {} of pair '{}' not reached: {}; {}", percent(a_.error),
+                io::deck_name(a_.quantity), a_.pair, stop_reason_,
+                last && last->bound ? fmt::format("the estimate reached is {} at level {} ({} dofs)",
+                                                  percent(*last->bound), last->index, last->dofs)
+                                    : std::string("no level has an estimate (it needs two)"));
+        }
+        return outcome;
+    }
+
+    const io::Deck& input_;
+    const io::Accuracy& a_;
+    const RunOptions& options_;
+    const RunContext& context_;
+    io::Deck deck_;  ///< refined level by level
+    fs::path folder_;
+    std::chrono::steady_clock::time_point start_;
+    std::vector<Level> levels_;
+    std::vector<double> differences_;  ///< d_1 .. d_k
+    std::optional<SidePressure> previous_field_;
+    RunOutcome last_run_;  ///< of the last completed level (or of a failed level 0)
+    std::string stop_reason_;
+    bool reached_ = false;
+};
+
+}  // namespace
+
+RunOutcome run_to_accuracy(const io::Deck& input, const RunOptions& options, const RunContext& context)
+{
+    IGA_CHECK(input.accuracy.has_value(), "run_to_accuracy needs a deck with accuracy:");
+    return AccuracyRun(input, options, context).run();
+}
+
+}  // namespace iga::analysis

@@ -1,0 +1,73 @@
+// The `accuracy:` block (docs/deck.md "Accuracy on demand"): its values and defaults,
+// the resolved deck's round trip, and each mistake named at its key.
+
+#include "deck_test_support.hpp"
+
+#include "io/deck_writer.hpp"
+
+#include <gtest/gtest.h>
+
+namespace iga::io {
+namespace {
+
+using test::hertz_deck;
+using test::issue_of;
+using test::read;
+
+const std::string target = "accuracy:\n  target: {pair: cyl_floor, quantity: force, error: 0.02}\n";
+
+TEST(DeckAccuracy, ReadsTheTargetAndTheBudgetWithTheirDefaults)
+{
+    EXPECT_FALSE(read(hertz_deck).accuracy.has_value());
+    const Deck d = read(hertz_deck + target);
+    ASSERT_TRUE(d.accuracy.has_value());
+    EXPECT_EQ(d.accuracy->pair, "cyl_floor");
+    EXPECT_EQ(d.accuracy->quantity, AccuracyQuantity::force);
+    EXPECT_DOUBLE_EQ(d.accuracy->error, 0.02);
+    EXPECT_EQ(d.accuracy->levels, 6);
+    EXPECT_EQ(d.accuracy->dofs, 0.0);
+    EXPECT_EQ(d.accuracy->seconds, 0.0);
+
+    const Deck b = read(hertz_deck + "accuracy:\n  target: {pair: cyl_floor, error: 0.01}\n"
+                                     "  budget: {levels: 4, dofs: 2.0e6, seconds: 3600}\n");
+    EXPECT_EQ(b.accuracy->quantity, AccuracyQuantity::pressure_l2);
+    EXPECT_EQ(b.accuracy->levels, 4);
+    EXPECT_DOUBLE_EQ(b.accuracy->dofs, 2.0e6);
+    EXPECT_DOUBLE_EQ(b.accuracy->seconds, 3600.0);
+    // --set reaches it like any key (a penalty sweep's script, a tighter target).
+    EXPECT_DOUBLE_EQ(read(hertz_deck + target, {"accuracy.target.error=0.005"}).accuracy->error, 0.005);
+}
+
+TEST(DeckAccuracy, TheResolvedDeckKeepsIt)
+{
+    const Deck first = read(hertz_deck + "accuracy:\n  target: {pair: cyl_floor, quantity: contact_radius, "
+                                         "error: 0.03}\n  budget: {levels: 3, seconds: 60}\n");
+    const std::string yaml = write_resolved_yaml(first);
+    Deck second = read_deck_text(yaml, "resolved.yaml", "");
+    second.source_file = first.source_file;
+    EXPECT_TRUE(second == first) << yaml;
+}
+
+TEST(DeckAccuracy, MistakesAreNamedAtTheirKey)
+{
+    EXPECT_NE(issue_of(hertz_deck + "accuracy:\n  target: {pair: floor_touch, error: 0.01}\n")
+                  .find("accuracy.target.pair = floor_touch: unknown contact pair 'floor_touch'"),
+              std::string::npos);
+    EXPECT_NE(issue_of(hertz_deck + "accuracy:\n  target: {pair: cyl_floor, error: 0}\n")
+                  .find("accuracy.target.error = 0: must be > 0"),
+              std::string::npos);
+    EXPECT_NE(issue_of(hertz_deck + "accuracy:\n  target: {pair: cyl_floor}\n").find("missing required key 'error'"),
+              std::string::npos);
+    EXPECT_NE(issue_of(hertz_deck + "accuracy:\n  budget: {levels: 3}\n").find("needs a target"), std::string::npos);
+    EXPECT_NE(issue_of(hertz_deck + target, {"accuracy.budget.levels=1"}).find("must be >= 2"), std::string::npos);
+    EXPECT_NE(issue_of(hertz_deck + target, {"accuracy.target.quantity=stick_zone"}).find("not estimated yet"),
+              std::string::npos);
+    EXPECT_NE(issue_of(hertz_deck + target, {"accuracy.target.quantity=peak"}).find("accuracy.target.quantity"),
+              std::string::npos);
+    EXPECT_NE(issue_of(hertz_deck + "accuracy:\n  target: {pair: cyl_floor, error: 0.01}\n  budjet: {levels: 3}\n")
+                  .find("budjet"),
+              std::string::npos);
+}
+
+}  // namespace
+}  // namespace iga::io

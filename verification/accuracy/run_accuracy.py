@@ -1,0 +1,119 @@
+#!/usr/bin/python3
+"""Accuracy on demand against the hand-graded decks and against uniform refinement.
+
+For each case: the `accuracy:` run from an ungraded coarse start (all its levels), the
+hand-graded deck of inputs/ once, and the coarse start refined uniformly
+(--refine-levels k, every knot span halved k times) until its error against Hertz is at
+most the adaptive run's. Prints one table (markdown) of dofs, the error against Hertz,
+the final estimate and the wall time (for the levels: all of them together) and checks
+the estimates: each level's within a factor of two of its error against Hertz.
+
+Usage: /usr/bin/python3 verification/accuracy/run_accuracy.py build/bin/igacontact [WORK_DIR] [--quick]
+  --quick: the 2D cases only (seconds); the 3D case takes a few minutes.
+Exit 1 when an estimate misses by more than a factor of two or a run fails unexpectedly.
+"""
+
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import h5py
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+# (name, coarse deck, --set for the coarse start, hand-graded deck, uniform levels at most)
+CASES = [
+    ("2D Hertz, cylinder on a plane", "inputs/hertz_accuracy_2d.yaml", [], "inputs/hertz.yaml", 6),
+    ("2D Hertz, two cylinders", "inputs/hertz_two_cylinders_2d.yaml",
+     ["bodies.0.refine={elevate: [0, 1], spans: [8, 4]}", "bodies.1.refine={elevate: [0, 1], spans: [8, 4]}",
+      "accuracy={target: {pair: mate, error: 0.01}, budget: {levels: 9}}"],
+     "inputs/hertz_two_cylinders_2d.yaml", 5),
+    ("3D Hertz, sphere on a plane", "inputs/hertz_sphere_plane_3d.yaml",
+     ["bodies.0.refine={elevate: [0, 1, 0], spans: [4, 4, 4]}",
+      "accuracy={target: {pair: ball_floor, error: 0.03}, budget: {levels: 7, seconds: 900}}"],
+     "inputs/hertz_sphere_plane_3d.yaml", 4),
+]
+
+
+def run(app, deck, sets, out, extra=()):
+    args = [app, os.path.join(ROOT, deck), "-o", out, "-q", "--threads", "1"] + list(extra)
+    for s in sets:
+        args += ["--set", s]
+    start = time.perf_counter()
+    done = subprocess.run(args, capture_output=True, text=True)
+    return done.returncode, time.perf_counter() - start, done.stderr
+
+
+def l2_error(path):
+    with h5py.File(path, "r") as f:
+        for pair in f["reference"]:
+            return abs(float(f["reference"][pair].attrs["l2"]))
+    return math.nan
+
+
+def dofs(path):
+    with h5py.File(path, "r") as f:
+        return int(f["counters"].attrs["dofs"])
+
+
+def main():
+    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    quick = "--quick" in sys.argv
+    if not args:
+        print(__doc__)
+        return 2
+    app = os.path.abspath(args[0])
+    work = args[1] if len(args) > 1 else tempfile.mkdtemp(prefix="accuracy_")
+    os.makedirs(work, exist_ok=True)
+    rows, failures = [], []
+    for name, deck, sets, graded, uniform_levels in CASES:
+        if quick and name.startswith("3D"):
+            continue
+        tag = "".join(c if c.isalnum() else "_" for c in name)
+        out = os.path.join(work, tag + ".h5")
+        code, wall, err = run(app, deck, sets, out)
+        with h5py.File(out, "r") as f:
+            levels = f["accuracy/levels"][()]
+            reached = int(f["accuracy"].attrs["reached"])
+        for row in levels[1:]:
+            ratio = row[3] / row[5]
+            if not (0.5 <= ratio <= 2.0):
+                failures.append(f"{name}: level {int(row[0])} estimate {row[3]:.3g} against {row[5]:.3g}")
+        last = levels[-1]
+        rows.append((name, f"accuracy, {len(levels)} levels ({'reached' if reached else 'not reached'})",
+                     int(last[1]), last[5], last[4], wall))
+        graded_out = os.path.join(work, tag + "_graded.h5")
+        code_g, wall_g, _ = run(app, graded, [], graded_out)
+        if code_g != 0:
+            failures.append(f"{name}: the hand-graded deck exited {code_g}")
+        else:
+            rows.append((name, "hand-graded deck", dofs(graded_out), l2_error(graded_out), math.nan, wall_g))
+        # Uniform: the coarse start solved once per level (accuracy=null), every span halved
+        # k times, until its error is no larger than the adaptive run's.
+        plain = [s for s in sets if not s.startswith("accuracy=")] + ["accuracy=null"]
+        total = 0.0
+        for k in range(uniform_levels + 1):
+            u_out = os.path.join(work, f"{tag}_uniform{k}.h5")
+            code_u, wall_u, err_u = run(app, deck, plain, u_out, ["--refine-levels", str(k)])
+            total += wall_u
+            if code_u != 0:
+                failures.append(f"{name}: uniform level {k} exited {code_u}: {err_u.strip()[-200:]}")
+                break
+            if l2_error(u_out) <= last[5] or k == uniform_levels:
+                rows.append((name, f"uniform, {k + 1} levels", dofs(u_out), l2_error(u_out), math.nan, total))
+                break
+    print("| case | run | dofs | L2 against Hertz | estimated | wall s |")
+    print("|---|---|---|---|---|---|")
+    for name, how, n, error, estimate, wall in rows:
+        est = "—" if math.isnan(estimate) else f"{100 * estimate:.3g} %"
+        print(f"| {name} | {how} | {n} | {100 * error:.3g} % | {est} | {wall:.3g} |")
+    for line in failures:
+        print("FAIL:", line)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
