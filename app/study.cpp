@@ -345,6 +345,10 @@ void run_levels(std::vector<Level>& levels, const std::string& exe, const std::s
                     args.push_back("--set");
                     args.push_back(o);
                 }
+                // A study level is the deck's mesh refined uniformly, solved once: not the
+                // levels of its accuracy: block (docs/accuracy_on_demand.md).
+                args.push_back("--set");
+                args.push_back("accuracy=null");
                 l.start = std::chrono::steady_clock::now();
                 l.pid = spawn(exe, args, l.log);
                 if (l.pid < 0) {

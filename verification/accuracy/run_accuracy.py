@@ -34,7 +34,7 @@ CASES = [
     ("3D Hertz, sphere on a plane", "inputs/hertz_sphere_plane_3d.yaml",
      ["bodies.0.refine={elevate: [0, 1, 0], spans: [4, 4, 4]}",
       "accuracy={target: {pair: ball_floor, error: 0.03}, budget: {levels: 7, seconds: 900}}"],
-     "inputs/hertz_sphere_plane_3d.yaml", 4),
+     "inputs/hertz_sphere_plane_3d.yaml", 3),
 ]
 
 
