@@ -2,7 +2,7 @@
 // Knot insertion toward a contact zone: the h-refinement step of `accuracy:`
 // (docs/accuracy_on_demand.md). The zone is the box of the pressed Gauss points' reference
 // coordinates over both sides of the pair; a margin of half its largest extent on every
-// side (at least `min_margin` of the model) takes in the zone's edge, where it grows
+// side (at least `min_margin` of the largest contact side) takes in the zone's edge, where it grows
 // under refinement, and the depth below it that carries the contact stresses. Every
 // knot span of a deformable body of the pair that holds an element meeting that region
 // is halved, in every parametric direction: the zone's neighbourhood is refined by 2
@@ -29,8 +29,8 @@
 
 namespace iga::analysis {
 
-/// Smallest margin around the zone, as a fraction of the model's size (a zone of one
-/// Gauss point has no extent).
+/// Smallest margin around the zone, as a fraction of the largest contact side's size (a
+/// zone of one Gauss point has no extent).
 inline constexpr double min_margin = 0.01;
 
 /// The box of the pressed Gauss points (reference coordinates) of a pair's sides; empty
@@ -41,7 +41,7 @@ struct ZoneBox {
 std::optional<ZoneBox> pressed_zone(const io::ContactPairResult& pair);
 
 /// Halves the spans of the deformable bodies of `pair` whose elements meet the zone
-/// widened by its margin (model_size: the largest extent of the bodies); adds the
+/// widened by its margin (model_size: the largest extent of the pair's contact sides); adds the
 /// knots to the deck's refine.insert. Returns one line per body and direction refined,
 /// e.g. "cylinder: u 12 spans halved in [0.0391, 0.133]".
 std::vector<std::string> refine_toward_zone(io::Deck& deck, const std::string& pair, const ZoneBox& zone,
