@@ -37,21 +37,19 @@ struct Level {
     std::vector<std::string> refined;       ///< what the refinement after this level halved
 };
 
-/// The pair's first side that carries Gauss points in a run's last increment.
-const io::ContactSideResult* measured_side(const RunOutcome& outcome, const std::string& pair)
-{
-    for (const io::ContactPairResult& p : outcome.contact)
-        if (p.name == pair && !p.sides.empty())
-            return &p.sides.front();
-    return nullptr;
-}
-
 const io::ContactPairResult* pair_result(const RunOutcome& outcome, const std::string& pair)
 {
     for (const io::ContactPairResult& p : outcome.contact)
         if (p.name == pair)
             return &p;
     return nullptr;
+}
+
+/// The pair's first side that carries Gauss points in a run's last increment.
+const io::ContactSideResult* measured_side(const RunOutcome& outcome, const std::string& pair)
+{
+    const io::ContactPairResult* p = pair_result(outcome, pair);
+    return p && !p->sides.empty() ? &p->sides.front() : nullptr;
 }
 
 /// The recovered pressure of a results side ("body.side") on the level's analysed side patch.

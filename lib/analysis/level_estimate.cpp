@@ -32,6 +32,23 @@ double area_element(const nurbs::Patch& side, const VecN& xi)
     return a.cross(b).norm();
 }
 
+/// Calls f(xi, W) at the Gauss points of every span of `side` (degree + 2 points per span
+/// and direction), W the rule's weight times the area element.
+template <class F>
+void for_each_side_point(const nurbs::Patch& side, F&& f)
+{
+    int n = 0;
+    for (int k = 0; k < side.n_par(); ++k)
+        n = std::max(n, side.degree(k) + 2);
+    for (const nurbs::Element& e : side.elements()) {
+        const quadrature::TensorRule rule = quadrature::element_rule(side, e, n);
+        for (Index q = 0; q < rule.points.rows(); ++q) {
+            const VecN xi = rule.points.row(q).transpose();
+            f(xi, rule.weights(q) * area_element(side, xi));
+        }
+    }
+}
+
 }  // namespace
 
 double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult& side, const SidePressure& field)
@@ -49,15 +66,10 @@ double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult&
     }
     case io::AccuracyQuantity::pressure_l2: {
         double norm2 = 0.0;
-        const int n = field.side.degree(0) + 2;
-        for (const nurbs::Element& e : field.side.elements()) {
-            const quadrature::TensorRule rule = quadrature::element_rule(field.side, e, n);
-            for (Index q = 0; q < rule.points.rows(); ++q) {
-                const VecN xi = rule.points.row(q).transpose();
-                const double p = pressure_at(field, xi);
-                norm2 += rule.weights(q) * area_element(field.side, xi) * p * p;
-            }
-        }
+        for_each_side_point(field.side, [&](const VecN& xi, double w) {
+            const double p = pressure_at(field, xi);
+            norm2 += w * p * p;
+        });
         return std::sqrt(norm2);
     }
     case io::AccuracyQuantity::stick_zone:
@@ -70,20 +82,12 @@ double relative_pressure_difference(const SidePressure& coarse, const SidePressu
 {
     IGA_CHECK(coarse.side.n_par() == fine.side.n_par(), "accuracy: two levels' contact sides differ in dimension");
     double difference2 = 0.0, norm2 = 0.0;
-    int n = 0;
-    for (int k = 0; k < fine.side.n_par(); ++k)
-        n = std::max(n, fine.side.degree(k) + 2);
-    for (const nurbs::Element& e : fine.side.elements()) {
-        const quadrature::TensorRule rule = quadrature::element_rule(fine.side, e, n);
-        for (Index q = 0; q < rule.points.rows(); ++q) {
-            const VecN xi = rule.points.row(q).transpose();
-            const double w = rule.weights(q) * area_element(fine.side, xi);
-            const double p_fine = pressure_at(fine, xi);
-            const double p_coarse = pressure_at(coarse, xi);
-            difference2 += w * (p_fine - p_coarse) * (p_fine - p_coarse);
-            norm2 += w * p_fine * p_fine;
-        }
-    }
+    for_each_side_point(fine.side, [&](const VecN& xi, double w) {
+        const double p_fine = pressure_at(fine, xi);
+        const double p_coarse = pressure_at(coarse, xi);
+        difference2 += w * (p_fine - p_coarse) * (p_fine - p_coarse);
+        norm2 += w * p_fine * p_fine;
+    });
     return norm2 > 0.0 ? std::sqrt(difference2 / norm2) : std::numeric_limits<double>::infinity();
 }
 
