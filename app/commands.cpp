@@ -7,6 +7,7 @@
 #include "analysis/scene.hpp"
 #include "analysis/size_estimate.hpp"
 #include "analysis/warnings.hpp"
+#include "analysis/zone_refinement.hpp"
 #include "core/error.hpp"
 #include "core/run_context.hpp"
 #include "core/stop.hpp"
@@ -138,15 +139,31 @@ int run_command(int argc, char** argv, const Communicator& comm)
             throw UsageError(fmt::format("--refine-levels {}: the refined model needs about {:.3g} GB, more than {} "
                                          "{:.3g} GB",
                                          refine_levels, bytes / 1e9, limits.memory_name, limits.memory_bytes / 1e9));
-        // /deck in the results file says how the run was refined.
-        deck.resolved_yaml += fmt::format("# run with --refine-levels {}: every knot span halved {} time(s) after the "
-                                          "refinement above\n",
-                                          refine_levels, refine_levels);
+        if (deck.accuracy) {
+            // The levels refine from the deck's knots: the halvings become knots of the deck.
+            for (const io::Body& body : deck.bodies)
+                if (!body.rigid && body.multi_patch())
+                    throw UsageError(fmt::format("--refine-levels with accuracy: writes the halvings into each body's "
+                                                 "knots, which body '{}' (several patches) cannot take; leave it out "
+                                                 "and refine that body in the deck",
+                                                 body.name));
+            analysis::fold_halvings(deck, refine_levels);
+            deck.resolved_yaml = io::write_resolved_yaml(deck);
+        }
     }
     if (!output.empty()) {
         deck.output.file = output;
         deck.resolved_yaml = io::write_resolved_yaml(deck);  // /deck shows the file actually written
     }
+    // /deck in the results file says how the run was refined.
+    if (refine_levels > 0)
+        deck.resolved_yaml +=
+            deck.accuracy ? fmt::format("# run with --refine-levels {}: every knot span halved {} time(s), written "
+                                        "into the insert lists above\n",
+                                        refine_levels, refine_levels)
+                          : fmt::format("# run with --refine-levels {}: every knot span halved {} time(s) after the "
+                                        "refinement above\n",
+                                        refine_levels, refine_levels);
     // Never write over the deck (or any input), whichever way the path was given.
     const io::OutputOrigin output_origin = io::output_origin(!output.empty(), overrides);
     io::check_output_paths(deck, io::input_files(deck), output_origin);
@@ -171,7 +188,7 @@ int run_command(int argc, char** argv, const Communicator& comm)
     options.stop_requested = [] { return interrupt_requested.load(); };
     context.set_stop(StopRequest(&interrupt_requested));  // polled inside set-up, assembly and Newton
     options.threads = threads;
-    options.refine_levels = refine_levels;
+    options.refine_levels = deck.accuracy ? 0 : refine_levels;  // folded into an accuracy deck's knots above
     options.comm = comm;
     options.output_origin = output_origin;
     if (terminal && speaks)

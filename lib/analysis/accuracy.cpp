@@ -1,9 +1,12 @@
 #include "analysis/accuracy.hpp"
 
+#include "analysis/contact_penalty.hpp"
 #include "analysis/geometry.hpp"
 #include "analysis/level_estimate.hpp"
 #include "analysis/multipatch.hpp"
+#include "analysis/scene.hpp"
 #include "analysis/size_estimate.hpp"
+#include "analysis/span_marking.hpp"
 #include "analysis/zone_refinement.hpp"
 #include "core/error.hpp"
 #include "io/deck_names.hpp"
@@ -16,7 +19,9 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <optional>
+#include <set>
 
 namespace iga::analysis {
 
@@ -29,7 +34,8 @@ struct Level {
     long long dofs = 0;
     double wall_s = 0.0;
     double value = 0.0;
-    std::optional<double> estimate;  ///< the estimated relative error; empty at level 0
+    std::optional<double> difference;  ///< d_k, the relative difference to the level before; empty at level 0
+    std::optional<double> estimate;    ///< the estimated relative error; empty at level 0
     /// Where the levels converge more slowly than the estimate assumes, the larger error
     /// their rate allows (level_estimate.hpp, slow_convergence); else the estimate.
     std::optional<double> bound;
@@ -52,6 +58,13 @@ const io::ContactSideResult* measured_side(const RunOutcome& outcome, const std:
     return p && !p->sides.empty() ? &p->sides.front() : nullptr;
 }
 
+/// Side `side` (as the deck names it) of a single-patch body, as analysed.
+nurbs::Patch side_patch(const io::Deck& deck, const io::Body& body, Side side)
+{
+    const nurbs::Patch patch = build_patch(body, deck.analysis.dimension);
+    return nurbs::extract_side(patch, named_side(side, u_reversed(body, 0))).patch;
+}
+
 /// The recovered pressure of a results side ("body.side") on the level's analysed side patch.
 SidePressure side_pressure(const io::Deck& deck, const io::ContactSideResult& result)
 {
@@ -59,23 +72,66 @@ SidePressure side_pressure(const io::Deck& deck, const io::ContactSideResult& re
     const io::Body* body = deck.find_body(result.side_name.substr(0, dot));
     const std::optional<Side> named = parse_side(result.side_name.substr(dot + 1));
     IGA_CHECK(body != nullptr && named.has_value(), "accuracy: cannot find the contact side " + result.side_name);
-    const nurbs::Patch patch = build_patch(*body, deck.analysis.dimension);
-    SidePressure out{nurbs::extract_side(patch, named_side(*named, u_reversed(*body, 0))).patch,
-                     result.postprocessed.control_point_pressure};
+    SidePressure out{side_patch(deck, *body, *named), result.postprocessed.control_point_pressure};
     IGA_CHECK(out.control_pressure.size() == out.side.n_control_points(),
               "accuracy: the recovered pressure of " + result.side_name + " does not match its side");
     return out;
 }
 
-/// The error of the same quantity against the deck's analytic reference, if any.
-std::optional<double> reference_error(const io::Deck& deck, const io::Accuracy& a, const RunOutcome& outcome)
+/// The recovered pressures of all sides of a pair that carry one, by side name.
+std::map<std::string, SidePressure> side_pressures(const io::Deck& deck, const io::ContactPairResult& pair)
+{
+    std::map<std::string, SidePressure> out;
+    for (const io::ContactSideResult& side : pair.sides)
+        if (side.postprocessed.control_point_pressure.size() > 0)
+            out.emplace(side.side_name, side_pressure(deck, side));
+    return out;
+}
+
+/// `penalty: auto` tied to the mesh for a level: the conditioning cap c_max E'/h of the
+/// level's own contact sides, written into the level's deck as the number it is. The
+/// penalty's error then falls with h as the discretization's does (an auto penalty
+/// from the sides' size alone, kappa_side E*/l, stays the same on every level, and its
+/// error, 0.5 % of the 2D Hertz L2 at 3 400 dofs, would end up above what the levels
+/// estimate). The augmented Lagrangian's automatic gap tolerance is already h p_max/E'.
+/// Returns the pairs' penalties, for the log.
+std::vector<std::string> tie_penalty_to_mesh(io::Deck& deck)
+{
+    std::vector<std::string> out;
+    for (io::ContactPair& pair : deck.contact) {
+        if (!pair.penalty_auto || pair.enforcement != io::Enforcement::penalty)
+            continue;
+        double h = std::numeric_limits<double>::infinity(), modulus = h;
+        for (const io::ContactSurface* s : {&pair.first, &pair.second}) {
+            if (!s->deformable())
+                continue;
+            const io::Body& body = *deck.find_body(s->body);
+            h = std::min(h, smallest_element_size(side_patch(deck, body, *s->side)));
+            modulus = std::min(modulus, contact_modulus(to_material(*deck.find_material(body.material), deck.analysis)));
+        }
+        pair.penalty = auto_penalty_cap * modulus / h;
+        pair.penalty_auto = false;
+        out.push_back(fmt::format("penalty of '{}' {:.4g} = {:g} E'/h, h = {:.4g}", pair.name, pair.penalty,
+                                  auto_penalty_cap, h));
+    }
+    return out;
+}
+
+/// The error of the same quantity against the deck's analytic reference, if any: for the
+/// pressure in the estimate's own norm (level_estimate.hpp, reference_pressure_error).
+std::optional<double> reference_error(const io::Deck& deck, const io::Accuracy& a, const RunOutcome& outcome,
+                                      const SidePressure& field)
 {
     if (!deck.output.reference || deck.output.reference->pair != a.pair)
         return std::nullopt;
+    if (a.quantity == io::AccuracyQuantity::pressure_l2) {
+        for (const io::ReferenceData& r : outcome.references)
+            if (r.pair == a.pair)
+                return reference_pressure_error(r, field);
+        return std::nullopt;
+    }
     const char* radius = deck.analysis.dimension == 2 ? "half_width" : "contact_radius";
-    const char* key = a.quantity == io::AccuracyQuantity::pressure_l2      ? "l2"
-                      : a.quantity == io::AccuracyQuantity::contact_radius ? radius
-                                                                           : nullptr;
+    const char* key = a.quantity == io::AccuracyQuantity::contact_radius ? radius : nullptr;
     if (!key)
         return std::nullopt;
     const auto it = outcome.errors.find(key);
@@ -103,16 +159,17 @@ void write_results(const std::string& level_file, const std::string& final_path,
         io::h5::write_attribute(group.id(), "estimated_error",
                                 last.bound.value_or(std::numeric_limits<double>::quiet_NaN()));
         // level, dofs, value, estimated_error (NaN at level 0), error_bound (the same, or the larger
-        // error slow convergence allows), reference_error (NaN: none); the wall times apart, as a
-        // timing (igacontact compare leaves them out)
-        RowMatrix table(static_cast<Index>(levels.size()), 6);
+        // error slow convergence allows), reference_error (NaN: none), difference (d_k, NaN at
+        // level 0); the wall times apart, as a timing (igacontact compare leaves them out)
+        RowMatrix table(static_cast<Index>(levels.size()), 7);
         Vector wall(static_cast<Index>(levels.size()));
         std::vector<std::string> refined;
         const double none = std::numeric_limits<double>::quiet_NaN();
         for (std::size_t k = 0; k < levels.size(); ++k) {
             const Level& l = levels[k];
             table.row(static_cast<Index>(k)) << l.index, static_cast<double>(l.dofs), l.value,
-                l.estimate.value_or(none), l.bound.value_or(none), l.reference_error.value_or(none);
+                l.estimate.value_or(none), l.bound.value_or(none), l.reference_error.value_or(none),
+                l.difference.value_or(none);
             wall(static_cast<Index>(k)) = l.wall_s;
             std::string line;
             for (const std::string& part : l.refined)
@@ -158,12 +215,18 @@ private:
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     }
 
-    /// Whether level k fits the budget's dofs and seconds (else stop_reason_ says why not).
+    /// Whether level k fits the budget's dofs and seconds, and the machine's memory (else
+    /// stop_reason_ says why not): a level that cannot be allocated is not started.
     bool budget_allows(int k)
     {
-        const double dofs = estimate_size(deck_).dofs;
+        const SizeEstimate size = estimate_size(deck_);
+        const double dofs = size.dofs;
+        const SizeLimits limits = machine_limits();
         if (a_.dofs > 0.0 && dofs > a_.dofs)
             stop_reason_ = fmt::format("level {} would have {:.3g} dofs, above the budget's {:.3g}", k, dofs, a_.dofs);
+        else if (limits.memory_bytes > 0.0 && size.bytes > limits.memory_bytes)
+            stop_reason_ = fmt::format("level {} would need about {:.3g} GB ({:.3g} dofs), more than {} {:.3g} GB", k,
+                                       size.bytes / 1e9, dofs, limits.memory_name, limits.memory_bytes / 1e9);
         const double expected = elapsed() + levels_.back().wall_s * std::exp2(deck_.analysis.dimension);
         if (stop_reason_.empty() && a_.seconds > 0.0 && expected > a_.seconds)
             stop_reason_ = fmt::format("level {} would end at about {:.3g} s, beyond the budget's {:.3g} s", k,
@@ -177,6 +240,8 @@ private:
         io::Deck level_deck = deck_;
         level_deck.output.file = (folder_ / fmt::format("level{}.h5", k)).string();
         level_deck.accuracy.reset();
+        for (const std::string& line : tie_penalty_to_mesh(level_deck))
+            context_.log(Verbosity::verbose, fmt::format("  level {}: {}", k, line));
         level_deck.resolved_yaml = io::write_resolved_yaml(level_deck);
         RunContext level_context = context_;
         // A coarse level's warnings (a zone a span or two across) are what the levels are
@@ -201,22 +266,25 @@ private:
         }
         const io::ContactSideResult* side = measured_side(level_run, a_.pair);
         IGA_CHECK(side != nullptr, "accuracy: the results of level " + std::to_string(k) + " lack the pair " + a_.pair);
-        const SidePressure field = side_pressure(deck_, *side);
+        std::map<std::string, SidePressure> fields = side_pressures(deck_, *pair_result(level_run, a_.pair));
+        const SidePressure& field = fields.at(side->side_name);
         Level level;
         level.index = k;
         level.dofs = static_cast<long long>(level_run.numbers.at("dofs"));
         level.wall_s = level_run.wall_s;
         level.value = side_quantity(a_.quantity, *side, field);
-        level.reference_error = reference_error(deck_, a_, level_run);
-        if (previous_field_) {
+        level.reference_error = reference_error(deck_, a_, level_run, field);
+        if (const auto previous = fields_.find(side->side_name); previous != fields_.end()) {
             differences_.push_back(a_.quantity == io::AccuracyQuantity::pressure_l2
-                                       ? relative_pressure_difference(*previous_field_, field)
+                                       ? pressure_difference(previous->second, field).relative
                                        : std::abs(level.value - levels_.back().value) / std::abs(level.value));
-            level.estimate = level_error(differences_.back());
+            level.difference = differences_.back();
+            level.estimate = level_error(differences_.back(), levels_.back().estimate);
             const std::optional<double> rate = slow_convergence(differences_);
             level.bound = rate ? std::max(*level.estimate, differences_.back() / (*rate - 1.0)) : *level.estimate;
         }
-        previous_field_ = field;
+        previous_fields_ = std::move(fields_);
+        fields_ = std::move(fields);
         last_run_ = level_run;
         reached_ = level.bound && safety_factor * *level.bound <= a_.error;
         log_level(level);
@@ -232,13 +300,19 @@ private:
         const std::string reference =
             level.reference_error ? ", against the reference " + percent(*level.reference_error) : std::string();
         context_.log(Verbosity::normal,
-                     fmt::format("accuracy level {}: {} dofs, {:.3g} s, {} {:.6g}, estimated error {}{}{}", level.index,
+                     fmt::format("accuracy level {}: {} dofs, {:.3g} s, {} {:.6g}, estimated error {}{}{}{}", level.index,
                                  level.dofs, level.wall_s, io::deck_name(a_.quantity), level.value,
-                                 level.estimate ? percent(*level.estimate) : std::string("- (level 0)"), slow,
-                                 reference));
+                                 level.estimate ? percent(*level.estimate) : std::string("- (level 0)"),
+                                 level.difference && *level.difference < *level.estimate
+                                     ? fmt::format(" (half the last estimate; the difference is {})",
+                                                   percent(*level.difference))
+                                     : std::string(),
+                                 slow, reference));
     }
 
-    /// Halves the spans around level k's contact zone (else stop_reason_ says why not).
+    /// Halves the spans where level k's pressure differs most from level k-1's (at level 0:
+    /// around the pressed zone) on each deformable side of the pair (else stop_reason_ says
+    /// why not).
     void refine(int k, const RunOutcome& level_run)
     {
         const io::ContactPairResult& pair = *pair_result(level_run, a_.pair);
@@ -254,7 +328,26 @@ private:
             for (const io::ContactSideResult& side : p.sides)
                 if (const RowMatrix& x = side.gauss_points.reference_coordinates; x.rows() > 0)
                     model_size = std::max(model_size, (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm());
-        levels_.back().refined = refine_toward_zone(deck_, a_.pair, *zone, model_size);
+        const io::ContactPair& deck_pair = *std::find_if(deck_.contact.begin(), deck_.contact.end(),
+                                                         [&](const io::ContactPair& p) { return p.name == a_.pair; });
+        // Marks first, for every side, on the level's patches; then the knots.
+        std::vector<std::pair<const io::ContactSurface*, SurfaceMarks>> sides;
+        std::set<std::string> bodies;
+        for (const io::ContactSurface* s : {&deck_pair.first, &deck_pair.second}) {
+            if (!s->deformable() || !bodies.insert(s->body).second)  // a body refined once per level
+                continue;
+            const std::string name = s->body + "." + std::string(side_name(*s->side));
+            const auto now = fields_.find(name), before = previous_fields_.find(name);
+            SurfaceMarks marks;
+            if (now != fields_.end() && before != previous_fields_.end())
+                marks = marks_from_indicators(now->second.side, pressure_difference(before->second, now->second).element2);
+            if (marks.empty())
+                marks = marks_from_zone(side_patch(deck_, *deck_.find_body(s->body), *s->side), widened(*zone, model_size));
+            sides.emplace_back(s, std::move(marks));
+        }
+        for (const auto& [s, marks] : sides)
+            for (const std::string& line : refine_side(deck_, s->body, *s->side, marks))
+                levels_.back().refined.push_back(line);
         for (const std::string& line : levels_.back().refined)
             context_.log(Verbosity::verbose, "  refined " + line);
     }
@@ -303,7 +396,8 @@ private:
     std::chrono::steady_clock::time_point start_;
     std::vector<Level> levels_;
     std::vector<double> differences_;  ///< d_1 .. d_k
-    std::optional<SidePressure> previous_field_;
+    std::map<std::string, SidePressure> fields_;           ///< the last level's recovered pressures, by side
+    std::map<std::string, SidePressure> previous_fields_;  ///< the level's before
     RunOutcome last_run_;  ///< of the last completed level (or of a failed level 0)
     std::string stop_reason_;
     bool reached_ = false;

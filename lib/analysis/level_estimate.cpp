@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -32,19 +33,21 @@ double area_element(const nurbs::Patch& side, const VecN& xi)
     return a.cross(b).norm();
 }
 
-/// Calls f(xi, W) at the Gauss points of every span of `side` (degree + 2 points per span
-/// and direction), W the rule's weight times the area element.
+/// Calls f(e, element, xi, W) at the Gauss points of every span of `side` (degree + 2
+/// points per span and direction), e the element's index in side.elements(), W the rule's
+/// weight times the area element.
 template <class F>
 void for_each_side_point(const nurbs::Patch& side, F&& f)
 {
     int n = 0;
     for (int k = 0; k < side.n_par(); ++k)
         n = std::max(n, side.degree(k) + 2);
-    for (const nurbs::Element& e : side.elements()) {
-        const quadrature::TensorRule rule = quadrature::element_rule(side, e, n);
+    const std::vector<nurbs::Element> elements = side.elements();
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+        const quadrature::TensorRule rule = quadrature::element_rule(side, elements[e], n);
         for (Index q = 0; q < rule.points.rows(); ++q) {
             const VecN xi = rule.points.row(q).transpose();
-            f(xi, rule.weights(q) * area_element(side, xi));
+            f(e, elements[e], xi, rule.weights(q) * area_element(side, xi));
         }
     }
 }
@@ -66,7 +69,7 @@ double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult&
     }
     case io::AccuracyQuantity::pressure_l2: {
         double norm2 = 0.0;
-        for_each_side_point(field.side, [&](const VecN& xi, double w) {
+        for_each_side_point(field.side, [&](std::size_t, const nurbs::Element&, const VecN& xi, double w) {
             const double p = pressure_at(field, xi);
             norm2 += w * p * p;
         });
@@ -78,28 +81,79 @@ double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult&
     throw Error("accuracy: the stick zone has no estimate yet");
 }
 
-double relative_pressure_difference(const SidePressure& coarse, const SidePressure& fine)
+PressureDifference pressure_difference(const SidePressure& coarse, const SidePressure& fine)
 {
     IGA_CHECK(coarse.side.n_par() == fine.side.n_par(), "accuracy: two levels' contact sides differ in dimension");
+    const int n_par = fine.side.n_par();
+    PressureDifference out;
+    out.element2 = RowMatrix::Zero(static_cast<Index>(fine.side.elements().size()), n_par);
     double difference2 = 0.0, norm2 = 0.0;
-    for_each_side_point(fine.side, [&](const VecN& xi, double w) {
-        const double p_fine = pressure_at(fine, xi);
+    std::array<double, 3> change{};  // the fine pressure's change across the element, per direction
+    for_each_side_point(fine.side, [&](std::size_t e, const nurbs::Element& element, const VecN& xi, double w) {
+        const nurbs::BasisValues b = nurbs::rational_basis(fine.side, xi, 1);
+        double p_fine = 0.0;
+        change.fill(0.0);
+        for (std::size_t a = 0; a < b.indices.size(); ++a) {
+            const double p_a = fine.control_pressure(b.indices[a]);
+            p_fine += b.R(static_cast<Index>(a)) * p_a;
+            for (int k = 0; k < n_par; ++k)
+                change[static_cast<std::size_t>(k)] += b.dR(static_cast<Index>(a), k) * p_a;
+        }
+        double total = 0.0;
+        for (int k = 0; k < n_par; ++k) {
+            const auto kk = static_cast<std::size_t>(k);
+            change[kk] *= element.upper[kk] - element.lower[kk];
+            total += change[kk] * change[kk];
+        }
         const double p_coarse = pressure_at(coarse, xi);
-        difference2 += w * (p_fine - p_coarse) * (p_fine - p_coarse);
+        const double d2 = w * (p_fine - p_coarse) * (p_fine - p_coarse);
+        for (int k = 0; k < n_par; ++k) {  // the direction the pressure changes in is the one to refine
+            const double c = change[static_cast<std::size_t>(k)];
+            out.element2(static_cast<Index>(e), k) += d2 * (total > 0.0 ? c * c / total : 1.0 / n_par);
+        }
+        difference2 += d2;
         norm2 += w * p_fine * p_fine;
     });
-    return norm2 > 0.0 ? std::sqrt(difference2 / norm2) : std::numeric_limits<double>::infinity();
+    out.relative = norm2 > 0.0 ? std::sqrt(difference2 / norm2) : std::numeric_limits<double>::infinity();
+    return out;
+}
+
+double reference_pressure_error(const io::ReferenceData& ref, const SidePressure& field)
+{
+    const int d = field.side.dim();
+    IGA_CHECK(static_cast<int>(ref.center.size()) == d && (ref.normal.size() == 3 || static_cast<int>(ref.tangent.size()) == d),
+              "accuracy: the reference of pair '" + ref.pair + "' has no centre and direction");
+    const VecN c = Eigen::Map<const Eigen::VectorXd>(ref.center.data(), d);
+    const bool point = ref.normal.size() == 3;
+    const VecN axis = point ? VecN(Eigen::Map<const Eigen::VectorXd>(ref.normal.data(), 3).normalized())
+                            : VecN(Eigen::Map<const Eigen::VectorXd>(ref.tangent.data(), d).normalized());
+    double error2 = 0.0, norm2 = 0.0;
+    for_each_side_point(field.side, [&](std::size_t, const nurbs::Element&, const VecN& xi, double w) {
+        const VecN offset = nurbs::evaluate(field.side, xi, 0).x - c;
+        const double s = point ? (offset - offset.dot(axis) * axis).norm() : std::abs(offset.dot(axis));
+        const double exact = s < ref.a ? ref.p0 * std::sqrt(1.0 - (s / ref.a) * (s / ref.a)) : 0.0;
+        const double p = pressure_at(field, xi);
+        error2 += w * (p - exact) * (p - exact);
+        norm2 += w * exact * exact;
+    });
+    return norm2 > 0.0 ? std::sqrt(error2 / norm2) : std::numeric_limits<double>::infinity();
 }
 
 std::optional<double> slow_convergence(const std::vector<double>& d)
 {
     const std::size_t n = d.size();
-    if (n < 3 || !(d[n - 1] > 0.0 && d[n - 2] > 0.0))
+    if (n < slow_levels + 1)
         return std::nullopt;
-    const double last = d[n - 2] / d[n - 1], before = d[n - 3] / d[n - 2];
-    if (!(last < slow_ratio && before < slow_ratio && last > 1.0 && before > 1.0))
-        return std::nullopt;
-    return std::min(last, before);
+    double rate = 0.0;  // the largest of the last ratios, each below slow_ratio
+    for (std::size_t k = n - slow_levels; k < n; ++k) {
+        if (!(d[k] > 0.0 && d[k - 1] > 0.0))
+            return std::nullopt;
+        const double ratio = d[k - 1] / d[k];
+        if (!(ratio > 1.0 && ratio < slow_ratio))
+            return std::nullopt;
+        rate = std::max(rate, ratio);
+    }
+    return rate;
 }
 
 }  // namespace iga::analysis

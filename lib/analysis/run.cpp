@@ -132,6 +132,7 @@ io::RunSummary summary_of(RunModel& m, const IncrementSteps& steps, RunOutcome& 
     for (const io::ReferenceData& r : summary.references)
         for (const auto& [key, value] : r.errors)
             outcome.errors[key] = value;
+    outcome.references = summary.references;
     const auto& convergence = steps.convergence();
     summary.convergence.resize(static_cast<Index>(convergence.size()), 4);
     for (std::size_t k = 0; k < convergence.size(); ++k)

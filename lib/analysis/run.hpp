@@ -56,6 +56,7 @@ struct RunOutcome {
     int cutbacks = 0;
     double wall_s = 0.0;
     std::map<std::string, double> errors;   ///< against the reference, when the deck asks for one
+    std::vector<io::ReferenceData> references;  ///< the references themselves (accuracy.hpp measures against them)
     std::map<std::string, double> numbers;  ///< dofs, gauss points, active points, ...
     std::vector<std::string> warnings;      ///< also in the results' root attribute `warnings`
     std::vector<io::Reaction> reactions;    ///< of the last converged increment

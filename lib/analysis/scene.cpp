@@ -20,8 +20,6 @@
 
 namespace iga::analysis {
 
-namespace {
-
 mechanics::Material to_material(const io::Material& m, const io::Analysis& analysis)
 {
     mechanics::Material out;
@@ -34,6 +32,8 @@ mechanics::Material to_material(const io::Material& m, const io::Analysis& analy
         out.plane = analysis.plane;
     return out;
 }
+
+namespace {
 
 DeckIssue body_issue(const io::Deck& deck, const std::string& path, const std::string& reason)
 {

@@ -221,6 +221,9 @@ LoadPath deck_load_path(const io::Deck& deck);
 /// (and inside the gluing): a requested stop throws Interrupted.
 /// On several ranks (`comm`), each rank's pattern holds only the blocks it owns
 /// (Scene::partition); everything else is the same on every rank.
+/// A deck material as the element code uses it (the deck's plane mode in 2D).
+mechanics::Material to_material(const io::Material& m, const io::Analysis& analysis);
+
 Scene build_scene(const io::Deck& deck, int refine_levels = 0, const StopRequest& stop = {},
                   const Communicator& comm = Communicator());
 

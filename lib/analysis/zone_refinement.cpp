@@ -8,17 +8,14 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <set>
+#include <limits>
 
 namespace iga::analysis {
 
 namespace {
 
-/// Neighbouring spans differ by at most this factor after a refinement (grading_knots).
-constexpr double grading_ratio = 4.0;
-
-/// Points per direction of the grid whose box stands for an element.
-constexpr int points_per_direction = 5;
+/// Sub-segments per span of the chord sum that measures its length.
+constexpr int segments_per_span = 4;
 
 const io::ContactPair& find_pair(const io::Deck& deck, const std::string& pair)
 {
@@ -29,57 +26,85 @@ const io::ContactPair& find_pair(const io::Deck& deck, const std::string& pair)
 }
 
 /// The deformable bodies of a pair (one or two, each once).
-std::vector<io::Body*> pair_bodies(io::Deck& deck, const io::ContactPair& pair)
+std::vector<const io::Body*> pair_bodies(const io::Deck& deck, const io::ContactPair& pair)
 {
-    std::vector<io::Body*> out;
+    std::vector<const io::Body*> out;
     for (const io::ContactSurface* s : {&pair.first, &pair.second})
-        for (io::Body& body : deck.bodies)
-            if (s->deformable() && body.name == s->body &&
-                std::find(out.begin(), out.end(), &body) == out.end())
+        for (const io::Body& body : deck.bodies)
+            if (s->deformable() && body.name == s->body && std::find(out.begin(), out.end(), &body) == out.end())
                 out.push_back(&body);
     return out;
 }
 
-/// The bounding box of a grid of points on one element of `patch`.
-ZoneBox element_box(const nurbs::Patch& patch, const nurbs::Element& element)
+/// The lengths in space of the spans between `breaks` along direction k of `patch`, on
+/// the parametric line through xi.
+std::vector<double> lengths_along(const nurbs::Patch& patch, int k, VecN xi, const std::vector<double>& breaks)
 {
-    const int n_par = patch.n_par();
-    const int d = patch.dim();
-    ZoneBox box{VecN::Constant(d, std::numeric_limits<double>::infinity()),
-                VecN::Constant(d, -std::numeric_limits<double>::infinity())};
-    int total = 1;
-    for (int k = 0; k < n_par; ++k)
-        total *= points_per_direction;
-    VecN xi(n_par);
-    for (int index = 0; index < total; ++index) {
-        int rest = index;
-        for (int k = 0; k < n_par; ++k) {
-            const double t = static_cast<double>(rest % points_per_direction) / (points_per_direction - 1);
-            rest /= points_per_direction;
-            const auto kk = static_cast<std::size_t>(k);
-            xi(k) = element.lower[kk] + t * (element.upper[kk] - element.lower[kk]);
+    std::vector<double> out;
+    out.reserve(breaks.size());
+    auto at = [&](double t) {
+        xi(k) = t;
+        return nurbs::evaluate(patch, xi, 0).x;
+    };
+    VecN previous = at(breaks.front());
+    for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
+        double length = 0.0;
+        for (int m = 1; m <= segments_per_span; ++m) {
+            const VecN x = at(breaks[i] + (breaks[i + 1] - breaks[i]) * m / segments_per_span);
+            length += (x - previous).norm();
+            previous = x;
         }
-        const VecN x = nurbs::evaluate(patch, xi, 0).x;
-        box.lower = box.lower.cwiseMin(x);
-        box.upper = box.upper.cwiseMax(x);
+        out.push_back(length);
     }
-    return box;
+    return out;
 }
 
-/// Knots that keep neighbouring spans within a factor of two of each other (a 2:1 grading
-/// out from the zone), given the breakpoints after the zone's halving: each span longer
-/// than twice a neighbour is halved, until none is.
-std::vector<double> grading_knots(std::vector<double> breaks)
+std::vector<double> merged(std::vector<double> breaks, const std::vector<double>& knots)
 {
+    breaks.insert(breaks.end(), knots.begin(), knots.end());
+    std::sort(breaks.begin(), breaks.end());
+    return breaks;
+}
+
+}  // namespace
+
+std::vector<double> graded_knots(std::vector<double> breaks, const SpanLengths& lengths, GradingSource source)
+{
+    // Halving a span of a curved line does not halve its length exactly (a quarter circle's
+    // rational speed varies by 40 %): without this slack a span a few per cent over twice its
+    // halved neighbour would be halved, and its neighbour next, across the whole patch.
+    constexpr double slack = 1.25;
+    const double smallest_span = 1e-9 * (breaks.back() - breaks.front());  // parameters: no halving below
     std::vector<double> added;
     for (bool changed = true; changed;) {
+        const std::vector<double> L = lengths(breaks);
+        const std::size_t n = L.size();
+        std::vector<double> s(n + 1, 0.0);  // position in space of each breakpoint
+        for (std::size_t i = 0; i < n; ++i)
+            s[i + 1] = s[i] + L[i];
+        // A span of no length (a collapsed edge of the line) bounds nothing.
+        const double negligible = 1e-9 * s[n];
+        // limit_i = min over j != i of smooth_ratio L_j + growth gap(i, j), by a sweep each way
+        std::vector<double> limit(n, std::numeric_limits<double>::infinity());
+        double best = std::numeric_limits<double>::infinity();  // min over j < i of smooth_ratio L_j - growth s_{j+1}
+        for (std::size_t i = 0; i < n; ++i) {
+            limit[i] = std::min(limit[i], best + growth * s[i]);
+            if (L[i] > negligible)
+                best = std::min(best, smooth_ratio * L[i] - growth * s[i + 1]);
+        }
+        best = std::numeric_limits<double>::infinity();  // min over j > i of smooth_ratio L_j + growth s_j
+        for (std::size_t i = n; i-- > 0;) {
+            limit[i] = std::min(limit[i], best - growth * s[i + 1]);
+            if (L[i] > negligible)
+                best = std::min(best, smooth_ratio * L[i] + growth * s[i]);
+        }
+        if (source.h0 > 0.0)
+            for (std::size_t i = 0; i < n; ++i)
+                limit[i] = std::min(limit[i], source.h0 + growth * (source.at_end ? s[n] - s[i + 1] : s[i]));
         changed = false;
         std::vector<double> next{breaks.front()};
-        for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
-            const double length = breaks[i + 1] - breaks[i];
-            const double left = i > 0 ? breaks[i] - breaks[i - 1] : length;
-            const double right = i + 2 < breaks.size() ? breaks[i + 2] - breaks[i + 1] : length;
-            if (length > grading_ratio * std::min(left, right) * (1.0 + 1e-9)) {
+        for (std::size_t i = 0; i < n; ++i) {
+            if (L[i] > limit[i] * slack && breaks[i + 1] - breaks[i] > smallest_span) {
                 const double mid = 0.5 * (breaks[i] + breaks[i + 1]);
                 next.push_back(mid);
                 added.push_back(mid);
@@ -92,84 +117,105 @@ std::vector<double> grading_knots(std::vector<double> breaks)
     return added;
 }
 
-bool overlaps(const ZoneBox& a, const ZoneBox& b)
+std::vector<std::string> refine_side(io::Deck& deck, const std::string& body_name, Side side, const SurfaceMarks& marks)
 {
-    return (a.lower.array() <= b.upper.array()).all() && (b.lower.array() <= a.upper.array()).all();
-}
-
-}  // namespace
-
-std::optional<ZoneBox> pressed_zone(const io::ContactPairResult& pair)
-{
-    std::optional<ZoneBox> box;
-    for (const io::ContactSideResult& side : pair.sides) {
-        const io::GaussPointData& g = side.gauss_points;
-        for (Index k = 0; k < g.pressure.size(); ++k) {
-            if (!(g.pressure(k) > 0.0))
-                continue;
-            const VecN x = g.reference_coordinates.row(k).transpose();
-            if (!box)
-                box = ZoneBox{x, x};
-            box->lower = box->lower.cwiseMin(x);
-            box->upper = box->upper.cwiseMax(x);
-        }
+    const auto found = std::find_if(deck.bodies.begin(), deck.bodies.end(),
+                                    [&](const io::Body& b) { return b.name == body_name; });
+    io::Body* body = found == deck.bodies.end() ? nullptr : &*found;
+    IGA_CHECK(body != nullptr && !body->rigid && !body->multi_patch(),
+              "accuracy: '" + body_name + "' is not a single-patch deformable body");
+    const nurbs::Patch patch = build_patch(*body, deck.analysis.dimension);
+    const int n_par = patch.n_par();
+    const bool reversed = u_reversed(*body, 0);
+    const Side analysed = named_side(side, reversed);
+    const int normal = side_direction(analysed);
+    IGA_CHECK(static_cast<int>(marks.spans.size()) == n_par - 1,
+              "accuracy: the marks of " + body_name + " do not match its side");
+    // The zone's point in the body's parameters: the side's directions skip the normal one.
+    VecN xi(n_par);
+    for (int j = 0, k = 0; k < n_par; ++k) {
+        if (k == normal)
+            xi(k) = side_at_end(analysed) ? patch.knots(k).back() : patch.knots(k).front();
+        else
+            xi(k) = marks.center(j++);
     }
-    return box;
-}
-
-std::vector<std::string> refine_toward_zone(io::Deck& deck, const std::string& pair_name, const ZoneBox& zone,
-                                            double model_size)
-{
-    const io::ContactPair& pair = find_pair(deck, pair_name);
-    const double margin = std::max(0.5 * (zone.upper - zone.lower).maxCoeff(), min_margin * model_size);
-    const ZoneBox region{zone.lower.array() - margin, zone.upper.array() + margin};
+    std::vector<std::vector<double>> knots(static_cast<std::size_t>(n_par));  // new knots, analysed parameters
     std::vector<std::string> lines;
-    for (io::Body* body : pair_bodies(deck, pair)) {
-        const nurbs::Patch patch = build_patch(*body, deck.analysis.dimension);
-        const int n_par = patch.n_par();
-        std::vector<std::set<int>> marked(static_cast<std::size_t>(n_par));  // span start knot index per direction
-        for (const nurbs::Element& e : patch.elements())
-            if (overlaps(element_box(patch, e), region))
-                for (int k = 0; k < n_par; ++k)
-                    marked[static_cast<std::size_t>(k)].insert(e.span[static_cast<std::size_t>(k)]);
-        const bool reversed = u_reversed(*body, 0);
-        io::Refine& refine = body->refine;
-        refine.insert.resize(static_cast<std::size_t>(n_par));
-        for (int k = 0; k < n_par; ++k) {
-            const nurbs::KnotVector& kv = patch.knots(k);
-            const auto& values = kv.knot_values();
-            std::vector<double> knots;  // new knots, in the analysed patch's parameters
-            double lo = kv.back(), hi = kv.front();
-            for (const int i : marked[static_cast<std::size_t>(k)]) {
-                const auto ii = static_cast<std::size_t>(i);
-                knots.push_back(0.5 * (values[ii] + values[ii + 1]));
-                lo = std::min(lo, values[ii]);
-                hi = std::max(hi, values[ii + 1]);
-            }
-            if (knots.empty())
-                continue;
-            std::vector<double> breaks = kv.breakpoints();
-            breaks.insert(breaks.end(), knots.begin(), knots.end());
-            std::sort(breaks.begin(), breaks.end());
-            const std::vector<double> graded = grading_knots(breaks);
-            knots.insert(knots.end(), graded.begin(), graded.end());
-            std::vector<double>& insert = refine.insert[static_cast<std::size_t>(k)];
-            for (const double t : knots)  // the deck's u runs the other way in a mirrored body (geometry.hpp)
-                insert.push_back(reversed && k == 0 ? kv.front() + kv.back() - t : t);
-            std::sort(insert.begin(), insert.end());
-            lines.push_back(fmt::format("{}: {} {} span(s) halved in [{:.4g}, {:.4g}], {} more to grade", body->name,
-                                        "uvw"[k], marked[static_cast<std::size_t>(k)].size(), lo, hi,
-                                        graded.size()));
+    // Along the side: the marked spans halved; the shortest of them sets the depth's first span.
+    double shortest = std::numeric_limits<double>::infinity();
+    std::vector<std::size_t> marked_count(static_cast<std::size_t>(n_par), 0);
+    for (int j = 0, k = 0; k < n_par; ++k) {
+        if (k == normal)
+            continue;
+        const std::vector<double>& values = patch.knots(k).knot_values();
+        std::vector<double> children;  // the breakpoints of the halved spans, for their lengths
+        for (const int i : marks.spans[static_cast<std::size_t>(j)]) {
+            const auto ii = static_cast<std::size_t>(i);
+            const double mid = 0.5 * (values[ii] + values[ii + 1]);
+            knots[static_cast<std::size_t>(k)].push_back(mid);
+            for (const double t : {values[ii], mid, values[ii + 1]})
+                children.push_back(t);
         }
+        marked_count[static_cast<std::size_t>(k)] = marks.spans[static_cast<std::size_t>(j)].size();
+        for (std::size_t c = 0; c + 2 < children.size(); c += 3)
+            for (const double length : lengths_along(patch, k, xi, {children[c], children[c + 1], children[c + 2]}))
+                if (length > 0.0)
+                    shortest = std::min(shortest, length);
+        ++j;
+    }
+    for (int k = 0; k < n_par; ++k) {
+        const auto kk = static_cast<std::size_t>(k);
+        GradingSource source;
+        if (k == normal && std::isfinite(shortest))
+            source = GradingSource{side_at_end(analysed), depth_aspect * shortest};
+        const std::vector<double> graded =
+            graded_knots(merged(patch.knots(k).breakpoints(), knots[kk]),
+                         [&](const std::vector<double>& b) { return lengths_along(patch, k, xi, b); }, source);
+        knots[kk].insert(knots[kk].end(), graded.begin(), graded.end());
+        if (knots[kk].empty())
+            continue;
+        body->refine.insert.resize(static_cast<std::size_t>(n_par));
+        std::vector<double>& insert = body->refine.insert[kk];
+        for (const double t : knots[kk])  // the deck's u runs the other way in a mirrored body (geometry.hpp)
+            insert.push_back(reversed && k == 0 ? patch.knots(0).front() + patch.knots(0).back() - t : t);
+        std::sort(insert.begin(), insert.end());
+        lines.push_back(k == normal ? fmt::format("{}: {} {} span(s) halved below {}", body->name, "uvw"[k],
+                                                  graded.size(), side_name(side))
+                                    : fmt::format("{}: {} {} span(s) halved at the zone, {} more to grade",
+                                                  body->name, "uvw"[k], marked_count[kk], graded.size()));
     }
     return lines;
 }
 
+void fold_halvings(io::Deck& deck, int halvings)
+{
+    for (io::Body& body : deck.bodies) {
+        if (body.rigid)
+            continue;
+        IGA_CHECK(!body.multi_patch(), "fold_halvings: body '" + body.name + "' is multi-patch");
+        const nurbs::Patch patch = build_patch(body, deck.analysis.dimension);
+        const bool reversed = u_reversed(body, 0);
+        body.refine.insert.resize(static_cast<std::size_t>(patch.n_par()));
+        for (int k = 0; k < patch.n_par(); ++k) {
+            std::vector<double> breaks = patch.knots(k).breakpoints();
+            std::vector<double>& insert = body.refine.insert[static_cast<std::size_t>(k)];
+            for (int h = 0; h < halvings; ++h) {
+                std::vector<double> mids;
+                for (std::size_t i = 0; i + 1 < breaks.size(); ++i)
+                    mids.push_back(0.5 * (breaks[i] + breaks[i + 1]));
+                for (const double t : mids)
+                    insert.push_back(reversed && k == 0 ? patch.knots(0).front() + patch.knots(0).back() - t : t);
+                breaks = merged(std::move(breaks), mids);
+            }
+            std::sort(insert.begin(), insert.end());
+        }
+    }
+}
+
 std::string refine_text(const io::Deck& deck, const std::string& pair_name)
 {
-    io::Deck copy = deck;
     std::string text;
-    for (const io::Body* body : pair_bodies(copy, find_pair(deck, pair_name))) {
+    for (const io::Body* body : pair_bodies(deck, find_pair(deck, pair_name))) {
         text += fmt::format("# bodies.{}.refine.insert\ninsert:\n", body->name);
         for (const std::vector<double>& knots : body->refine.insert) {
             std::vector<std::string> words;
