@@ -71,8 +71,25 @@ std::string summary_json(const analysis::RunOutcome& r, int exit_code)
         out += fmt::format("{}\"{}\": {}", first ? "" : ", ", json_escape(key), json_number(value));
         first = false;
     }
-    out += "}, \"warnings\": " + json_string_list(r.warnings) + "}";
-    return out;
+    out += "}, \"warnings\": " + json_string_list(r.warnings);
+    if (r.accuracy) {
+        const analysis::AccuracySummary& a = *r.accuracy;
+        out += fmt::format(", \"accuracy\": {{\"pair\": \"{}\", \"quantity\": \"{}\", \"target\": {}, \"reached\": {}, "
+                           "\"estimated_error\": {}, \"wall_s\": {}, \"levels\": [",
+                           json_escape(a.pair), json_escape(a.quantity), json_number(a.target),
+                           a.reached ? "true" : "false", json_number(a.estimated_error), json_number(a.wall_s));
+        for (std::size_t k = 0; k < a.levels.size(); ++k) {
+            const analysis::AccuracyLevel& l = a.levels[k];
+            out += fmt::format("{}{{\"level\": {}, \"dofs\": {}, \"wall_s\": {}, \"value\": {}, \"difference\": {}, "
+                               "\"estimated_error\": {}, \"error_bound\": {}, \"reference_error\": {}, "
+                               "\"refined\": \"{}\"}}",
+                               k == 0 ? "" : ", ", l.level, json_number(l.dofs), json_number(l.wall_s),
+                               json_number(l.value), json_number(l.difference), json_number(l.estimated_error),
+                               json_number(l.error_bound), json_number(l.reference_error), json_escape(l.refined));
+        }
+        out += "]}";
+    }
+    return out + "}";
 }
 
 std::string error_summary_json(const std::string& status, const std::string& message, int exit_code)

@@ -365,6 +365,7 @@ private:
                                      percent(a_.error), safety_factor, levels_.back().index, levels_.back().dofs,
                                      elapsed(), folder_.string()));
         RunOutcome outcome = last_run_;
+        outcome.accuracy = summary();
         if (options_.warning)
             for (const std::string& line : last_run_.warnings)
                 options_.warning(line);
@@ -385,6 +386,23 @@ private:
                                     : std::string("no level has an estimate (it needs two)"));
         }
         return outcome;
+    }
+
+    /// The levels as the summary reports them.
+    AccuracySummary summary() const
+    {
+        const double none = std::numeric_limits<double>::quiet_NaN();
+        AccuracySummary out{a_.pair, std::string(io::deck_name(a_.quantity)), a_.error, reached_,
+                            levels_.empty() || !levels_.back().bound ? none : *levels_.back().bound, elapsed(), {}};
+        for (const Level& l : levels_) {
+            std::string refined;
+            for (const std::string& part : l.refined)
+                refined += (refined.empty() ? "" : "; ") + part;
+            out.levels.push_back({l.index, static_cast<double>(l.dofs), l.wall_s, l.value, l.difference.value_or(none),
+                                  l.estimate.value_or(none), l.bound.value_or(none), l.reference_error.value_or(none),
+                                  refined});
+        }
+        return out;
     }
 
     const io::Deck& input_;

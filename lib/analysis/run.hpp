@@ -19,6 +19,7 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -47,6 +48,29 @@ struct RunOptions {
     io::OutputOrigin output_origin = io::OutputOrigin::deck;
 };
 
+/// One level of an `accuracy:` run, as the summary reports it (accuracy.hpp).
+struct AccuracyLevel {
+    int level = 0;
+    double dofs = 0.0;
+    double wall_s = 0.0;
+    double value = 0.0;
+    double difference = 0.0;       ///< NaN at level 0
+    double estimated_error = 0.0;  ///< NaN at level 0
+    double error_bound = 0.0;      ///< NaN at level 0
+    double reference_error = 0.0;  ///< NaN without a matching reference
+    std::string refined;           ///< what the refinement after it halved ("" for the last)
+};
+
+/// What an `accuracy:` run reached (the results' /accuracy, for --summary json).
+struct AccuracySummary {
+    std::string pair, quantity;
+    double target = 0.0;
+    bool reached = false;
+    double estimated_error = 0.0;  ///< the last level's error bound
+    double wall_s = 0.0;           ///< all levels together
+    std::vector<AccuracyLevel> levels;
+};
+
 struct RunOutcome {
     std::string status;        ///< "completed" or "failed"
     std::string message;
@@ -64,6 +88,9 @@ struct RunOutcome {
     std::vector<std::pair<std::string, std::vector<double>>> obstacle_forces;
     /// Every pair's contact results of the last converged increment (accuracy.hpp measures them).
     std::vector<io::ContactPairResult> contact;
+    /// An `accuracy:` run's levels; empty for a plain run (then wall_s etc. are the run's,
+    /// else the last level's).
+    std::optional<AccuracySummary> accuracy;
 };
 
 RunOutcome run(const io::Deck& deck, const RunOptions& options, RunContext& context);

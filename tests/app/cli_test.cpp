@@ -593,6 +593,34 @@ TEST(Cli, SummaryJsonForEveryOutcome)
     EXPECT_NE(the_json_line(missing).find("no such deck file"), std::string::npos) << missing.out;
 }
 
+// An `accuracy:` run's summary line reports each level: its dofs, estimate and what the
+// refinement after it halved; a target the budget does not reach says reached false.
+TEST(Cli, SummaryJsonReportsTheAccuracyLevels)
+{
+    const auto dir = scratch_dir("summary_accuracy");
+    const CliResult r = run_cli(shell_quote(source_path("inputs/hertz_accuracy_2d.yaml")) + " -q --summary json -o " +
+                                    shell_quote((dir / "r.h5").string()) + " --set accuracy.budget.levels=3",
+                                dir);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    const std::string line = the_json_line(r);
+    std::smatch m;
+    EXPECT_TRUE(std::regex_search(line, m, std::regex("\"accuracy\": *\\{\"pair\": *\"cyl_floor\""))) << line;
+    EXPECT_TRUE(std::regex_search(line, m, std::regex("\"reached\": *false"))) << line;
+    // Three levels; level 0 has no estimate, the others one, and every level but the last
+    // says what was halved after it.
+    const std::regex level("\\{\"level\": *([0-9]+), \"dofs\": *([0-9]+)[^}]*\"estimated_error\": *([^,]+),[^}]*"
+                           "\"refined\": *\"([^\"]*)\"\\}");
+    std::vector<std::smatch> levels;
+    for (auto it = std::sregex_iterator(line.begin(), line.end(), level); it != std::sregex_iterator(); ++it)
+        levels.push_back(*it);
+    ASSERT_EQ(levels.size(), 3u) << line;
+    EXPECT_EQ(levels[0][3].str(), "null") << line;
+    EXPECT_NE(levels[2][3].str(), "null") << line;
+    EXPECT_NE(levels[0][4].str().find("halved"), std::string::npos) << line;
+    EXPECT_EQ(levels[2][4].str(), "") << line;
+    EXPECT_LT(std::stod(levels[0][2].str()), std::stod(levels[2][2].str())) << "the levels add dofs";
+}
+
 // -q silences progress, never a warning or the reason of a failure; `--summary json`
 // lists the warnings printed on stderr.
 TEST(Cli, QuietKeepsWarningsAndTheReasonOfAFailure)
