@@ -59,6 +59,16 @@ std::vector<double> lengths_along(const nurbs::Patch& patch, int k, VecN xi, con
     return out;
 }
 
+/// Adds knots of the analysed patch's direction k to the deck's insert list of that
+/// direction: a mirrored body's u runs the other way in the analysed patch (geometry.hpp).
+void add_to_insert(std::vector<double>& insert, const nurbs::Patch& patch, bool reversed, int k,
+                   const std::vector<double>& knots)
+{
+    for (const double t : knots)
+        insert.push_back(reversed && k == 0 ? patch.knots(0).front() + patch.knots(0).back() - t : t);
+    std::sort(insert.begin(), insert.end());
+}
+
 std::vector<double> merged(std::vector<double> breaks, const std::vector<double>& knots)
 {
     breaks.insert(breaks.end(), knots.begin(), knots.end());
@@ -175,10 +185,7 @@ std::vector<std::string> refine_side(io::Deck& deck, const std::string& body_nam
         if (knots[kk].empty())
             continue;
         body->refine.insert.resize(static_cast<std::size_t>(n_par));
-        std::vector<double>& insert = body->refine.insert[kk];
-        for (const double t : knots[kk])  // the deck's u runs the other way in a mirrored body (geometry.hpp)
-            insert.push_back(reversed && k == 0 ? patch.knots(0).front() + patch.knots(0).back() - t : t);
-        std::sort(insert.begin(), insert.end());
+        add_to_insert(body->refine.insert[kk], patch, reversed, k, knots[kk]);
         lines.push_back(k == normal ? fmt::format("{}: {} {} span(s) halved below {}", body->name, "uvw"[k],
                                                   graded.size(), side_name(side))
                                     : fmt::format("{}: {} {} span(s) halved at the zone, {} more to grade",
@@ -203,11 +210,9 @@ void fold_halvings(io::Deck& deck, int halvings)
                 std::vector<double> mids;
                 for (std::size_t i = 0; i + 1 < breaks.size(); ++i)
                     mids.push_back(0.5 * (breaks[i] + breaks[i + 1]));
-                for (const double t : mids)
-                    insert.push_back(reversed && k == 0 ? patch.knots(0).front() + patch.knots(0).back() - t : t);
+                add_to_insert(insert, patch, reversed, k, mids);
                 breaks = merged(std::move(breaks), mids);
             }
-            std::sort(insert.begin(), insert.end());
         }
     }
 }
