@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <limits>
 
@@ -113,6 +114,78 @@ std::vector<std::string> ContactTerm::warnings(const io::StepData& step) const
             out.push_back(std::move(line));
     }
     return out;
+}
+
+void ContactTerm::append_activity(std::vector<std::uint8_t>& out) const
+{
+    for (const contact::CarrierResult& carrier : evaluation_.carriers)
+        for (Index g = 0; g < carrier.pressure.size(); ++g)
+            out.push_back(carrier.pressure(g) > 0.0 ? 1 : 0);
+}
+
+int ContactTerm::n_points() const
+{
+    int n = 0;
+    for (int c = 0; c < model_.pair.n_carriers(); ++c)
+        n += model_.pair.n_gauss_points(c);
+    return n;
+}
+
+namespace {
+
+/// The normal force point g of `carrier` would carry were it free: its law's pressure at
+/// its gap, times its weight (0 where the law presses nothing).
+double free_force(const contact::ContactPair& pair, const contact::CarrierResult& carrier, Index g)
+{
+    const double multiplier = carrier.multiplier.size() > g ? carrier.multiplier(g) : 0.0;
+    return pair.settings().law.response(carrier.gap(g), multiplier).pressure * carrier.weight(g);
+}
+
+}  // namespace
+
+double ContactTerm::withheld_share(int c) const
+{
+    const contact::CarrierResult& carrier = evaluation_.carriers[static_cast<std::size_t>(c)];
+    double carried = 0.0, withheld = 0.0;
+    for (Index g = 0; g < carrier.pressure.size(); ++g) {
+        carried += carrier.pressure(g) * carrier.weight(g);
+        if (model_.pair.is_held(c, static_cast<int>(g)))
+            withheld += free_force(model_.pair, carrier, g);
+    }
+    return withheld > 0.0 ? withheld / std::max(carried + withheld, DBL_MIN) : 0.0;
+}
+
+bool ContactTerm::hold_open(int index)
+{
+    for (int c = 0; c < model_.pair.n_carriers(); ++c) {
+        const int n = model_.pair.n_gauss_points(c);
+        if (index >= n) {
+            index -= n;
+            continue;
+        }
+        if (static_cast<std::size_t>(c) >= evaluation_.carriers.size() || !model_.pair.hold_open(c, index))
+            return false;
+        if (withheld_share(c) <= max_held_force)
+            return true;
+        model_.pair.release_hold(c, index);  // it would leave too much of the side's force out
+        return false;
+    }
+    return false;
+}
+
+int ContactTerm::release_deep_holds()
+{
+    int released = 0;
+    for (int c = 0; c < static_cast<int>(evaluation_.carriers.size()); ++c) {
+        if (withheld_share(c) <= max_held_force)
+            continue;
+        for (int g = 0; g < model_.pair.n_gauss_points(c); ++g)
+            if (model_.pair.is_held(c, g)) {
+                model_.pair.release_hold(c, g);
+                ++released;
+            }
+    }
+    return released;
 }
 
 void ContactTerm::register_couplings(RunContext* context)

@@ -19,9 +19,18 @@
 
 #include "analysis/term.hpp"
 
+#include <cstdint>
 #include <optional>
+#include <vector>
 
 namespace iga::analysis {
+
+/// Points Newton finds cycling are held open only while the normal force they would
+/// carry free is at most this share of their side's (ContactTerm::hold_open): a contact
+/// edge's point, not the zone. The dragged block's trailing corner point, held, is left
+/// with up to 1.4 % of its side's force (a penetration a fifth of the deepest); the three
+/// edge points a coarse frictionless roller cycled on would leave out 30 %.
+inline constexpr double max_held_force = 0.05;
 
 class ContactTerm final : public Term {
 public:
@@ -38,8 +47,25 @@ public:
 
     /// The evaluation of the last prepare().
     const contact::PairEvaluation& evaluation() const { return evaluation_; }
+    /// Appends, per Gauss point of the carrying sides in order, 1 where it presses in
+    /// the last evaluation and 0 elsewhere (solver::Evaluation::contact_active).
+    void append_activity(std::vector<std::uint8_t>& out) const;
+    /// Gauss points over the carrying sides (the length append_activity() appends).
+    int n_points() const;
+    /// Holds point `index` (append_activity() order) open, unless its side's held points
+    /// would then leave out more than max_held_force of the side's normal force in the
+    /// last evaluation. Whether it was held.
+    bool hold_open(int index);
+    /// Frees the held points of each side whose held points now leave out more than
+    /// max_held_force of its normal force (the last evaluation, a converged state). How many.
+    int release_deep_holds();
+    /// Frees every held point.
+    void release_holds() { model_.pair.release_holds(); }
 
 private:
+    /// The normal force carrier c's held points would carry free, over that and the
+    /// force its points carry, in the last evaluation.
+    double withheld_share(int c) const;
     /// Extends the pattern by the couplings of the last evaluation that it lacks.
     void register_couplings(RunContext* context);
 

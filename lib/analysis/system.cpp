@@ -63,6 +63,14 @@ solver::NonlinearSystem SceneSystem::nonlinear_system()
             }
         return motion;
     };
+    if (scene_.has_contact()) {
+        system.hold_open = [this](const std::vector<int>& points) { return hold_open(points); };
+        system.release_deep_holds = [this] { return release_deep_holds(); };
+        system.release_holds = [this] {
+            for (ContactTerm* pair : contact_)
+                pair->release_holds();
+        };
+    }
     // A trust radius only where a singular first touch can send a step far away.
     system.max_step = scene_.has_contact() ? 0.05 * scene_.model_size : 0.0;
     const assembly::DofMap& dofs = *scene_.dofs;
@@ -92,6 +100,30 @@ RowMatrix SceneSystem::body_displacement(const Vector& u_full, int b) const
 RowMatrix SceneSystem::side_displacement(const Vector& u_full, int p, int k) const
 {
     return analysis::side_displacement(scene_, scene_.pairs[static_cast<std::size_t>(p)], u_full, k);
+}
+
+int SceneSystem::hold_open(const std::vector<int>& points)
+{
+    int held = 0;
+    int first = 0;  // the pair's first point in Evaluation::contact_active
+    for (ContactTerm* pair : contact_) {
+        const int n = pair->n_points();
+        for (int index : points)
+            if (index >= first && index < first + n && pair->hold_open(index - first))
+                ++held;
+        first += n;
+    }
+    if (held > 0)
+        context_.add_count("contact_points_held_open", held);
+    return held;
+}
+
+int SceneSystem::release_deep_holds()
+{
+    int released = 0;
+    for (ContactTerm* pair : contact_)
+        released += pair->release_deep_holds();
+    return released;
 }
 
 void SceneSystem::commit()
@@ -158,6 +190,10 @@ void SceneSystem::evaluate_into(const Vector& u_free, double t, bool need_tangen
     for (const auto& term : terms_)
         term->add_to(a);
     last_active_ = a.active;
+    out.contact_active.clear();
+    if (a.ok)
+        for (const ContactTerm* pair : contact_)
+            pair->append_activity(out.contact_active);
     if (!a.ok) {
         out.ok = false;
         out.message = a.message;

@@ -92,6 +92,13 @@ public:
     /// in the contact timers): for output.
     std::vector<contact::PairEvaluation> contact_state(const Vector& u_free, double load_factor);
 
+    /// Holds the listed contact points (solver::Evaluation::contact_active indices) open
+    /// (solver::NonlinearSystem::hold_open); counted in /counters contact_points_held_open.
+    /// How many it held.
+    int hold_open(const std::vector<int>& points);
+    /// At a converged state: frees held points that now press too deep to be left
+    /// without force (solver::NonlinearSystem::release_deep_holds). How many.
+    int release_deep_holds();
     /// After a converged increment: every term's state becomes the committed one.
     void commit();
     /// After a failed attempt: every term back to its committed state.

@@ -394,6 +394,25 @@ void ContactPair::commit()
     committed_points_ = trial_points_;
 }
 
+bool ContactPair::hold_open(int carrier, int g)
+{
+    IGA_CHECK(carrier >= 0 && carrier < n_carriers() && g >= 0 && g < n_gauss_points(carrier),
+              "contact: hold_open of a Gauss point the pair does not have");
+    if (held_.empty())
+        for (const Carrier& c : carriers_)
+            held_.emplace_back(c.points.size(), 0);
+    char& flag = held_[static_cast<std::size_t>(carrier)][static_cast<std::size_t>(g)];
+    const bool was_free = !flag;
+    flag = 1;
+    return was_free;
+}
+
+void ContactPair::release_hold(int carrier, int g)
+{
+    if (held(static_cast<std::size_t>(carrier), g))
+        held_[static_cast<std::size_t>(carrier)][static_cast<std::size_t>(g)] = 0;
+}
+
 FrictionState ContactPair::friction_state(const std::vector<ContactPointState>& points) const
 {
     const Index n_g = static_cast<Index>(points.size());
@@ -751,8 +770,9 @@ bool ContactPair::evaluate_on_obstacle(std::size_t ci, CarrierResult& cr,
         KernelSettings point_settings = sweep.kernel_base;
         point_settings.multiplier = law_input[static_cast<std::size_t>(g)].multiplier;
         point_settings.gap_offset = law_input[static_cast<std::size_t>(g)].gap_offset;
-        KernelResult kr = gpts_rigid_kernel(c.points[g].N, c.points[g].weight, foot.normal, foot.gap,
-                                            point_settings, foot.radius);
+        KernelResult kr = held(ci, g) ? KernelResult{}
+                                      : gpts_rigid_kernel(c.points[g].N, c.points[g].weight, foot.normal, foot.gap,
+                                                          point_settings, foot.radius);
         cr.pressure(g) = kr.pressure;
         if (settings_.friction.active()) {
             // Slip in the obstacle's frame; dp/dy = -p' n where the point presses.
@@ -763,7 +783,8 @@ bool ContactPair::evaluate_on_obstacle(std::size_t ci, CarrierResult& cr,
             ContactPointState& point = ev.trial.carriers[ci][static_cast<std::size_t>(g)];
             const TangentialResponse t = coulomb_response(settings_.friction, committed, point.tangential_multiplier,
                                                           y, foot.normal, kr.pressure, d_pressure, foot.radius);
-            add_tangential(kr, c.points[g].N, c.points[g].weight, t);
+            if (!held(ci, g))
+                add_tangential(kr, c.points[g].N, c.points[g].weight, t);
             point.record(t);
             ev.max_elastic_slip = std::max(ev.max_elastic_slip, t.elastic_slip);
         }
@@ -832,7 +853,8 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr,
         kernel_settings.gap_offset = law_input[static_cast<std::size_t>(g)].gap_offset;
         const double margin = unsettled ? unsettled_margin * view.size : 0.0;
         const MasterReference reference = friction ? master_reference(c.master, proj.basis) : MasterReference{};
-        if (!settings_.law.active(proj.gap - kernel_settings.gap_offset + margin, kernel_settings.multiplier)) {
+        if (held(ci, g) ||
+            !settings_.law.active(proj.gap - kernel_settings.gap_offset + margin, kernel_settings.multiplier)) {
             if (friction)
                 points[g].friction = open_history(committed_[ci][g].friction, reference,
                                                   proj.gap - kernel_settings.gap_offset);

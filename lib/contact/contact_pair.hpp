@@ -306,7 +306,18 @@ public:
     {
         trial_ = committed_;
         trial_points_ = committed_points_;
+        release_holds();
     }
+    /// Holds Gauss point g of carrier c open (no normal or tangential force, whatever
+    /// its gap) until release_hold(), release_holds() or rollback(): Newton asks for it where the
+    /// point's contact flips at every step and no state of it has an equilibrium nearby
+    /// (docs/solver.md, "A point held open"). Whether it was free before.
+    bool hold_open(int carrier, int g);
+    /// Frees a point hold_open() held (nothing if it is free).
+    void release_hold(int carrier, int g);
+    /// Frees every held point.
+    void release_holds() { held_.clear(); }
+    bool is_held(int carrier, int g) const { return held(static_cast<std::size_t>(carrier), g); }
     /// The friction state of carrier c at the last committed increment (what the
     /// results report; an evaluation after the commit measures slip from there).
     FrictionState converged_friction(int carrier) const;
@@ -374,6 +385,11 @@ private:
     /// The control points of each deformable surface in use and at the last commit (a
     /// first touch measures its slide from the committed ones).
     std::array<RowMatrix, 2> trial_points_, committed_points_;
+    std::vector<std::vector<char>> held_;  ///< per carrier, n_g: held open (hold_open); empty: none held
+    bool held(std::size_t carrier, int g) const
+    {
+        return !held_.empty() && held_[carrier][static_cast<std::size_t>(g)];
+    }
     std::vector<Vector> initial_overlap_;       ///< per carrier, n_g: g_0 >= 0, released up to release_end_
     double release_end_ = 1.0;                  ///< load factor by which the initial overlap is released
     bool releasing_ = false;                    ///< release_overlap() called

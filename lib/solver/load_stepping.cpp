@@ -343,6 +343,9 @@ void LoadStepper::log_increment(const IncrementRecord& record) const
                       ", " + std::to_string(record.report.iterations) + " iterations, relative residual " +
                       format_g(record.report.residual_norm) +
                       (cutbacks > 0 ? ", " + std::to_string(cutbacks) + " cutbacks" : std::string()) +
+                      (record.report.held_open > 0
+                           ? ", " + std::to_string(record.report.held_open) + " cycling contact point(s) held open"
+                           : std::string()) +
                       (outer_updates > 0 ? ", " + std::to_string(outer_updates) +
                                                (outer_updates == 1 ? " Uzawa update" : " Uzawa updates")
                                          : std::string()));

@@ -35,6 +35,15 @@ constexpr double stalled_correction_tolerance = 1e-7;
 /// A capped full Newton step whose ||r|| is above this fraction of the last one made no
 /// progress: the trust radius, not the direction, holds Newton back (NewtonSolve::iterate).
 constexpr double stalled_reduction = 0.9;
+/// Contact points that flip at every step are held open only where the residuals repeat
+/// too, each within this fraction of its value two steps before: a cycle revisits its
+/// states (the dragged block's: 2.79e-4, 2.84e-4, 2.79e-4, 2.84e-4), while Newton that
+/// grows a contact zone moves its edge points back and forth with ||r|| changing by
+/// per cents a step (the two spheres' first touch: 0.99, 0.98, 0.95, 1.06, 0.97).
+constexpr double cycle_repeat = 1e-3;
+/// The longest cycle looked for, in Newton steps (the dragged block's longest was 7: a
+/// full step, then six steps the line search cut ever shorter).
+constexpr std::size_t max_cycle = 8;
 // Levenberg-Marquardt: mu = 1e-10 perturbs K at the level of its round-off for
 // a well-scaled K; x100 per retry up to mu = 1 (6 tries).
 constexpr double first_mu = 1e-10;
@@ -455,6 +464,9 @@ private:
     void record_residual(const Evaluation& e, double rel);
     void log_iteration(int iteration, double step_size, double alpha, const StepResult& step) const;
     Progress test_convergence(int iteration, double correction);
+    Progress hold_cycling_points(int iteration);
+    Progress converged(int iteration, std::string message);
+    void remember_activity();
     Progress finish(NewtonStatus status, std::string message);
     std::string tolerance_text() const { return " (tolerance " + format_g(settings_.tolerance) + ")"; }
 
@@ -478,7 +490,18 @@ private:
     bool have_tangent_ = true;        ///< current_ holds the tangent at u_
     bool previous_at_floor_ = false;  ///< the last iteration ended at the round-off floor
     int krylov_stops_in_a_row_ = 0;   ///< iterations whose Krylov solve stopped short on the unshifted K
+    /// Evaluation::contact_active of the last max_cycle + 2 accepted states, oldest first.
+    std::vector<std::vector<std::uint8_t>> activity_;
 };
+
+void NewtonSolve::remember_activity()
+{
+    if (current_.contact_active.empty())
+        return;
+    if (activity_.size() == max_cycle + 2)
+        activity_.erase(activity_.begin());
+    activity_.push_back(current_.contact_active);
+}
 
 Progress NewtonSolve::finish(NewtonStatus status, std::string message)
 {
@@ -501,6 +524,8 @@ void NewtonSolve::record_residual(const Evaluation& e, double rel)
 /// The residual and tangent at the start state; finished when it fails or already converged.
 Progress NewtonSolve::evaluate_start()
 {
+    if (system_.release_holds)
+        system_.release_holds();  // the last solve's holds were for its own cycles
     evaluate(system_, u_, load_factor_, true, current_, context_);
     if (!current_.ok)
         return finish(NewtonStatus::evaluation_failed, "evaluation failed at the start state: " + current_.message);
@@ -509,6 +534,7 @@ Progress NewtonSolve::evaluate_start()
         return finish(NewtonStatus::diverged, "residual is not finite at the start state");
     rel_ = relative(r_norm_, current_.force_scale);
     record_residual(current_, rel_);
+    remember_activity();
     if (rel_ <= settings_.tolerance)
         return finish(NewtonStatus::converged,
                       "converged at the start state (relative residual " + format_g(rel_) + ")");
@@ -633,7 +659,58 @@ Progress NewtonSolve::iterate(int iteration)
     if (context_)
         context_->add_count("newton_iterations", 1);
     log_iteration(iteration, step_size, line.alpha, step);
-    return test_convergence(iteration, correction);
+    if (test_convergence(iteration, correction) == Progress::finished)
+        return Progress::finished;
+    return hold_cycling_points(iteration);
+}
+
+/// Newton in a cycle: the accepted states come back, p steps apart (p = 2 .. max_cycle):
+/// the same contact points press as p steps before, at both of the last two states, and
+/// the residuals repeat. The points that pressed and opened within the cycle are where
+/// no state of theirs has an equilibrium nearby -- pressed, Newton's step opens them;
+/// open, it presses them (a frictional point whose own friction drives it in,
+/// docs/solver.md "A point held open"). The system holds them open, and Newton goes on
+/// from the same state.
+Progress NewtonSolve::hold_cycling_points(int iteration)
+{
+    if (!system_.hold_open || current_.contact_active.empty())
+        return Progress::going_on;
+    const auto& a = activity_;
+    const std::vector<double>& h = report_.residual_history;
+    const std::size_t k = a.size() - 1, n = h.size() - 1;  // the current state in each
+    auto repeats = [&](std::size_t back, std::size_t p) {
+        return a[k - back] == a[k - back - p] && std::abs(h[n - back] - h[n - back - p]) <= cycle_repeat * h[n - back];
+    };
+    std::vector<int> cycling;
+    for (std::size_t p = 2; p <= max_cycle && cycling.empty(); ++p) {
+        if (a.size() < p + 2 || h.size() < p + 2 || !repeats(0, p) || !repeats(1, p))
+            continue;
+        for (std::size_t i = 0; i < a[k].size(); ++i)
+            for (std::size_t j = k - p; j < k; ++j)
+                if (a[j][i] != a[k][i]) {
+                    cycling.push_back(static_cast<int>(i));
+                    break;
+                }
+    }
+    if (cycling.empty())
+        return Progress::going_on;
+    const int held = system_.hold_open(cycling);
+    if (held == 0)
+        return Progress::going_on;
+    report_.held_open += held;
+    activity_.clear();
+    if (context_)
+        context_->log(Verbosity::verbose, "  newton " + std::to_string(iteration) + ": " + std::to_string(held) +
+                                              " contact point(s) pressed and opened in turn in a cycle of Newton steps: held open");
+    evaluate(system_, u_, load_factor_, true, current_, context_);
+    if (!current_.ok)
+        return finish(NewtonStatus::evaluation_failed,
+                      "iteration " + std::to_string(iteration) + ": evaluation failed: " + current_.message);
+    have_tangent_ = true;
+    r_norm_ = current_.residual.norm();
+    rel_ = relative(r_norm_, current_.force_scale);
+    remember_activity();
+    return Progress::going_on;
 }
 
 /// The tangent at u_, when the accepted state came without it (a shortened step).
@@ -700,6 +777,7 @@ void NewtonSolve::accept(const LineSearch::Result& line, Vector u_new)
 {
     u_ = std::move(u_new);
     swap(current_, *line.chosen);  // member-wise (newton.hpp)
+    remember_activity();
     have_tangent_ = line.chosen_has_tangent;
     r_norm_ = current_.residual.norm();
     rel_ = relative(r_norm_, current_.force_scale);
@@ -726,20 +804,42 @@ Progress NewtonSolve::test_convergence(int iteration, double correction)
         return finish(NewtonStatus::diverged, "iteration " + std::to_string(iteration) + ": residual grew to " +
                                                   format_g(r_norm_ / r_initial_) + " times the initial one");
     if (rel_ <= settings_.tolerance)
-        return finish(NewtonStatus::converged, "converged in " + std::to_string(iteration) +
-                                                   " iterations, relative residual " + format_g(rel_));
+        return converged(iteration, "converged in " + std::to_string(iteration) + " iterations, relative residual " +
+                                        format_g(rel_));
     const double u_size = u_.lpNorm<Eigen::Infinity>();
     report_.correction = u_size > 0 ? correction / u_size : std::numeric_limits<double>::infinity();
     const bool at_floor = r_norm_ <= round_off_margin * current_.residual_floor;
     const bool stalled = at_floor && previous_at_floor_ && correction <= stalled_correction_tolerance * u_size;
     previous_at_floor_ = at_floor;
     if ((at_floor && correction <= correction_tolerance * u_size) || stalled)
-        return finish(NewtonStatus::converged, "converged in " + std::to_string(iteration) +
+        return converged(iteration, "converged in " + std::to_string(iteration) +
                                                    " iterations at round-off: relative residual " + format_g(rel_) +
                                                    tolerance_text() + " within " + format_g(round_off_margin) +
                                                    " of its round-off floor " +
                                                    format_g(report_.floor_history.back()) + ", correction " +
                                                    format_g(report_.correction) + " of u");
+    return Progress::going_on;
+}
+
+/// Converged, unless held contact points now press deep: those are freed (a hold is for
+/// a contact edge, not for a point the load has since pressed), and Newton goes on.
+Progress NewtonSolve::converged(int iteration, std::string message)
+{
+    const int released = system_.release_deep_holds ? system_.release_deep_holds() : 0;
+    if (released == 0)
+        return finish(NewtonStatus::converged, std::move(message));
+    if (context_)
+        context_->log(Verbosity::verbose, "  newton " + std::to_string(iteration) + ": " + std::to_string(released) +
+                                              " held contact point(s) now press deep: released");
+    evaluate(system_, u_, load_factor_, true, current_, context_);
+    if (!current_.ok)
+        return finish(NewtonStatus::evaluation_failed,
+                      "iteration " + std::to_string(iteration) + ": evaluation failed: " + current_.message);
+    have_tangent_ = true;
+    r_norm_ = current_.residual.norm();
+    rel_ = relative(r_norm_, current_.force_scale);
+    previous_at_floor_ = false;
+    activity_.clear();
     return Progress::going_on;
 }
 

@@ -75,6 +75,7 @@
 #include "core/types.hpp"
 #include "solver/linear.hpp"
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <utility>
@@ -101,6 +102,10 @@ struct Evaluation {
     /// Jacobian); Newton reports evaluation_failed with this message.
     bool ok = true;
     std::string message;
+    /// Per contact Gauss point (every pair's carrying sides in order), 1 where it presses
+    /// and 0 elsewhere: Newton watches it for points that flip at every step (a cycle).
+    /// Empty without contact.
+    std::vector<std::uint8_t> contact_active;
 };
 
 /// Member-wise: Eigen 3.4's sparse matrix cannot be moved, so std::swap of two
@@ -114,6 +119,7 @@ inline void swap(Evaluation& a, Evaluation& b) noexcept
     std::swap(a.singular_tangent, b.singular_tangent);
     std::swap(a.ok, b.ok);
     a.message.swap(b.message);
+    a.contact_active.swap(b.contact_active);
 }
 
 struct NonlinearSystem {
@@ -137,6 +143,17 @@ struct NonlinearSystem {
     /// dofs, moving obstacles), ||.||_inf; the load stepper sizes an increment's trust
     /// radius with it (solver/load_stepping.hpp). May be empty (none).
     std::function<double(double, double)> prescribed_motion_between;
+    /// Holds the listed contact points (indices into Evaluation::contact_active) open:
+    /// Newton asks for it where they cycle (docs/solver.md, "A point held open"). Returns
+    /// how many it held; it refuses a point that presses too deep to be left without
+    /// force. A hold lasts until the next solve starts (it frees every hold with
+    /// release_holds), or until release_deep_holds frees it. Empty: Newton never asks.
+    std::function<int(const std::vector<int>&)> hold_open;
+    /// Frees every held contact point: a solve starts from the contact law itself.
+    std::function<void()> release_holds;
+    /// At a state Newton finds converged: frees the held points that now press too deep
+    /// to be left without force; how many. Newton goes on from there when any.
+    std::function<int()> release_deep_holds;
 };
 
 struct NewtonSettings {
@@ -189,6 +206,7 @@ struct NewtonReport {
     int regularized_iterations = 0;  ///< steps that needed K + mu D
     int line_search_cuts = 0;        ///< backtracking halvings over all steps
     int inadmissible_trials = 0;     ///< trial states rejected because their evaluation failed
+    int held_open = 0;               ///< contact points held open because they cycled (NonlinearSystem::hold_open)
     std::string message;             ///< why it stopped, human readable
 };
 

@@ -447,5 +447,49 @@ TEST(ContactPair, TangentWithMultipliersIsDerivative)
     }
 }
 
+// A point held open (Newton asks for it where the point cycles: docs/solver.md, "A point
+// held open") carries no force in either pass, with or without friction, against a
+// deformable block and a rigid plane; the tangent stays the residual's derivative, and
+// once released the pair gives the residual it gave before, bit for bit.
+TEST(ContactPair, AHeldPointCarriesNoForceUntilReleased)
+{
+    const Scene s = make_scene();
+    const RigidPlane floor = RigidPlane::make(vec2(0.0, 0.0), vec2(0.05, 1.0));
+    for (const bool rigid : {true, false})
+        for (const double mu : {0.0, 0.3}) {
+            SCOPED_TRACE(std::string(rigid ? "rigid plane" : "deformable block") + ", mu " + std::to_string(mu));
+            const PairSettings settings{.law = NormalLaw::penalty(1e3), .friction = FrictionLaw{mu, 1e3}};
+            ContactPair pair = rigid ? ContactPair(settings, s.disc, floor) : ContactPair(settings, s.disc, s.block);
+            RowMatrix u1, u2;
+            if (rigid) {
+                std::mt19937 rng(7);
+                u1 = test::shifted(pair.n_control_points(0), vec2(0.0, -0.03), noise, rng);
+                u2 = RowMatrix(0, 2);
+            } else {
+                std::tie(u1, u2) = overlap_state(pair, 5);
+            }
+            const PairEvaluation free = evaluate_adopting(pair, u1, u2, false);
+            const CarrierResult& carrier = free.carriers[0];
+            Index pressed = 0;
+            while (pressed < carrier.pressure.size() && !(carrier.pressure(pressed) > 0.0))
+                ++pressed;
+            ASSERT_LT(pressed, carrier.pressure.size()) << "no point presses";
+            EXPECT_TRUE(pair.hold_open(0, static_cast<int>(pressed)));
+            EXPECT_FALSE(pair.hold_open(0, static_cast<int>(pressed))) << "held already";
+            const PairEvaluation held = evaluate_adopting(pair, u1, u2, false);
+            EXPECT_EQ(held.carriers[0].pressure(pressed), 0.0);
+            EXPECT_EQ(held.n_active, free.n_active - 1);
+            if (mu > 0.0)
+                EXPECT_EQ(held.carriers[0].friction.status[static_cast<std::size_t>(pressed)], StickSlip::open);
+            EXPECT_GT((held.residual - free.residual).norm(), 0.0);
+            expect_tangent_is_derivative(pair, u1, u2, "with a held point");
+            pair.release_holds();
+            EXPECT_EQ((evaluate_adopting(pair, u1, u2, false).residual - free.residual).norm(), 0.0);
+            pair.hold_open(0, static_cast<int>(pressed));
+            pair.rollback();  // a cutback frees it too
+            EXPECT_FALSE(pair.is_held(0, static_cast<int>(pressed)));
+        }
+}
+
 }  // namespace
 }  // namespace iga::contact

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <string>
@@ -894,6 +895,66 @@ TEST(Newton, LargeResidualWithSmallStepIsNotAccepted)
     const NewtonReport report = solve_newton(system, 1.0, u, settings, solver, nullptr);
     EXPECT_EQ(report.status, NewtonStatus::max_iterations) << report.message;
     EXPECT_TRUE(u.isZero(0.0)) << "a failed solve restores u";
+}
+
+// ---------------------------------------------------------------------------
+// A contact point with no equilibrium in either of its states (docs/solver.md, "A
+// point held open"): its gap u (penetration > 0) obeys r(u) = u - g_free + kappa <u>
+// with kappa = -2, as the reduced equation of a frictional point whose own friction
+// drives it in. Pressed (u > 0) the root of that branch, g_free / (1 + kappa) < 0, is
+// open; open, the root g_free > 0 is pressed: Newton alternates between the two.
+// Held open, r = u - g_free has its root at the penetration g_free, without force.
+struct PointWithoutEquilibrium {
+    double g_free = 1e-3;
+    double kappa = -2.0;
+    bool held = false;
+    int hold_requests = 0;
+
+    NonlinearSystem system(bool can_hold)
+    {
+        NonlinearSystem s;
+        s.evaluate = [this](const Vector& u, double, bool need_tangent, Evaluation& out) {
+            const bool pressed = !held && u(0) > 0.0;
+            out.residual = Vector::Constant(1, u(0) - g_free + (pressed ? kappa * u(0) : 0.0));
+            out.force_scale = 1.0;
+            out.contact_active = {static_cast<std::uint8_t>(pressed ? 1 : 0)};
+            if (need_tangent)
+                out.tangent = sparse(Matrix::Constant(1, 1, 1.0 + (pressed ? kappa : 0.0)));
+        };
+        s.symmetric = false;
+        if (can_hold)
+            s.hold_open = [this](const std::vector<int>& points) {
+                ++hold_requests;
+                EXPECT_EQ(points, std::vector<int>{0});
+                held = true;
+                return 1;
+            };
+        return s;
+    }
+};
+
+TEST(Newton, APointThatPressesAndOpensInTurnCyclesUnlessHeld)
+{
+    PointWithoutEquilibrium point;
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
+    Vector u = Vector::Zero(1);
+    const NewtonReport report = solve_newton(point.system(false), 1.0, u, NewtonSettings{}, solver, nullptr);
+    EXPECT_NE(report.status, NewtonStatus::converged);
+    EXPECT_EQ(report.held_open, 0);
+}
+
+TEST(Newton, APointThatPressesAndOpensInTurnIsHeldOpenAndNewtonConverges)
+{
+    PointWithoutEquilibrium point;
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
+    Vector u = Vector::Zero(1);
+    const NewtonReport report = solve_newton(point.system(true), 1.0, u, NewtonSettings{}, solver, nullptr);
+    ASSERT_EQ(report.status, NewtonStatus::converged) << report.message;
+    EXPECT_EQ(point.hold_requests, 1);
+    EXPECT_EQ(report.held_open, 1);
+    // Asked after the first A, B, A, B of four accepted states, then one linear step.
+    EXPECT_LE(report.iterations, 6);
+    EXPECT_NEAR(u(0), point.g_free, 1e-12);  // the penetration the held point is left with
 }
 
 }  // namespace
