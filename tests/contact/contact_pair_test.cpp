@@ -479,8 +479,9 @@ TEST(ContactPair, AHeldPointCarriesNoForceUntilReleased)
             const PairEvaluation held = evaluate_adopting(pair, u1, u2, false);
             EXPECT_EQ(held.carriers[0].pressure(pressed), 0.0);
             EXPECT_EQ(held.n_active, free.n_active - 1);
-            if (mu > 0.0)
+            if (mu > 0.0) {
                 EXPECT_EQ(held.carriers[0].friction.status[static_cast<std::size_t>(pressed)], StickSlip::open);
+            }
             EXPECT_GT((held.residual - free.residual).norm(), 0.0);
             expect_tangent_is_derivative(pair, u1, u2, "with a held point");
             pair.release_holds();
