@@ -465,6 +465,7 @@ private:
     void log_iteration(int iteration, double step_size, double alpha, const StepResult& step) const;
     Progress test_convergence(int iteration, double correction);
     Progress hold_cycling_points(int iteration);
+    Progress restart_here(int iteration);
     Progress converged(int iteration, std::string message);
     void remember_activity();
     Progress finish(NewtonStatus status, std::string message);
@@ -698,10 +699,18 @@ Progress NewtonSolve::hold_cycling_points(int iteration)
     if (held == 0)
         return Progress::going_on;
     report_.held_open += held;
-    activity_.clear();
     if (context_)
         context_->log(Verbosity::verbose, "  newton " + std::to_string(iteration) + ": " + std::to_string(held) +
                                               " contact point(s) pressed and opened in turn in a cycle of Newton steps: held open");
+    return restart_here(iteration);
+}
+
+/// The holds changed the system: the residual and tangent at u_ again, and the
+/// history of states (cycles, round-off stalls) starts afresh from here.
+Progress NewtonSolve::restart_here(int iteration)
+{
+    activity_.clear();
+    previous_at_floor_ = false;
     evaluate(system_, u_, load_factor_, true, current_, context_);
     if (!current_.ok)
         return finish(NewtonStatus::evaluation_failed,
@@ -831,16 +840,7 @@ Progress NewtonSolve::converged(int iteration, std::string message)
     if (context_)
         context_->log(Verbosity::verbose, "  newton " + std::to_string(iteration) + ": " + std::to_string(released) +
                                               " held contact point(s) now press deep: released");
-    evaluate(system_, u_, load_factor_, true, current_, context_);
-    if (!current_.ok)
-        return finish(NewtonStatus::evaluation_failed,
-                      "iteration " + std::to_string(iteration) + ": evaluation failed: " + current_.message);
-    have_tangent_ = true;
-    r_norm_ = current_.residual.norm();
-    rel_ = relative(r_norm_, current_.force_scale);
-    previous_at_floor_ = false;
-    activity_.clear();
-    return Progress::going_on;
+    return restart_here(iteration);
 }
 
 }  // namespace
