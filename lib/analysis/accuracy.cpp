@@ -138,6 +138,12 @@ std::optional<double> reference_error(const io::Deck& deck, const io::Accuracy& 
     return it == outcome.errors.end() ? std::nullopt : std::optional(std::abs(it->second));
 }
 
+/// |q_k - q_{k-1}| / |q_k|; infinite while q_k is 0 (no point sticks yet on a coarse level).
+double scalar_difference(double now, double before)
+{
+    return now != 0.0 ? std::abs(now - before) / std::abs(now) : std::numeric_limits<double>::infinity();
+}
+
 std::string percent(double x) { return fmt::format("{:.3g} %", 100.0 * x); }
 
 /// The last completed level's results file, with /accuracy, into `final_path`
@@ -275,9 +281,7 @@ private:
         level.value = side_quantity(a_.quantity, *side, field);
         level.reference_error = reference_error(deck_, a_, level_run, field);
         if (const auto previous = fields_.find(side->side_name); previous != fields_.end()) {
-            differences_.push_back(a_.quantity == io::AccuracyQuantity::pressure_l2
-                                       ? pressure_difference(previous->second, field).relative
-                                       : std::abs(level.value - levels_.back().value) / std::abs(level.value));
+            differences_.push_back(level_difference(previous->second, field, level.value, levels_.back().value));
             level.difference = differences_.back();
             level.estimate = level_error(differences_.back(), levels_.back().estimate);
             const std::optional<double> rate = slow_convergence(differences_);
@@ -290,6 +294,23 @@ private:
         log_level(level);
         levels_.push_back(level);
         return true;
+    }
+
+    /// d_k of the quantity. The stick zone is the part of the contact zone where the
+    /// tangential traction stays inside the cone mu p: while the pressure itself still
+    /// changes from level to level, the stick zone's own difference can be small by chance
+    /// (a coarse level's one sticking Gauss point), so its difference is not taken below
+    /// the pressure's.
+    double level_difference(const SidePressure& before, const SidePressure& now, double value, double value_before) const
+    {
+        switch (a_.quantity) {
+        case io::AccuracyQuantity::pressure_l2: return pressure_difference(before, now).relative;
+        case io::AccuracyQuantity::stick_zone:
+            return std::max(scalar_difference(value, value_before), pressure_difference(before, now).relative);
+        case io::AccuracyQuantity::force:
+        case io::AccuracyQuantity::contact_radius: break;
+        }
+        return scalar_difference(value, value_before);
     }
 
     void log_level(const Level& level) const
@@ -340,7 +361,7 @@ private:
             const auto now = fields_.find(name), before = previous_fields_.find(name);
             SurfaceMarks marks;
             if (now != fields_.end() && before != previous_fields_.end())
-                marks = marks_from_indicators(now->second.side, pressure_difference(before->second, now->second).element2);
+                marks = marks_from_indicators(now->second.side, indicator(pair, name, before->second, now->second));
             if (marks.empty())
                 marks = marks_from_zone(side_patch(deck_, *deck_.find_body(s->body), *s->side), widened(*zone, model_size));
             sides.emplace_back(s, std::move(marks));
@@ -350,6 +371,27 @@ private:
                 levels_.back().refined.push_back(line);
         for (const std::string& line : levels_.back().refined)
             context_.log(Verbosity::verbose, "  refined " + line);
+    }
+
+    /// The squared indicator on each element of side `name` (rows) and direction (columns):
+    /// where the pressure changed from the level before; for stick_zone, as much again where
+    /// the stick zone's edge lies (span_marking.hpp), each part normalized to its total, so
+    /// that the bulk takes the spans of both the contact zone's edge and the stick zone's.
+    RowMatrix indicator(const io::ContactPairResult& pair, const std::string& name, const SidePressure& before,
+                        const SidePressure& now) const
+    {
+        RowMatrix eta2 = pressure_difference(before, now).element2;
+        const auto side = std::find_if(pair.sides.begin(), pair.sides.end(),
+                                       [&](const io::ContactSideResult& s) { return s.side_name == name; });
+        if (a_.quantity != io::AccuracyQuantity::stick_zone || side == pair.sides.end())
+            return eta2;
+        const RowMatrix edge = stick_edge_indicator(now.side, side->gauss_points, stick_status);
+        const double p_total = eta2.sum(), edge_total = edge.sum();
+        if (p_total > 0.0)
+            eta2 /= p_total;
+        if (edge_total > 0.0)
+            eta2 += edge / edge_total;
+        return eta2;
     }
 
     /// The results file and the outcome: the last completed level's, with the verdict.

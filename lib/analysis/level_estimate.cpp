@@ -59,11 +59,15 @@ double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult&
     switch (quantity) {
     case io::AccuracyQuantity::force:
         return side.normal_force;
-    case io::AccuracyQuantity::contact_radius: {
+    case io::AccuracyQuantity::contact_radius:
+    case io::AccuracyQuantity::stick_zone: {
         const io::GaussPointData& g = side.gauss_points;
+        const bool stick = quantity == io::AccuracyQuantity::stick_zone;
+        IGA_CHECK(!stick || g.status.size() == static_cast<std::size_t>(g.pressure.size()),
+                  "accuracy: the side " + side.side_name + " has no friction states for stick_zone");
         double measure = 0.0;
         for (Index k = 0; k < g.pressure.size(); ++k)
-            if (g.pressure(k) > 0.0)
+            if (g.pressure(k) > 0.0 && (!stick || g.status[static_cast<std::size_t>(k)] == stick_status))
                 measure += g.weight(k);
         return field.side.n_par() == 1 ? measure : std::sqrt(measure / std::numbers::pi);
     }
@@ -75,10 +79,8 @@ double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult&
         });
         return std::sqrt(norm2);
     }
-    case io::AccuracyQuantity::stick_zone:
-        break;
     }
-    throw Error("accuracy: the stick zone has no estimate yet");
+    throw Error("accuracy: unknown quantity");
 }
 
 PressureDifference pressure_difference(const SidePressure& coarse, const SidePressure& fine)

@@ -54,9 +54,13 @@ struct SidePressure {
     Vector control_pressure;  ///< p_A, one per control point of `side`
 };
 
+/// gauss_points/status of a sticking point (docs/results.md).
+inline constexpr int stick_status = 1;
+
 /// The value of `quantity` on one side: the normal force; the zone's length (2D) or the
-/// radius of a disc of its area (3D) from the pressed Gauss points' weights; for
-/// pressure_l2 the L2 norm of the recovered pressure.
+/// radius of a disc of its area (3D) from the pressed Gauss points' weights, and the same
+/// of the pressed points that stick for stick_zone; for pressure_l2 the L2 norm of the
+/// recovered pressure.
 double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult& side, const SidePressure& field);
 
 /// The difference of two levels' pressures over the fine level's side.

@@ -3,6 +3,7 @@
 #include "core/error.hpp"
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -114,6 +115,77 @@ SurfaceMarks marks_from_indicators(const nurbs::Patch& side, const RowMatrix& et
         taken += value;
     }
     return marks;
+}
+
+RowMatrix stick_edge_indicator(const nurbs::Patch& side, const io::GaussPointData& points, int stick_status)
+{
+    const std::vector<nurbs::Element> elements = side.elements();
+    const int n_par = side.n_par();
+    const auto n_dir = static_cast<std::size_t>(n_par);
+    IGA_CHECK(points.parameter.cols() == n_par && points.status.size() == static_cast<std::size_t>(points.pressure.size()),
+              "accuracy: the stick zone's edge needs the side's Gauss point parameters and friction states");
+    // The elements as a grid: each direction's distinct lower bounds, in order.
+    std::vector<std::vector<double>> breaks(n_dir);
+    for (const nurbs::Element& e : elements)
+        for (std::size_t k = 0; k < n_dir; ++k)
+            breaks[k].push_back(e.lower[k]);
+    for (std::vector<double>& b : breaks) {
+        std::sort(b.begin(), b.end());
+        b.erase(std::unique(b.begin(), b.end()), b.end());
+    }
+    auto grid_index = [&](std::size_t k, double xi) {
+        const auto it = std::upper_bound(breaks[k].begin(), breaks[k].end(), xi);
+        return static_cast<int>(std::max<std::ptrdiff_t>(0, it - breaks[k].begin() - 1));
+    };
+    std::map<std::array<int, 3>, std::size_t> at;  // grid position -> element
+    std::vector<std::array<int, 3>> cells(elements.size(), {0, 0, 0});
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+        for (std::size_t k = 0; k < n_dir; ++k)
+            cells[e][k] = grid_index(k, elements[e].lower[k]);
+        at[cells[e]] = e;
+    }
+    // What each element holds: bit 1 a sticking point, bit 2 a point that does not stick.
+    constexpr int sticks = 1, does_not = 2;
+    std::vector<int> holds(elements.size(), 0);
+    std::vector<double> measure(elements.size(), 0.0);
+    for (Index i = 0; i < points.parameter.rows(); ++i) {
+        std::array<int, 3> cell{0, 0, 0};
+        for (std::size_t k = 0; k < n_dir; ++k)
+            cell[k] = grid_index(k, points.parameter(i, static_cast<Index>(k)));
+        const auto found = at.find(cell);
+        if (found == at.end())
+            continue;
+        const std::size_t e = found->second;
+        const bool stick = points.pressure(i) > 0.0 && points.status[static_cast<std::size_t>(i)] == stick_status;
+        holds[e] |= stick ? sticks : does_not;
+        measure[e] += points.weight.size() > 0 ? points.weight(i) : 0.0;
+    }
+    RowMatrix eta2 = RowMatrix::Zero(static_cast<Index>(elements.size()), n_par);
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+        if (holds[e] == 0)
+            continue;
+        std::array<int, 3> across{0, 0, 0};  // differing neighbours per direction
+        int total = 0;
+        for (std::size_t k = 0; k < n_dir; ++k)
+            for (const int step : {-1, 1}) {
+                std::array<int, 3> cell = cells[e];
+                cell[k] += step;
+                const auto n = at.find(cell);
+                if (n == at.end())
+                    continue;
+                const int other = holds[n->second];
+                if (other != 0 && other != holds[e] && ((other | holds[e]) & sticks)) {
+                    ++across[k];
+                    ++total;
+                }
+            }
+        if (total == 0 && holds[e] != (sticks | does_not))
+            continue;
+        for (std::size_t k = 0; k < n_dir; ++k)
+            eta2(static_cast<Index>(e), static_cast<Index>(k)) =
+                measure[e] * measure[e] * (total > 0 ? static_cast<double>(across[k]) / total : 1.0 / n_par);
+    }
+    return eta2;
 }
 
 SurfaceMarks marks_from_zone(const nurbs::Patch& side, const ZoneBox& region)

@@ -59,6 +59,16 @@ struct SurfaceMarks {
 SurfaceMarks marks_from_indicators(const nurbs::Patch& side, const RowMatrix& element_indicator2,
                                    double fraction = bulk_fraction);
 
+/// The squared indicator of a stick zone's edge on each element of `side` (rows in
+/// side.elements() order, split over the directions in the columns), from the side's own
+/// Gauss points: where a sticking point and one that does not stick (slipping or open)
+/// meet, in one element or in two neighbours, the edge lies somewhere within the element,
+/// and the stick zone's measure is uncertain by the element's (eta_e = the weights of its
+/// points). A neighbour across direction k that differs marks direction k; an element
+/// whose own points differ and whose neighbours do not, every direction alike. Zero
+/// elsewhere.
+RowMatrix stick_edge_indicator(const nurbs::Patch& side, const io::GaussPointData& points, int stick_status);
+
 /// The spans of the elements of `side` whose points' box meets `region`; the center is the
 /// middle of the marked elements' parameters.
 SurfaceMarks marks_from_zone(const nurbs::Patch& side, const ZoneBox& region);

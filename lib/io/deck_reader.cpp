@@ -605,8 +605,14 @@ std::optional<Accuracy> read_accuracy(const Cursor& root, const Deck& deck, cons
                 target.child("pair").fail(limit);
         }
         a.quantity = target.read_or("quantity", a.quantity);
-        if (a.quantity == AccuracyQuantity::stick_zone)
-            target.child("quantity").fail("stick_zone is not estimated yet; pressure_l2, force and contact_radius are");
+        if (a.quantity == AccuracyQuantity::stick_zone) {
+            const auto pair = std::find_if(deck.contact.begin(), deck.contact.end(),
+                                           [&](const ContactPair& p) { return p.name == a.pair; });
+            if (pair != deck.contact.end() && !(pair->friction.coefficient > 0.0))
+                target.child("quantity").fail("stick_zone needs friction on pair '" + a.pair +
+                                              "' (contact." + a.pair + ".friction.coefficient > 0): without it no "
+                                              "point sticks");
+        }
         a.error = target.read_required<double>("error").value_or(0.0);
     }
     const Cursor budget = c.child("budget");

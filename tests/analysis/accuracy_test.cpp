@@ -20,6 +20,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 namespace iga::analysis {
@@ -178,6 +179,63 @@ TEST(Accuracy, DoerflersMarkingTakesTheFewestSlabsThatCarryTheBulkAlongTheDirect
     const SurfaceMarks all = marks_from_indicators(side, eta2, 0.99);
     EXPECT_EQ(all.spans[0].size(), 1u);
     EXPECT_EQ(all.spans[1].size(), 2u);
+}
+
+/// Gauss data of one point at the centre of each element of `side`: sticking where
+/// `sticks` says, else slipping; all pressed, each of weight 1.
+io::GaussPointData centre_points(const nurbs::Patch& side, const std::function<bool(const nurbs::Element&)>& sticks)
+{
+    const std::vector<nurbs::Element> elements = side.elements();
+    const auto n = static_cast<Index>(elements.size());
+    io::GaussPointData g;
+    g.parameter = RowMatrix(n, side.n_par());
+    g.pressure = Vector::Ones(n);
+    g.weight = Vector::Ones(n);
+    for (Index e = 0; e < n; ++e) {
+        const nurbs::Element& el = elements[static_cast<std::size_t>(e)];
+        for (int k = 0; k < side.n_par(); ++k)
+            g.parameter(e, k) = 0.5 * (el.lower[static_cast<std::size_t>(k)] + el.upper[static_cast<std::size_t>(k)]);
+        g.status.push_back(sticks(el) ? stick_status : 2);
+    }
+    return g;
+}
+
+TEST(Accuracy, TheStickZonesEdgeIsMarkedAcrossTheDirectionWhereStickingAndSlippingPointsMeet)
+{
+    // A 4 x 3 side of the unit cube: the points of the first two u spans stick, the rest slip.
+    const nurbs::Patch cube = nurbs::box(VecN::Zero(3), VecN::Ones(3));
+    const nurbs::Patch refined = nurbs::insert_knots(nurbs::insert_knots(cube, 0, {0.25, 0.5, 0.75}), 1, {1.0 / 3, 2.0 / 3});
+    const nurbs::Patch side = nurbs::extract_side(refined, Side::w0).patch;
+    const std::vector<nurbs::Element> elements = side.elements();
+    ASSERT_EQ(elements.size(), 12u);
+    io::GaussPointData g = centre_points(side, [](const nurbs::Element& e) { return e.upper[0] <= 0.5; });
+    const RowMatrix eta2 = stick_edge_indicator(side, g, stick_status);
+    for (std::size_t e = 0; e < elements.size(); ++e) {
+        const bool at_edge = elements[e].lower[0] == 0.25 || elements[e].lower[0] == 0.5;  // the spans beside u = 0.5
+        EXPECT_DOUBLE_EQ(eta2(static_cast<Index>(e), 0), at_edge ? 1.0 : 0.0) << "element " << e;
+        EXPECT_DOUBLE_EQ(eta2(static_cast<Index>(e), 1), 0.0) << "the edge runs along v: nothing to refine in v";
+    }
+    // The stick zone's measure counts the pressed points that stick: 6 of weight 1, and
+    // not an open one (pressure 0) whose state says stick.
+    io::ContactSideResult result;
+    result.gauss_points = g;
+    result.gauss_points.pressure(0) = 0.0;  // the element at u, v in the first spans: sticking, now open
+    ASSERT_EQ(result.gauss_points.status[0], stick_status);
+    const SidePressure field{side, Vector::Zero(side.n_control_points())};
+    EXPECT_TRUE(test::near(side_quantity(io::AccuracyQuantity::stick_zone, result, field), std::sqrt(5.0 / std::numbers::pi), 1e-14));
+    // An element whose own points stick and slip, amid sticking neighbours: the edge may run
+    // either way through it, so every direction alike.
+    g = centre_points(side, [](const nurbs::Element&) { return true; });
+    g.parameter.conservativeResize(13, 2);
+    g.parameter.row(12) = g.parameter.row(5);
+    g.pressure.conservativeResize(13);
+    g.weight.conservativeResize(13);
+    g.pressure(12) = g.weight(12) = 1.0;
+    g.status.push_back(2);  // element 5 holds a slipping point too
+    const RowMatrix mixed = stick_edge_indicator(side, g, stick_status);
+    EXPECT_DOUBLE_EQ(mixed(5, 0), 0.5 * mixed(5, 0) + 0.5 * mixed(5, 1)) << "a mixed element: its directions alike";
+    EXPECT_DOUBLE_EQ(mixed.row(5).sum(), 4.0) << "its two points' weight, squared";
+    EXPECT_GT(mixed.sum(), mixed.row(5).sum()) << "its neighbours differ from it: they are at the edge too";
 }
 
 TEST(Accuracy, TheGradingHalvesSpansUntilEachIsWithinTwiceAnotherPlusHalfTheirDistance)

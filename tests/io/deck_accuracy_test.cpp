@@ -60,8 +60,14 @@ TEST(DeckAccuracy, MistakesAreNamedAtTheirKey)
               std::string::npos);
     EXPECT_NE(issue_of(hertz_deck + "accuracy:\n  budget: {levels: 3}\n").find("needs a target"), std::string::npos);
     EXPECT_NE(issue_of(hertz_deck + target, {"accuracy.budget.levels=1"}).find("must be >= 2"), std::string::npos);
-    EXPECT_NE(issue_of(hertz_deck + target, {"accuracy.target.quantity=stick_zone"}).find("not estimated yet"),
+    EXPECT_NE(issue_of(hertz_deck + target, {"accuracy.target.quantity=stick_zone"})
+                  .find("accuracy.target.quantity = stick_zone: stick_zone needs friction on pair 'cyl_floor'"),
               std::string::npos);
+    EXPECT_EQ(read(hertz_deck + target, {"accuracy.target.quantity=stick_zone",
+                                         "contact.cyl_floor.friction.coefficient=0.3"})
+                  .accuracy->quantity,
+              AccuracyQuantity::stick_zone)
+        << "with friction the stick zone is read";
     EXPECT_NE(issue_of(hertz_deck + target, {"accuracy.target.quantity=peak"}).find("accuracy.target.quantity"),
               std::string::npos);
     EXPECT_NE(issue_of(hertz_deck + "accuracy:\n  target: {pair: cyl_floor, error: 0.01}\n  budjet: {levels: 3}\n")
