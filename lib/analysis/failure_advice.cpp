@@ -117,6 +117,12 @@ std::string failure_advice(solver::FailureCause cause, const FailureContext& c)
     case solver::FailureCause::stagnation:
         return ". The residual stagnates above its round-off floor: the tangent does not fit the residual "
                "(e.g. an active set that changes under the step). Use " + smaller_steps;
+    case solver::FailureCause::wandering:
+        return ". Newton did not settle: the tangent does not predict where its steps go" +
+               (c.has_contact ? std::string(" (with contact, typically points that press, stick or slip in turn)")
+                              : std::string()) +
+               ", and more iterations are not likely to help. Use " + smaller_steps +
+               (c.has_contact ? " or " + smaller_penalty : std::string());
     case solver::FailureCause::slow:
         return ". Newton was still converging: raise newton.max_iterations or use " + smaller_steps;
     }

@@ -3,6 +3,7 @@
 #include "solver/residual_trend.hpp"
 
 #include <cstdio>
+#include <string>
 
 namespace iga::solver {
 
@@ -35,6 +36,7 @@ const char* cause_name(FailureCause cause)
     case FailureCause::round_off_floor: return "round_off_floor";
     case FailureCause::cycle: return "cycle";
     case FailureCause::stagnation: return "stagnation";
+    case FailureCause::wandering: return "wandering";
     case FailureCause::slow: return "slow";
     }
     return "unknown";
@@ -60,6 +62,7 @@ FailureCause failure_cause(const NewtonReport& report)
     switch (residual_trend(r)) {
     case ResidualTrend::two_state_cycle: return FailureCause::cycle;
     case ResidualTrend::stagnation: return FailureCause::stagnation;
+    case ResidualTrend::wandering: return FailureCause::wandering;
     case ResidualTrend::none: break;
     }
     return FailureCause::slow;
@@ -94,6 +97,12 @@ std::string cause_text(const NewtonReport& report)
         return "the relative residual stagnates at " + format_g(last) + ", " +
                (floor > 0 ? format_g(last / floor) + " times its round-off floor" : std::string("no round-off floor known")) +
                ": the Newton steps do not reduce it";
+    case FailureCause::wandering: {
+        const Wandering w = wandering(r);
+        return "the relative residual wandered: it rose in " + std::to_string(w.rises) + " of " +
+               std::to_string(r.size() - 1) + " iterations and ends at " + format_g(last) +
+               ", not a tenth of the " + format_g(w.best) + " it reached at iteration " + std::to_string(w.best_at);
+    }
     case FailureCause::slow:
         return "the relative residual was still falling (" + format_g(last) + ")";
     }

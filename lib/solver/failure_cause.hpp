@@ -22,6 +22,9 @@
 //   stagnation:      the tail stagnates above its floor: the step does not reduce
 //                    the residual (a tangent that does not fit it, or steps cut
 //                    to nothing by the line search).
+//   wandering:       a long solve whose residual rose and fell without gaining a
+//                    decade on its best (residual_trend.hpp): not converging, though
+//                    its last step or two may have fallen.
 //   slow:            none of these: the residual was still falling when the
 //                    iterations ran out.
 //   none:            the solve converged.
@@ -32,7 +35,18 @@
 
 namespace iga::solver {
 
-enum class FailureCause { none, linear_solver, free_mode, inadmissible, growth, round_off_floor, cycle, stagnation, slow };
+enum class FailureCause {
+    none,
+    linear_solver,
+    free_mode,
+    inadmissible,
+    growth,
+    round_off_floor,
+    cycle,
+    stagnation,
+    wandering,
+    slow
+};
 
 const char* cause_name(FailureCause cause);
 

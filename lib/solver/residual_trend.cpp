@@ -45,6 +45,28 @@ bool is_cycle(const std::vector<double>& history)
     return high > (1.0 + cycle_spread) * low;
 }
 
+/// The rises of the whole history and its best entry before the window (see the header);
+/// rises = 0 where the history is too short to say.
+Wandering wander_facts(const std::vector<double>& history)
+{
+    Wandering w;
+    if (history.size() < 2 * static_cast<std::size_t>(trend_window))
+        return w;
+    for (std::size_t k = 1; k < history.size(); ++k)
+        w.rises += history[k] > history[k - 1] ? 1 : 0;
+    const auto early_end = history.end() - trend_window;
+    const auto best = std::min_element(history.begin(), early_end);
+    w.best = *best;
+    w.best_at = static_cast<int>(best - history.begin());
+    return w;
+}
+
+bool is_wandering(const std::vector<double>& history)
+{
+    const Wandering w = wander_facts(history);
+    return w.rises >= 2 && history.back() > wander_drop * w.best;
+}
+
 }  // namespace
 
 const char* trend_name(ResidualTrend trend)
@@ -53,6 +75,7 @@ const char* trend_name(ResidualTrend trend)
     case ResidualTrend::none: return "none";
     case ResidualTrend::two_state_cycle: return "two_state_cycle";
     case ResidualTrend::stagnation: return "stagnation";
+    case ResidualTrend::wandering: return "wandering";
     }
     return "unknown";
 }
@@ -68,7 +91,14 @@ ResidualTrend residual_trend(const std::vector<double>& history)
         return ResidualTrend::two_state_cycle;
     const std::size_t first = history.size() - trend_window;
     const double later_min = *std::min_element(history.begin() + static_cast<std::ptrdiff_t>(first) + 1, history.end());
-    return later_min >= stagnation_drop * history[first] ? ResidualTrend::stagnation : ResidualTrend::none;
+    if (later_min >= stagnation_drop * history[first])
+        return ResidualTrend::stagnation;
+    return is_wandering(history) ? ResidualTrend::wandering : ResidualTrend::none;
+}
+
+Wandering wandering(const std::vector<double>& history)
+{
+    return residual_trend(history) == ResidualTrend::wandering ? wander_facts(history) : Wandering{};
 }
 
 CycleLevels cycle_levels(const std::vector<double>& history)

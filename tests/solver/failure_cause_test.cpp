@@ -60,6 +60,11 @@ const std::vector<CauseCase>& cause_cases()
         // Flat at 0.78, 1e13 times the floor: no round-off story here.
         {"stagnation_above_floor", NewtonStatus::max_iterations, {1.0, 0.8, 0.78, 0.79, 0.78, 0.78, 0.78, 0.78},
          constant(8, 1e-14), 0.78, false, FailureCause::stagnation, "7.8e+13 times its round-off floor"},
+        // Rose and fell for 12 iterations, the last ones falling, but not a decade below the
+        // best before them: wandering, and the clause must not say "still falling".
+        {"wandering", NewtonStatus::max_iterations,
+         {1.0, 0.5, 0.1, 0.3, 0.2, 0.4, 0.3, 0.25, 0.35, 0.3, 0.2, 0.15, 0.12}, constant(13, 1e-14), 0.12, false,
+         FailureCause::wandering, "rose in 3 of 12 iterations and ends at 0.12, not a tenth of the 0.1 it reached at iteration 2"},
         // Still halving every two iterations when they ran out.
         {"slow_linear", NewtonStatus::max_iterations, falling, constant(falling.size(), 1e-14), 0.059, false,
          FailureCause::slow, "still falling"},
@@ -81,6 +86,9 @@ TEST(FailureCause, ClassifiesEachHistory)
         EXPECT_STREQ(cause_name(failure_cause(report)), cause_name(c.expected));
         const std::string text = cause_text(report);
         EXPECT_NE(text.find(c.text), std::string::npos) << text;
+        if (c.expected == FailureCause::wandering) {
+            EXPECT_EQ(text.find("still falling"), std::string::npos) << text;
+        }
         // Only the round-off class may speak of round-off as the cause.
         if (c.expected != FailureCause::round_off_floor) {
             EXPECT_EQ(text.find("is at its round-off"), std::string::npos) << text;

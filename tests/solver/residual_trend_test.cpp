@@ -41,6 +41,20 @@ const std::vector<TrendCase>& trend_cases()
         {"slow_linear", {1.0, 0.67, 0.44, 0.3, 0.2, 0.13, 0.088, 0.059}, ResidualTrend::none},
         // A decreasing alternation (a zig-zag that still converges) is not a cycle.
         {"converging_zigzag", {1.0, 0.5, 0.8, 0.2, 0.4, 0.05, 0.1, 0.01}, ResidualTrend::none},
+        // The press of a friction pair at a fine mesh (Cattaneo-Mindlin, accuracy level 10):
+        // 25 iterations that rise and fall between 2e-3 and 5e-2; the last two fall, but
+        // not below a tenth of the 3.07e-3 reached at iteration 2.
+        {"wandering", {0.2, 3.09e-3, 3.07e-3, 4.74e-2, 1.43e-2, 9.15e-3, 4.26e-3, 4.04e-3, 3.86e-3, 5.68e-3, 4.94e-3,
+                       9.45e-3, 8.64e-3, 1e-2, 1.14e-2, 8.54e-3, 8.1e-3, 8.03e-3, 1.44e-2, 1.16e-2, 8.03e-3, 7.88e-3,
+                       1.1e-2, 1.05e-2, 2.98e-3, 1.93e-3},
+         ResidualTrend::wandering},
+        // The same rises, then a fall by more than a decade below the early best: converging.
+        {"wandering_then_converging", {0.2, 3.09e-3, 3.07e-3, 4.74e-2, 1.43e-2, 9.15e-3, 4.26e-3, 5e-3, 3.86e-3,
+                                       5.68e-3, 1e-3, 1e-4, 1e-6},
+         ResidualTrend::none},
+        // Slow monotone convergence over many iterations never rises: slow, not wandering.
+        {"slow_monotone_long", {1.0, 0.8, 0.64, 0.51, 0.41, 0.33, 0.26, 0.21, 0.17, 0.13, 0.11, 0.09, 0.07},
+         ResidualTrend::none},
         {"too_short", {1.0, 0.3, 1.0, 0.3, 1.0}, ResidualTrend::none},
         {"empty", {}, ResidualTrend::none},
         {"nan_in_window", {1.0, 3.1e-4, 8.2e-3, nan, 8.1e-3, 3.09e-4, 8.25e-3}, ResidualTrend::none},
@@ -55,6 +69,17 @@ TEST(ResidualTrend, ClassifiesEachHistoryShape)
         SCOPED_TRACE(c.name);
         EXPECT_STREQ(trend_name(residual_trend(c.history)), trend_name(c.expected));
     }
+}
+
+TEST(ResidualTrend, AWanderingHistoryReportsItsRisesAndItsEarlyBest)
+{
+    const std::vector<double> history = {1.0, 0.5, 0.1, 0.3, 0.2, 0.4, 0.3, 0.25, 0.35, 0.3, 0.2, 0.15, 0.12};
+    ASSERT_EQ(residual_trend(history), ResidualTrend::wandering);
+    const Wandering w = wandering(history);
+    EXPECT_EQ(w.rises, 3);  // 0.1 -> 0.3, 0.2 -> 0.4, 0.25 -> 0.35
+    EXPECT_EQ(w.best, 0.1);
+    EXPECT_EQ(w.best_at, 2);
+    EXPECT_EQ(wandering({1.0, 0.1, 1e-2, 1e-4, 1e-8, 1e-12}).rises, 0) << "not wandering: no facts";
 }
 
 TEST(ResidualTrend, CycleLevelsAreTheTwoAlternatingValues)
