@@ -36,6 +36,12 @@ struct Level {
     double value = 0.0;
     std::optional<double> difference;  ///< d_k, the relative difference to the level before; empty at level 0
     std::optional<double> estimate;    ///< the estimated relative error; empty at level 0
+    /// The estimate from the levels' differences alone (the estimate of the next level
+    /// halves it): the estimate less the penalty's part.
+    std::optional<double> discretization;
+    /// The penalty's part of the estimate, 1/kappa = E* / (eps a), where the penalty was
+    /// held by the target at this level and the one before: then no difference sees it.
+    double penalty_error = 0.0;
     /// Where the levels converge more slowly than the estimate assumes, the larger error
     /// their rate allows (level_estimate.hpp, slow_convergence); else the estimate.
     std::optional<double> bound;
@@ -88,33 +94,72 @@ std::map<std::string, SidePressure> side_pressures(const io::Deck& deck, const i
     return out;
 }
 
-/// `penalty: auto` tied to the mesh for a level: the conditioning cap c_max E'/h of the
-/// level's own contact sides, written into the level's deck as the number it is. The
-/// penalty's error then falls with h as the discretization's does (an auto penalty
-/// from the sides' size alone, kappa_side E*/l, stays the same on every level, and its
-/// error, 0.5 % of the 2D Hertz L2 at 3 400 dofs, would end up above what the levels
-/// estimate). The augmented Lagrangian's automatic gap tolerance is already h p_max/E'.
-/// Returns the pairs' penalties, for the log.
-std::vector<std::string> tie_penalty_to_mesh(io::Deck& deck)
+/// The target pair's penalty on a level, and what it leaves.
+struct LevelPenalty {
+    double penalty = 0.0;
+    double hertz_modulus = 0.0;  ///< E* of the pair
+    bool by_target = false;      ///< kappa_target E* / (error a) gave it, not the mesh
+};
+
+/// `penalty: auto` on a level: the conditioning cap c_max E'/h of the level's own contact
+/// sides, written into the level's deck as the number it is, so that the penalty's error
+/// falls with h as the discretization's does and the levels' differences see it (an auto
+/// penalty from the sides' size alone, kappa_side E*/l, stays the same on every level, and
+/// its error, 0.5 % of the 2D Hertz L2 at 3 400 dofs, would end up above what the levels
+/// estimate). For the target pair it is capped, once a level has measured the zone's
+/// half-width a, at kappa_target E* / (error a): no stiffer than the target needs. A
+/// penalty tied to the mesh alone grows as 1/h without end, and Newton's increments with
+/// it (docs/accuracy_on_demand.md). The augmented Lagrangian's automatic gap tolerance is
+/// already h p_max/E'. Adds the pairs' penalties to `log`; returns the target pair's.
+LevelPenalty tie_penalty(io::Deck& deck, const io::Accuracy& a, std::optional<double> half_width,
+                         std::vector<std::string>& log)
 {
-    std::vector<std::string> out;
+    LevelPenalty target;
     for (io::ContactPair& pair : deck.contact) {
         if (!pair.penalty_auto || pair.enforcement != io::Enforcement::penalty)
             continue;
-        double h = std::numeric_limits<double>::infinity(), modulus = h;
+        double h = std::numeric_limits<double>::infinity(), modulus = h, compliance = 0.0;
+        int deformable = 0;
         for (const io::ContactSurface* s : {&pair.first, &pair.second}) {
             if (!s->deformable())
                 continue;
             const io::Body& body = *deck.find_body(s->body);
             h = std::min(h, smallest_element_size(side_patch(deck, body, *s->side)));
-            modulus = std::min(modulus, contact_modulus(to_material(*deck.find_material(body.material), deck.analysis)));
+            const double e = contact_modulus(to_material(*deck.find_material(body.material), deck.analysis));
+            modulus = std::min(modulus, e);
+            compliance += 1.0 / e;
+            ++deformable;
         }
         pair.penalty = auto_penalty_cap * modulus / h;
         pair.penalty_auto = false;
-        out.push_back(fmt::format("penalty of '{}' {:.4g} = {:g} E'/h, h = {:.4g}", pair.name, pair.penalty,
-                                  auto_penalty_cap, h));
+        std::string origin = fmt::format("{:g} E'/h, h = {:.4g}", auto_penalty_cap, h);
+        if (pair.name == a.pair) {
+            target.hertz_modulus = deformable > 0 ? 1.0 / compliance : 0.0;
+            if (half_width && *half_width > 0.0) {
+                const double needed = kappa_target * target.hertz_modulus / (a.error * *half_width);
+                if (needed < pair.penalty) {
+                    pair.penalty = needed;
+                    target.by_target = true;
+                    origin = fmt::format("{:g} E* / (target a), E* = {:.4g}, a = {:.4g} (below {:g} E'/h, h = {:.4g})",
+                                         kappa_target, target.hertz_modulus, *half_width, auto_penalty_cap, h);
+                }
+            }
+            target.penalty = pair.penalty;
+        }
+        log.push_back(fmt::format("penalty of '{}' {:.4g} = {}", pair.name, pair.penalty, origin));
     }
-    return out;
+    return target;
+}
+
+/// Half the largest extent of the pressed zone of a pair: its half-width (2D) or radius
+/// (3D) where the model holds the whole zone, a quarter of the zone's width where a
+/// symmetry plane halves it -- the smaller a, the stiffer (safer) the penalty above.
+std::optional<double> zone_half_width(const io::ContactPairResult& pair)
+{
+    const std::optional<ZoneBox> zone = pressed_zone(pair);
+    if (!zone)
+        return std::nullopt;
+    return 0.5 * (zone->upper - zone->lower).maxCoeff();
 }
 
 /// The error of the same quantity against the deck's analytic reference, if any: for the
@@ -166,8 +211,9 @@ void write_results(const std::string& level_file, const std::string& final_path,
                                 last.bound.value_or(std::numeric_limits<double>::quiet_NaN()));
         // level, dofs, value, estimated_error (NaN at level 0), error_bound (the same, or the larger
         // error slow convergence allows), reference_error (NaN: none), difference (d_k, NaN at
-        // level 0); the wall times apart, as a timing (igacontact compare leaves them out)
-        RowMatrix table(static_cast<Index>(levels.size()), 7);
+        // level 0), penalty_error (the penalty's part of the estimate and the bound); the wall
+        // times apart, as a timing (igacontact compare leaves them out)
+        RowMatrix table(static_cast<Index>(levels.size()), 8);
         Vector wall(static_cast<Index>(levels.size()));
         std::vector<std::string> refined;
         const double none = std::numeric_limits<double>::quiet_NaN();
@@ -175,7 +221,7 @@ void write_results(const std::string& level_file, const std::string& final_path,
             const Level& l = levels[k];
             table.row(static_cast<Index>(k)) << l.index, static_cast<double>(l.dofs), l.value,
                 l.estimate.value_or(none), l.bound.value_or(none), l.reference_error.value_or(none),
-                l.difference.value_or(none);
+                l.difference.value_or(none), l.penalty_error;
             wall(static_cast<Index>(k)) = l.wall_s;
             std::string line;
             for (const std::string& part : l.refined)
@@ -241,12 +287,14 @@ private:
     }
 
     /// The deck as refined so far, run into level k's file.
-    RunOutcome run_level(int k) const
+    RunOutcome run_level(int k)
     {
         io::Deck level_deck = deck_;
         level_deck.output.file = (folder_ / fmt::format("level{}.h5", k)).string();
         level_deck.accuracy.reset();
-        for (const std::string& line : tie_penalty_to_mesh(level_deck))
+        std::vector<std::string> penalties;
+        penalties_.push_back(tie_penalty(level_deck, a_, half_width_, penalties));
+        for (const std::string& line : penalties)
             context_.log(Verbosity::verbose, fmt::format("  level {}: {}", k, line));
         level_deck.resolved_yaml = io::write_resolved_yaml(level_deck);
         RunContext level_context = context_;
@@ -283,10 +331,15 @@ private:
         if (const auto previous = fields_.find(side->side_name); previous != fields_.end()) {
             differences_.push_back(level_difference(previous->second, field, level.value, levels_.back().value));
             level.difference = differences_.back();
-            level.estimate = level_error(differences_.back(), levels_.back().estimate);
+            level.discretization = level_error(differences_.back(), levels_.back().discretization);
             const std::optional<double> rate = slow_convergence(differences_);
-            level.bound = rate ? std::max(*level.estimate, differences_.back() / (*rate - 1.0)) : *level.estimate;
+            level.bound = rate ? std::max(*level.discretization, differences_.back() / (*rate - 1.0))
+                               : *level.discretization;
+            level.penalty_error = penalty_error(k, level_run);
+            level.estimate = *level.discretization + level.penalty_error;
+            *level.bound += level.penalty_error;
         }
+        half_width_ = zone_half_width(*pair_result(level_run, a_.pair));
         previous_fields_ = std::move(fields_);
         fields_ = std::move(fields);
         last_run_ = level_run;
@@ -294,6 +347,18 @@ private:
         log_level(level);
         levels_.push_back(level);
         return true;
+    }
+
+    /// The penalty's part of level k's error, E* / (eps a) with a measured at level k, where
+    /// the target held the pair's penalty at this level and the one before (else the change
+    /// of the penalty is in the levels' difference); 0 otherwise.
+    double penalty_error(int k, const RunOutcome& level_run) const
+    {
+        const auto at = [&](int j) { return penalties_[static_cast<std::size_t>(j)]; };
+        if (k < 1 || !at(k).by_target || !at(k - 1).by_target)
+            return 0.0;
+        const std::optional<double> a = zone_half_width(*pair_result(level_run, a_.pair));
+        return a && *a > 0.0 ? at(k).hertz_modulus / (at(k).penalty * *a) : 0.0;
     }
 
     /// d_k of the quantity. The stick zone is the part of the contact zone where the
@@ -321,12 +386,15 @@ private:
         const std::string reference =
             level.reference_error ? ", against the reference " + percent(*level.reference_error) : std::string();
         context_.log(Verbosity::normal,
-                     fmt::format("accuracy level {}: {} dofs, {:.3g} s, {} {:.6g}, estimated error {}{}{}{}", level.index,
+                     fmt::format("accuracy level {}: {} dofs, {:.3g} s, {} {:.6g}, estimated error {}{}{}{}{}", level.index,
                                  level.dofs, level.wall_s, io::deck_name(a_.quantity), level.value,
                                  level.estimate ? percent(*level.estimate) : std::string("- (level 0)"),
-                                 level.difference && *level.difference < *level.estimate
+                                 level.difference && *level.difference < *level.discretization
                                      ? fmt::format(" (half the last estimate; the difference is {})",
                                                    percent(*level.difference))
+                                     : std::string(),
+                                 level.penalty_error > 0.0
+                                     ? fmt::format(" (the penalty's part {})", percent(level.penalty_error))
                                      : std::string(),
                                  slow, reference));
     }
@@ -456,6 +524,8 @@ private:
     std::chrono::steady_clock::time_point start_;
     std::vector<Level> levels_;
     std::vector<double> differences_;  ///< d_1 .. d_k
+    std::vector<LevelPenalty> penalties_;  ///< the target pair's penalty on each level run
+    std::optional<double> half_width_;     ///< of the last level's pressed zone (zone_half_width)
     std::map<std::string, SidePressure> fields_;           ///< the last level's recovered pressures, by side
     std::map<std::string, SidePressure> previous_fields_;  ///< the level's before
     RunOutcome last_run_;  ///< of the last completed level (or of a failed level 0)

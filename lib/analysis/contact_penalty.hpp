@@ -46,6 +46,12 @@ namespace iga::analysis {
 constexpr double auto_penalty_kappa_side = 1.0e4;
 /// c_max in the cap eps <= c_max E'/h: two digits of conditioning at most.
 constexpr double auto_penalty_cap = 100.0;
+/// kappa = eps a / E* per unit of the error allowed, that an accuracy run gives the
+/// target pair's penalty once a level has measured the zone (analysis/accuracy.cpp): the
+/// penalty's own error is about 1/kappa (above; on the finest 2D Hertz level of
+/// inputs/hertz_accuracy_2d.yaml, L2 1.68 / 1.03 / 0.84 / 0.81 / 0.80 % at kappa = 100 /
+/// 300 / 1 000 / 3 000 / 7 500), so kappa_target / error leaves it at a tenth of the target.
+constexpr double kappa_target = 10.0;
 /// Automatic gap tolerance of the augmented Lagrangian (above): the pressure error
 /// it leaves is at most 1e-3 relative, below the discretization error of any
 /// mesh a contact run can afford (Hertz, inputs/hertz.yaml: L2 0.8 %).
