@@ -113,6 +113,13 @@ public:
     /// Levenberg-Marquardt shift makes it definite). Only with Kind::cholesky.
     void set_semidefinite(bool semidefinite) { semidefinite_ = semidefinite; }
 
+    /// UMFPACK's 64-bit version (umfpack_dl) from the next LU on. It is taken by itself
+    /// when the 32-bit version reports a factor too large for its indices (as out of
+    /// memory, however much the machine has); this asks for it from the start.
+    void set_lu_64bit();
+    /// The LU in use is UMFPACK's 64-bit version.
+    bool lu_64bit() const;
+
     /// Switches the backend (each keeps its own symbolic analysis).
     void set_kind(Kind kind);
 
@@ -143,6 +150,8 @@ private:
 
     bool same_pattern(const SparseMatrix& K) const;  // as reference_
     LinearStatus factorize_with(Kind kind);  // reference_ by one backend, after its analysis if needed
+    LinearStatus factorize_lu(const SparseMatrix& A, bool& analysed);
+    LinearStatus factorize_cholesky(bool& analysed);
     const SparseMatrix& lu_source();         // reference_ as a whole matrix, for UMFPACK
     bool try_update(const SparseMatrix& K);  // K as a Woodbury update of reference_, if it pays
     Matrix solve_reference(const Matrix& B) const;  // reference_^-1 B

@@ -280,6 +280,36 @@ TEST(SuiteSparseSolver, NestedDissectionOrderingSolvesTheSameSystems)
     }
 }
 
+// UMFPACK's 64-bit version is what a factor too large for the 32-bit one's indices gets
+// (a 3D two-body tangent of 68k dofs); it must give the same solves, with a Woodbury
+// update of its reference as well (the 32-bit limit itself is only reached by factors of
+// gigabytes, so the switch is asked for here).
+TEST(SuiteSparseSolver, The64BitLuSolvesWhatThe32BitOneSolves)
+{
+    std::mt19937 rng(seed);
+    const SparseMatrix K = dominant_matrix(60, false, rng);
+    const Vector b = random_vector(60, rng);
+    const Vector expected = Matrix(K).partialPivLu().solve(b);
+    SuiteSparseSolver solver(SuiteSparseSolver::Kind::lu);
+    solver.set_updates(true);
+    ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+    EXPECT_FALSE(solver.lu_64bit());
+    solver.set_lu_64bit();
+    ASSERT_TRUE(solver.lu_64bit());
+    ASSERT_EQ(solver.factorize(K), LinearStatus::ok);
+    EXPECT_EQ(solver.n_symbolic(), 2) << "the 64-bit version analyses the pattern itself";
+    Vector x;
+    ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+    EXPECT_TRUE(test::at_most(relative_error(x, expected), solve_tolerance));
+    // One entry changed: a Woodbury update of the 64-bit reference.
+    SparseMatrix K2 = K;
+    K2.coeffRef(7, 7) *= 1.5;
+    ASSERT_EQ(solver.factorize(K2), LinearStatus::ok);
+    EXPECT_TRUE(solver.updated());
+    ASSERT_EQ(solver.solve(b, x), LinearStatus::ok);
+    EXPECT_TRUE(test::at_most(relative_error(x, Matrix(K2).partialPivLu().solve(b)), solve_tolerance));
+}
+
 }  // namespace
 }  // namespace iga::solver
 
