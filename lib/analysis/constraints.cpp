@@ -124,14 +124,17 @@ DirichletData dirichlet_data(const io::Deck& deck, const std::vector<BodyModel>&
                                                         "free in one of them (~ in 'displacement')"
                                                       : "Leave that component free in one of them (~ in "
                                                         "'displacement', or drop it from 'fix')";
+                const std::string first_side = first.body + "." + io::side_text(first.patch, first.side, first.surface);
+                const std::string this_side = c.body + "." + io::side_text(c.patch, c.side, c.surface);
+                const std::string where = first_side == this_side
+                                              ? fmt::format("both items are on the side {}", this_side)
+                                              : fmt::format("the sides {} and {} meet there", first_side, this_side);
                 throw DeckError(io::located_issue(
                     deck.source_file, fmt::format("constraints.{}", k), "",
                     fmt::format("conflicts with {}: both prescribe the {}-displacement of the control point at {} "
-                                "of body '{}' {}; the sides {}.{} and {}.{} meet there. {}",
+                                "of body '{}' {}; {}. {}",
                                 item_label(first, it->second.item), component_names[i],
-                                point_text(body.node_points, static_cast<Index>(p)), c.body, values, first.body,
-                                io::side_text(first.patch, first.side, first.surface), c.body,
-                                io::side_text(c.patch, c.side, c.surface), advice)));
+                                point_text(body.node_points, static_cast<Index>(p)), c.body, values, where, advice)));
             }
     }
     out.reactions.insert(out.reactions.end(), totals.begin(), totals.end());

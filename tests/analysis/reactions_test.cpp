@@ -156,7 +156,30 @@ TEST(Reactions, ConflictingConstraintsNameBothItemsAndThePoint)
         EXPECT_NE(message.find("constraints.0 (cylinder.u0)"), std::string::npos) << message;
         EXPECT_NE(message.find("y-displacement"), std::string::npos) << message;
         EXPECT_NE(message.find("(0, 1)"), std::string::npos) << message;
+        EXPECT_NE(message.find("the sides cylinder.u0 and cylinder.v1 meet there"), std::string::npos) << message;
         EXPECT_EQ(message.find(".cpp"), std::string::npos) << "internal source path in: " << message;
+    }
+    EXPECT_FALSE(std::filesystem::exists(deck.output.file));
+}
+
+// Two items on one side that prescribe different values (a press written twice) name
+// that side once, not as two sides that meet.
+TEST(Reactions, ConflictingConstraintsOnOneSideSayItIsOneSide)
+{
+    io::Deck deck = io::read_deck(source_path("inputs/hertz_displacement_2d.yaml"),
+                                  {"constraints=[{body: cylinder, side: u0, fix: [x]}, "
+                                   "{body: cylinder, side: v1, displacement: [~, -0.01]}, "
+                                   "{body: cylinder, side: v1, displacement: [~, -0.02]}]"});
+    deck.output.file = (scratch_dir("conflict_one_side") / "never.h5").string();
+    RunContext context(nullptr, Verbosity::quiet);
+    try {
+        analysis::run(deck, analysis::RunOptions{}, context);
+        FAIL() << "conflicting constraints were accepted";
+    } catch (const DeckError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("constraints.2"), std::string::npos) << message;
+        EXPECT_NE(message.find("both items are on the side cylinder.v1"), std::string::npos) << message;
+        EXPECT_EQ(message.find("meet there"), std::string::npos) << message;
     }
     EXPECT_FALSE(std::filesystem::exists(deck.output.file));
 }
