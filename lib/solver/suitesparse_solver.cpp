@@ -238,15 +238,14 @@ struct SuiteSparseSolver::Backend {
     {
         return long_lu ? f(lu_long) : f(lu);
     }
-    double lu_statistic(int entry) const { return long_lu ? lu_long.statistic(entry) : lu.statistic(entry); }
 
     /// A factorization that ran out of memory is no statement about the matrix:
     /// Eigen reports it as a numerical issue, which would read as a singular tangent
-    /// and send Newton cutting back. It is an allocation failure, thrown as one.
-    void throw_if_out_of_memory(Kind kind)
+    /// and send Newton cutting back. It is an allocation failure, thrown as one (the
+    /// LU's is handled in factorize_lu, which first tries UMFPACK's 64-bit version).
+    void throw_if_cholesky_out_of_memory()
     {
-        if (kind == Kind::lu ? lu_statistic(UMFPACK_STATUS) == UMFPACK_ERROR_out_of_memory
-                             : llt.cholmod().status == CHOLMOD_OUT_OF_MEMORY)
+        if (llt.cholmod().status == CHOLMOD_OUT_OF_MEMORY)
             throw std::bad_alloc();
     }
 
@@ -609,7 +608,7 @@ LinearStatus SuiteSparseSolver::factorize_cholesky(bool& analysed)
     if (!analysed) {
         ++n_symbolic_;
         b.llt.analyzePattern(reference_);
-        b.throw_if_out_of_memory(Kind::cholesky);
+        b.throw_if_cholesky_out_of_memory();
         // Eigen reports Success even when cholmod_analyze failed (and left no
         // factor, which factorize() would dereference): check CHOLMOD's status.
         if (b.llt.info() != Eigen::Success || b.llt.cholmod().status < 0)
@@ -618,7 +617,7 @@ LinearStatus SuiteSparseSolver::factorize_cholesky(bool& analysed)
     }
     ++n_numeric_;
     b.llt.factorize(reference_);
-    b.throw_if_out_of_memory(Kind::cholesky);
+    b.throw_if_cholesky_out_of_memory();
     if (b.llt.info() != Eigen::Success)
         return LinearStatus::failed;
     release(lu_matrix_);  // an earlier LU's whole matrix is needed no more
