@@ -36,11 +36,12 @@ struct Level {
     double value = 0.0;
     std::optional<double> difference;  ///< d_k, the relative difference to the level before; empty at level 0
     std::optional<double> estimate;    ///< the estimated relative error; empty at level 0
-    /// The estimate from the levels' differences alone (the estimate of the next level
-    /// halves it): the estimate less the penalty's part.
+    /// The estimate from the levels' differences alone (the next level's floor is it over
+    /// largest_fall): the estimate without the penalty's part.
     std::optional<double> discretization;
-    /// The penalty's part of the estimate, 1/kappa = E* / (eps a), where the penalty was
-    /// held by the target at this level and the one before: then no difference sees it.
+    /// The penalty's part of the error, 1/kappa = E* / (eps a), where the penalty was held
+    /// by the target at this level and the one before: then no difference sees it. The
+    /// estimate adds it in quadrature, the bound adds it.
     double penalty_error = 0.0;
     /// Where the levels converge more slowly than the estimate assumes, the larger error
     /// their rate allows (level_estimate.hpp, slow_convergence); else the estimate.
@@ -329,14 +330,16 @@ private:
         level.value = side_quantity(a_.quantity, *side, field);
         level.reference_error = reference_error(deck_, a_, level_run, field);
         if (const auto previous = fields_.find(side->side_name); previous != fields_.end()) {
-            differences_.push_back(level_difference(previous->second, field, level.value, levels_.back().value));
+            differences_.push_back(level_difference(previous->second, field, *side, level.value, levels_.back().value));
             level.difference = differences_.back();
-            level.discretization = level_error(differences_.back(), levels_.back().discretization);
+            level.discretization = level_error(differences_.back(), levels_.back().discretization, largest_fall(a_.quantity));
             const std::optional<double> rate = slow_convergence(differences_);
             level.bound = rate ? std::max(*level.discretization, differences_.back() / (*rate - 1.0))
                                : *level.discretization;
             level.penalty_error = penalty_error(k, level_run);
-            level.estimate = *level.discretization + level.penalty_error;
+            // Two errors of independent sources: the estimate adds them in quadrature, the
+            // bound the target is judged by adds them.
+            level.estimate = std::hypot(*level.discretization, level.penalty_error);
             *level.bound += level.penalty_error;
         }
         half_width_ = zone_half_width(*pair_result(level_run, a_.pair));
@@ -361,17 +364,17 @@ private:
         return a && *a > 0.0 ? at(k).hertz_modulus / (at(k).penalty * *a) : 0.0;
     }
 
-    /// d_k of the quantity. The stick zone is the part of the contact zone where the
-    /// tangential traction stays inside the cone mu p: while the pressure itself still
-    /// changes from level to level, the stick zone's own difference can be small by chance
-    /// (a coarse level's one sticking Gauss point), so its difference is not taken below
-    /// the pressure's.
-    double level_difference(const SidePressure& before, const SidePressure& now, double value, double value_before) const
+    /// d_k of the quantity. The stick zone, a sum of its Gauss points' weights, stays the
+    /// same while no point at its edge changes state, however much the pressure moved (a
+    /// coarse level's one sticking point): its difference is not taken below the
+    /// resolution it is measured with (level_estimate.hpp, zone_resolution).
+    double level_difference(const SidePressure& before, const SidePressure& now, const io::ContactSideResult& side,
+                            double value, double value_before) const
     {
         switch (a_.quantity) {
         case io::AccuracyQuantity::pressure_l2: return pressure_difference(before, now).relative;
         case io::AccuracyQuantity::stick_zone:
-            return std::max(scalar_difference(value, value_before), pressure_difference(before, now).relative);
+            return std::max(scalar_difference(value, value_before), zone_resolution(side));
         case io::AccuracyQuantity::force:
         case io::AccuracyQuantity::contact_radius: break;
         }
@@ -380,7 +383,7 @@ private:
 
     void log_level(const Level& level) const
     {
-        const std::string slow = level.bound && *level.bound > *level.estimate
+        const std::string slow = level.bound && *level.bound > *level.discretization + level.penalty_error
                                      ? fmt::format(" (up to {}: the levels converge slowly)", percent(*level.bound))
                                      : std::string();
         const std::string reference =
@@ -390,8 +393,8 @@ private:
                                  level.dofs, level.wall_s, io::deck_name(a_.quantity), level.value,
                                  level.estimate ? percent(*level.estimate) : std::string("- (level 0)"),
                                  level.difference && *level.difference < *level.discretization
-                                     ? fmt::format(" (half the last estimate; the difference is {})",
-                                                   percent(*level.difference))
+                                     ? fmt::format(" (the last estimate over {:g}; the difference is {})",
+                                                   largest_fall(a_.quantity), percent(*level.difference))
                                      : std::string(),
                                  level.penalty_error > 0.0
                                      ? fmt::format(" (the penalty's part {})", percent(level.penalty_error))

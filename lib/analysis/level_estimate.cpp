@@ -83,6 +83,38 @@ double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult&
     throw Error("accuracy: unknown quantity");
 }
 
+double zone_resolution(const io::ContactSideResult& side)
+{
+    const io::GaussPointData& g = side.gauss_points;
+    std::vector<Index> zone;  // the sticking, pressed points
+    for (Index k = 0; k < g.pressure.size(); ++k)
+        if (g.pressure(k) > 0.0 && k < static_cast<Index>(g.status.size()) && g.status[static_cast<std::size_t>(k)] == stick_status)
+            zone.push_back(k);
+    if (zone.empty())
+        return 1.0;
+    double measure = 0.0;
+    for (const Index k : zone)
+        measure += g.weight(k);
+    if (g.parameter.cols() == 1) {  // a curve: the zone's two ends along it
+        const auto [first, last] = std::minmax_element(zone.begin(), zone.end(), [&](Index a, Index b) {
+            return g.parameter(a, 0) < g.parameter(b, 0);
+        });
+        return zone.size() == 1 ? 1.0 : (g.weight(*first) + g.weight(*last)) / measure;
+    }
+    VecN centroid = VecN::Zero(g.reference_coordinates.cols());
+    for (const Index k : zone)
+        centroid += g.weight(k) * g.reference_coordinates.row(k).transpose();
+    centroid /= measure;
+    Index outer = zone.front();
+    double distance = 0.0;
+    for (const Index k : zone)
+        if (const double r = (g.reference_coordinates.row(k).transpose() - centroid).norm(); r > distance) {
+            distance = r;
+            outer = k;
+        }
+    return distance > 0.0 ? std::min(1.0, std::sqrt(g.weight(outer)) / distance) : 1.0;
+}
+
 PressureDifference pressure_difference(const SidePressure& coarse, const SidePressure& fine)
 {
     IGA_CHECK(coarse.side.n_par() == fine.side.n_par(), "accuracy: two levels' contact sides differ in dimension");

@@ -556,9 +556,15 @@ std::string ResultsWriter::finish(const RunSummary& summary, const std::function
         std::remove(temp_path_.c_str());
         throw Error("cannot complete results file " + final_path_ + ": " + error.what());
     }
-    if (std::rename(temp_path_.c_str(), final_path_.c_str()) != 0)
-        throw Error("cannot rename " + temp_path_ + " to results file " + final_path_ + ": " +
-                    std::strerror(errno) + " (the results are in the temporary file)");
+    if (std::rename(temp_path_.c_str(), final_path_.c_str()) != 0) {
+        // The file system's refusal, not ours (a folder removed or made read-only under the run).
+        const std::string reason = std::strerror(errno);
+        std::error_code ignored;
+        throw StorageError("cannot rename " + temp_path_ + " to results file " + final_path_ + ": " + reason +
+                           (std::filesystem::exists(temp_path_, ignored)
+                                ? " (the results are in the temporary file)"
+                                : " (the temporary file is no longer there either)"));
+    }
     return status;
 }
 

@@ -20,6 +20,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <numbers>
@@ -352,6 +353,56 @@ TEST(Accuracy, RefineLevelsFoldedIntoTheKnotsGiveTheSameHalvedPatch)
             EXPECT_EQ(inserted.knots(k).knot_values(), halved.knots(k).knot_values()) << "direction " << k;
         EXPECT_TRUE(test::at_most((inserted.control_points() - halved.control_points()).cwiseAbs().maxCoeff(), 1e-14));
     }
+}
+
+TEST(Accuracy, TheStickZoneIsResolvedToTheWeightsOfItsEdgePoints)
+{
+    // A curve: ten points of growing weight, points 3-6 stick. Whether the end points 3 and
+    // 6 stick changes the measure by their weights; the points inside do not matter.
+    io::ContactSideResult curve;
+    io::GaussPointData& g = curve.gauss_points;
+    g.parameter = RowMatrix(10, 1);
+    g.reference_coordinates = RowMatrix::Zero(10, 2);
+    g.pressure = Vector::Ones(10);
+    g.weight = Vector(10);
+    for (Index k = 0; k < 10; ++k) {
+        g.parameter(k, 0) = 0.1 * static_cast<double>(9 - k);  // listed from the far end
+        g.weight(k) = 1.0 + 0.1 * static_cast<double>(k);
+        g.status.push_back(k >= 3 && k <= 6 ? stick_status : 2);
+    }
+    EXPECT_TRUE(test::near(zone_resolution(curve), (1.3 + 1.6) / (1.3 + 1.4 + 1.5 + 1.6), 1e-14));
+    g.pressure(6) = 0.0;  // open: it no longer counts, whatever its state says
+    EXPECT_TRUE(test::near(zone_resolution(curve), (1.3 + 1.5) / (1.3 + 1.4 + 1.5), 1e-14));
+    g.status.assign(10, 2);
+    g.status[4] = stick_status;
+    EXPECT_EQ(zone_resolution(curve), 1.0) << "one sticking point says nothing of the zone's size";
+    g.status[4] = 2;
+    EXPECT_EQ(zone_resolution(curve), 1.0);
+
+    // A surface: a grid of cells of width h, those within radius 1 of the origin stick. The
+    // farthest sticking point from the centroid (the origin) lies at most h/sqrt(2) inside
+    // the circle, and the resolution is h over its distance.
+    const double h = 0.05;
+    io::ContactSideResult surface;
+    io::GaussPointData& s = surface.gauss_points;
+    std::vector<std::array<double, 2>> points;
+    for (double x = -1.2 + h / 2; x < 1.2; x += h)
+        for (double y = -1.2 + h / 2; y < 1.2; y += h)
+            points.push_back({x, y});
+    const auto n = static_cast<Index>(points.size());
+    s.parameter = RowMatrix(n, 2);
+    s.reference_coordinates = RowMatrix::Zero(n, 3);
+    s.pressure = Vector::Ones(n);
+    s.weight = Vector::Constant(n, h * h);
+    for (Index k = 0; k < n; ++k) {
+        const auto [x, y] = points[static_cast<std::size_t>(k)];
+        s.parameter.row(k) << x, y;
+        s.reference_coordinates.row(k) << x, y, 0.0;
+        s.status.push_back(std::hypot(x, y) <= 1.0 ? stick_status : 2);
+    }
+    const double resolution = zone_resolution(surface);
+    EXPECT_GE(resolution, h);
+    EXPECT_LE(resolution, h / (1.0 - h / std::sqrt(2.0)));
 }
 
 }  // namespace

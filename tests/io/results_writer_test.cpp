@@ -425,6 +425,24 @@ TEST_F(ResultsWriterTest, MissingFolderGivesAClearError)
     }
 }
 
+TEST_F(ResultsWriterTest, AFolderRemovedUnderTheRunIsTheFileSystemsRefusalNotABug)
+{
+    const std::string folder = path("levels");
+    fs::create_directory(folder);
+    ResultsWriter writer(folder + "/run.h5", version, deck_text);
+    writer.write_bodies({cylinder_body()});
+    writer.write_step(step_without_contact());
+    fs::remove_all(folder);  // another process cleans up while the run writes
+    try {
+        writer.finish(completed_summary());
+        FAIL() << "expected iga::StorageError";
+    } catch (const StorageError& error) {
+        const std::string message = error.what();
+        EXPECT_NE(message.find("cannot rename"), std::string::npos) << message;
+        EXPECT_NE(message.find("no longer there"), std::string::npos) << "the temporary file went with its folder: " << message;
+    }
+}
+
 TEST_F(ResultsWriterTest, FolderThatIsAFileGivesAClearError)
 {
     std::ofstream(path("plain_file")) << "x";
