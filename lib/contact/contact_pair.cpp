@@ -28,6 +28,15 @@ namespace {
 /// round-off of the closest-point projection (which is accurate to ~1e-15 of it).
 constexpr double touching_tolerance = 1e-12;
 
+/// A penalty point at the kink of <lambda + eps g_N>, to round-off of the master's size:
+/// touching, neither pressed nor apart (KernelSettings::touching).
+bool touches_at_kink(double gap, const KernelSettings& settings, double size)
+{
+    const NormalLaw::Penalty* law = settings.law.as_penalty();
+    return law && std::abs(settings.multiplier + law->penalty * (gap - settings.gap_offset)) <=
+                      law->penalty * touching_tolerance * size;
+}
+
 /// Spatial dimension of a surface: d of a deformable side's points, or the obstacle's.
 int surface_dim(const Surface& s)
 {
@@ -858,6 +867,12 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr,
             if (friction)
                 points[g].friction = open_history(committed_[ci][g].friction, reference,
                                                   proj.gap - kernel_settings.gap_offset);
+            if (sweep.need_tangent && !held(ci, g) && !unsettled && touches_at_kink(proj.gap, kernel_settings, view.size)) {
+                KernelSettings touching = kernel_settings;
+                touching.touching = true;
+                scatter(gpts_kernel(gp.N, gp.weight, master_foot(proj), touching, Vector()), c, gp, proj.basis.indices,
+                        proj.element, sweep);
+            }
             continue;
         }
         if (unsettled)

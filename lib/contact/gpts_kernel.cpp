@@ -17,6 +17,8 @@ namespace {
 std::optional<NormalResponse> pressure_at(const KernelSettings& settings, double g_N)
 {
     const double gap = g_N - settings.gap_offset;
+    if (settings.touching)
+        return NormalResponse{0.0, settings.law.stiffness()};
     if (!settings.law.active(gap, settings.multiplier))
         return std::nullopt;
     return settings.law.response(gap, settings.multiplier);

@@ -51,6 +51,11 @@ struct KernelSettings {
     double gap_offset = 0.0;    ///< s: the law is evaluated at g_N - s (an unreleased overlap, NormalLaw::shifted)
     bool master_rows = false;   ///< true: single pass (slave and master rows); false: half pass
     bool need_tangent = true;   ///< false: residual only
+    /// The point touches at its kink (a penalty point at g_N = 0 to round-off, e.g. two
+    /// flat faces at rest): no pressure, but the tangent takes the pressing branch's slope,
+    /// so that Newton's step from there presses both bodies together instead of letting
+    /// one move into the other freely (the generalized derivative's other branch).
+    bool touching = false;
 };
 
 struct KernelResult {

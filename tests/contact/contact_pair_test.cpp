@@ -5,6 +5,8 @@
 #include "contact/contact_pair.hpp"
 
 #include "fixtures.hpp"
+#include "nurbs/refine.hpp"
+#include "nurbs/shapes.hpp"
 #include "support/finite_difference.hpp"
 #include "support/tolerance.hpp"
 
@@ -167,6 +169,43 @@ TEST(ContactPair, RigidPlaneTangentIsDerivative)
     std::mt19937 rng(7);
     const RowMatrix u = test::shifted(flipped.n_control_points(1), vec2(0.0, -0.03), noise, rng);
     expect_tangent_is_derivative(flipped, RowMatrix(0, 2), u, "rigid plane first");
+}
+
+TEST(ContactPair, FacesTouchingAtRestTakeThePressingBranchOfTheTangent)
+{
+    // A block resting flush on a wider one: every Gauss point at the kink of <eps g_N>,
+    // nothing pressed. Newton's step from there must press the two together, so the
+    // tangent is the one-sided derivative of pressing (a finite difference into the
+    // press), while the residual stays zero.
+    const nurbs::Patch top = nurbs::insert_knots(nurbs::rectangle(vec2(0.5, 1.0), vec2(1.0, 0.5)), 0, {0.25, 0.5, 0.75});
+    const nurbs::Patch base = nurbs::insert_knots(nurbs::rectangle(vec2(0.0, 0.0), vec2(2.0, 1.0)), 0, {0.25, 0.5, 0.75});
+    for (const Formulation f : {Formulation::two_half_pass, Formulation::single_pass}) {
+        SCOPED_TRACE(f == Formulation::two_half_pass ? "two_half_pass" : "single_pass");
+        const ContactPair pair({.formulation = f, .law = NormalLaw::penalty(1e3)}, DeformableSide::make(top, Side::v0),
+                               DeformableSide::make(base, Side::v1));
+        const int n1 = pair.n_control_points(0), n2 = pair.n_control_points(1);
+        const RowMatrix rest1 = RowMatrix::Zero(n1, 2), rest2 = RowMatrix::Zero(n2, 2);
+        const PairEvaluation ev = pair.evaluate(rest1, rest2, true);
+        ASSERT_TRUE(ev.ok) << ev.message;
+        EXPECT_EQ(ev.n_active, 0);
+        EXPECT_EQ(ev.residual.norm(), 0.0);
+        const Matrix K = test::dense(ev.tangent, pair.n_local_dofs());
+        ASSERT_GT(K.norm(), 0.0) << "the touching faces' normal stiffness";
+        // Pressing the top down by h: the gap is h where the faces overlap, r linear in it.
+        RowMatrix press = RowMatrix::Zero(n1, 2);
+        press.col(1).setConstant(-1.0);
+        const Vector direction = test::stack(press, rest2);
+        const double h = 1e-6;
+        const auto [a, b] = test::unstack(h * direction, n1, n2);
+        const PairEvaluation pressed = pair.evaluate(a, b, false);
+        ASSERT_TRUE(pressed.ok) << pressed.message;
+        ASSERT_GT(pressed.n_active, 0);
+        const Vector slope = pressed.residual / h;
+        EXPECT_TRUE(test::at_most((K * direction - slope).norm() / slope.norm(), 1e-6));
+        // Lifting it: nothing presses, however the tangent reads the kink.
+        const auto [c, e] = test::unstack(-h * direction, n1, n2);
+        EXPECT_EQ(pair.evaluate(c, e, false).residual.norm(), 0.0);
+    }
 }
 
 TEST(ContactPair, FarApartDoesNoWork)
