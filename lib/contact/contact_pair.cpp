@@ -868,10 +868,15 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr,
                 points[g].friction = open_history(committed_[ci][g].friction, reference,
                                                   proj.gap - kernel_settings.gap_offset);
             if (sweep.need_tangent && !held(ci, g) && !unsettled && touches_at_kink(proj.gap, kernel_settings, view.size)) {
+                // The pressing (and, with friction, sticking) branch's slope only: no force.
                 KernelSettings touching = kernel_settings;
                 touching.touching = true;
-                scatter(gpts_kernel(gp.N, gp.weight, master_foot(proj), touching, Vector()), c, gp, proj.basis.indices,
-                        proj.element, sweep);
+                const MasterFoot foot = master_foot(proj);
+                KernelResult kr = gpts_kernel(gp.N, gp.weight, foot, touching, Vector());
+                if (friction && committed_[ci][g].friction.anchored)
+                    gpts_friction(kr, gp.N, gp.weight, foot, reference, settings_.friction, committed_[ci][g].friction,
+                                  points[g].tangential_multiplier, touching, Vector(), ConvergedPositions{});
+                scatter(kr, c, gp, proj.basis.indices, proj.element, sweep);
             }
             continue;
         }

@@ -119,7 +119,8 @@ TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W
     out.d_traction = Matrix::Zero(d, n_dofs);
     out.frame_traction = VecN::Zero(d);
     const double gap = master.gap - settings.gap_offset;  // the law's g_N, > 0 pressed
-    if (!(result.pressure > 0.0) || !law.active()) {
+    const bool at_kink = settings.touching && committed.anchored && law.active();
+    if ((!(result.pressure > 0.0) || !law.active()) && !at_kink) {
         out.next = open_history(committed, reference, gap);
         return out;
     }
@@ -139,6 +140,19 @@ TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W
                                  : anchored_trial(master, reference, v, committed.anchor, multiplier, eps_T, n_s);
     const Vector d_pressure = -result.slope * v.Nn;  // dp/du = p' dg_N/du
 
+    if (at_kink) {
+        // Touching at rest (KernelSettings::touching): no traction in a cone of zero size,
+        // but the tangent of pressing is that of sticking, the cone's limit as p -> 0+.
+        out.next = open_history(committed, reference, gap);
+        if (result.tangent.size() == 0)
+            return out;
+        for (Index k = 0; k < n_s; ++k)
+            result.tangent.middleRows(k * d, d) -= W * N(k) * trial.ds;
+        if (settings.master_rows)
+            for (Index b = 0; b < n_m; ++b)
+                result.tangent.middleRows((n_s + b) * d, d) += W * master.R(b) * trial.ds;
+        return out;
+    }
     out = coulomb_return_map(law, trial.s, trial.ds, result.pressure, d_pressure, !touching && committed.slipping);
     out.next = FrictionHistory{committed.anchor, committed.slip, true, out.status == StickSlip::slip};
     // t_T pulled back to the master's reference space (F_s of it is t_T again).

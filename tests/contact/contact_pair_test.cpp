@@ -206,6 +206,30 @@ TEST(ContactPair, FacesTouchingAtRestTakeThePressingBranchOfTheTangent)
         const auto [c, e] = test::unstack(-h * direction, n1, n2);
         EXPECT_EQ(pair.evaluate(c, e, false).residual.norm(), 0.0);
     }
+    // With friction the pressing branch sticks (the cone's limit as p -> 0+): a press with
+    // a shear well inside the cone (0.1 of the press against mu = 0.3) is what the tangent
+    // predicts, its tangential force included.
+    const ContactPair rough({.law = NormalLaw::penalty(1e3), .friction = {.coefficient = 0.3, .tangential_penalty = 1e3}},
+                            DeformableSide::make(top, Side::v0), DeformableSide::make(base, Side::v1));
+    const int n1 = rough.n_control_points(0), n2 = rough.n_control_points(1);
+    const PairEvaluation ev = rough.evaluate(RowMatrix::Zero(n1, 2), RowMatrix::Zero(n2, 2), true);
+    ASSERT_TRUE(ev.ok) << ev.message;
+    EXPECT_EQ(ev.residual.norm(), 0.0);
+    RowMatrix move = RowMatrix::Zero(n1, 2);
+    move.col(0).setConstant(0.1);
+    move.col(1).setConstant(-1.0);
+    const Vector direction = test::stack(move, RowMatrix::Zero(n2, 2));
+    const double h = 1e-6;
+    const auto [a, b] = test::unstack(h * direction, n1, n2);
+    const PairEvaluation moved = rough.evaluate(a, b, false);
+    ASSERT_TRUE(moved.ok) << moved.message;
+    const Vector slope = moved.residual / h;
+    Vector shear = Vector::Zero(slope.size());  // the x rows: the friction force's share
+    for (Index k = 0; k < slope.size(); k += 2)
+        shear(k) = slope(k);
+    ASSERT_TRUE(test::at_least(shear.norm(), 0.05 * slope.norm())) << "the move must load the friction";
+    const Matrix K = test::dense(ev.tangent, rough.n_local_dofs());
+    EXPECT_TRUE(test::at_most((K * direction - slope).norm() / slope.norm(), 1e-6));
 }
 
 TEST(ContactPair, FarApartDoesNoWork)
