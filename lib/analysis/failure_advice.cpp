@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 
@@ -76,7 +77,45 @@ FailureContext failure_context(const Scene& scene, const io::StepData* last)
     return c;
 }
 
+namespace {
+
+/// Where Newton failed beside a frictional side at its Coulomb limit, for any cause: a
+/// body pushed along the contact by a force has no equilibrium beyond that load, which
+/// no step size or penalty changes. A prescribed slide is at the limit too, and fails for
+/// other reasons: the note says which case it is about.
+std::string friction_limit_note(const FailureContext& c)
+{
+    if (c.saturated_friction.empty())
+        return {};
+    std::string fact = c.saturated_friction;
+    fact.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(fact.front())));
+    return ". " + fact +
+           ": if a force, not a prescribed displacement, pushes that body along the contact, no equilibrium "
+           "exists beyond this load, whatever the steps; lower that load, raise friction.coefficient, or drive "
+           "the body by a displacement";
+}
+
+std::string advice_for_cause(solver::FailureCause cause, const FailureContext& c);
+
+}  // namespace
+
 std::string failure_advice(solver::FailureCause cause, const FailureContext& c)
+{
+    std::string advice = advice_for_cause(cause, c);
+    switch (cause) {
+    case solver::FailureCause::growth:
+    case solver::FailureCause::cycle:
+    case solver::FailureCause::stagnation:
+    case solver::FailureCause::wandering:
+    case solver::FailureCause::slow: advice += friction_limit_note(c); break;
+    default: break;  // free_mode says it itself; the others have another cause
+    }
+    return advice;
+}
+
+namespace {
+
+std::string advice_for_cause(solver::FailureCause cause, const FailureContext& c)
 {
     const std::string smaller_steps = "smaller increments (a larger steps.count)";
     const std::string smaller_penalty = "a smaller penalty (about 1e2-1e3 E/h is plenty; penalty: auto)";
@@ -128,5 +167,7 @@ std::string failure_advice(solver::FailureCause cause, const FailureContext& c)
     }
     return {};
 }
+
+}  // namespace
 
 }  // namespace iga::analysis

@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <regex>
 
 namespace iga::test {
@@ -139,6 +140,46 @@ TEST(Cutback, AShearBeyondFrictionNamesTheFrictionLimit)
         << cli.err;
     EXPECT_NE(cli.err.find("beyond what friction can hold (mu N)"), std::string::npos) << cli.err;
     EXPECT_EQ(cli.err.find("Constrain every rigid-body motion"), std::string::npos) << cli.err;
+}
+
+TEST(Cutback, AShearBeyondFrictionOnADeformableBaseNamesTheFrictionLimitToo)
+{
+    // A steel cube set on an aluminium plate, pressed by 1000, then pushed along by up to
+    // 400 > mu N = 300. On a deformable base the tangent is not singular and Newton
+    // stagnates instead; the message still says that friction gave out and what that means.
+    const auto dir = scratch_dir("cutback_friction_limit_deformable");
+    const auto deck = dir / "cube.yaml";
+    std::ofstream(deck) << R"(format: 1
+analysis: {dimension: 2, plane: strain, kinematics: small}
+materials:
+  - {name: steel, model: linear_elastic, E: 210000.0, nu: 0.3}
+  - {name: alu, model: linear_elastic, E: 70000.0, nu: 0.33}
+bodies:
+  - name: plate
+    material: alu
+    shape: {type: rectangle, corner: [0.0, 0.0], size: [40.0, 5.0]}
+    refine: {elevate: [1, 1], spans: [8, 2]}
+  - name: cube
+    material: steel
+    shape: {type: rectangle, corner: [15.0, 5.0], size: [10.0, 10.0]}
+    refine: {elevate: [1, 1], spans: [4, 4]}
+constraints:
+  - {body: plate, side: v0, fix: [x, y]}
+loads:
+  - {body: cube, side: v1, force: [0.0, -1000.0], amplitude: [[0, 0], [1, 1], [2, 1]]}
+  - {body: cube, side: u0, force: [400.0, 0.0], amplitude: [[0, 0], [1, 0], [2, 1]]}
+contact:
+  - name: seat
+    between: [cube.v0, plate.v1]
+    penalty: auto
+    friction: {coefficient: 0.3}
+steps: {count: 4}
+)";
+    const CliResult cli = run_cli(shell_quote(deck.string()) + " -q -o " + shell_quote((dir / "cube.h5").string()), dir);
+    EXPECT_EQ(cli.exit_code, 1) << cli.err;
+    EXPECT_NE(cli.err.find("the friction on cube.v0 in contact pair 'seat' had reached its limit"), std::string::npos)
+        << cli.err;
+    EXPECT_NE(cli.err.find("no equilibrium exists beyond this load"), std::string::npos) << cli.err;
 }
 
 }  // namespace
