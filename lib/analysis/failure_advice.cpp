@@ -95,26 +95,6 @@ std::string friction_limit_note(const FailureContext& c)
            "the body by a displacement";
 }
 
-std::string advice_for_cause(solver::FailureCause cause, const FailureContext& c);
-
-}  // namespace
-
-std::string failure_advice(solver::FailureCause cause, const FailureContext& c)
-{
-    std::string advice = advice_for_cause(cause, c);
-    switch (cause) {
-    case solver::FailureCause::growth:
-    case solver::FailureCause::cycle:
-    case solver::FailureCause::stagnation:
-    case solver::FailureCause::wandering:
-    case solver::FailureCause::slow: advice += friction_limit_note(c); break;
-    default: break;  // free_mode says it itself; the others have another cause
-    }
-    return advice;
-}
-
-namespace {
-
 std::string advice_for_cause(solver::FailureCause cause, const FailureContext& c)
 {
     const std::string smaller_steps = "smaller increments (a larger steps.count)";
@@ -169,5 +149,19 @@ std::string advice_for_cause(solver::FailureCause cause, const FailureContext& c
 }
 
 }  // namespace
+
+std::string failure_advice(solver::FailureCause cause, const FailureContext& c)
+{
+    std::string advice = advice_for_cause(cause, c);
+    switch (cause) {
+    case solver::FailureCause::growth:
+    case solver::FailureCause::cycle:
+    case solver::FailureCause::stagnation:
+    case solver::FailureCause::wandering:
+    case solver::FailureCause::slow: advice += friction_limit_note(c); break;
+    default: break;  // free_mode says it itself; the others have another cause
+    }
+    return advice;
+}
 
 }  // namespace iga::analysis

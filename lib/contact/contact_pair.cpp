@@ -867,17 +867,8 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr,
             if (friction)
                 points[g].friction = open_history(committed_[ci][g].friction, reference,
                                                   proj.gap - kernel_settings.gap_offset);
-            if (sweep.need_tangent && !held(ci, g) && !unsettled && touches_at_kink(proj.gap, kernel_settings, view.size)) {
-                // The pressing (and, with friction, sticking) branch's slope only: no force.
-                KernelSettings touching = kernel_settings;
-                touching.touching = true;
-                const MasterFoot foot = master_foot(proj);
-                KernelResult kr = gpts_kernel(gp.N, gp.weight, foot, touching, Vector());
-                if (friction && committed_[ci][g].friction.anchored)
-                    gpts_friction(kr, gp.N, gp.weight, foot, reference, settings_.friction, committed_[ci][g].friction,
-                                  points[g].tangential_multiplier, touching, Vector(), ConvergedPositions{});
-                scatter(kr, c, gp, proj.basis.indices, proj.element, sweep);
-            }
+            if (sweep.need_tangent && !held(ci, g) && !unsettled && touches_at_kink(proj.gap, kernel_settings, view.size))
+                scatter_touching(ci, g, proj, reference, kernel_settings, sweep);
             continue;
         }
         if (unsettled)
@@ -907,6 +898,23 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr,
         scatter(kr, c, gp, proj.basis.indices, proj.element, sweep);
     }
     return true;
+}
+
+void ContactPair::scatter_touching(std::size_t ci, int g, const Projection& proj, const MasterReference& reference,
+                                   const KernelSettings& settings, Sweep& sweep) const
+{
+    const Carrier& c = carriers_[ci];
+    const GaussPoint& gp = c.points[static_cast<std::size_t>(g)];
+    KernelSettings touching = settings;
+    touching.touching = true;
+    const MasterFoot foot = master_foot(proj);
+    KernelResult kr = gpts_kernel(gp.N, gp.weight, foot, touching, Vector());
+    const FrictionHistory& committed = committed_[ci][static_cast<std::size_t>(g)].friction;
+    if (settings_.friction.active() && committed.anchored)
+        gpts_friction(kr, gp.N, gp.weight, foot, reference, settings_.friction, committed,
+                      sweep.ev.trial.carriers[ci][static_cast<std::size_t>(g)].tangential_multiplier, touching, Vector(),
+                      ConvergedPositions{});
+    scatter(kr, c, gp, proj.basis.indices, proj.element, sweep);
 }
 
 ConvergedPositions ContactPair::converged_positions(const Carrier& c, const GaussPoint& gp,

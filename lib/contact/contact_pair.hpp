@@ -417,6 +417,10 @@ private:
                              Sweep& sweep) const;
     void scatter(const KernelResult& kr, const Carrier& c, const GaussPoint& gp, const std::vector<int>& master_indices,
                  int master_element, Sweep& sweep) const;
+    /// A point touching at the kink (KernelSettings::touching): the pressing and, with
+    /// friction, sticking branch's tangent, and no force.
+    void scatter_touching(std::size_t carrier, int g, const Projection& proj, const MasterReference& reference,
+                          const KernelSettings& settings, Sweep& sweep) const;
     /// The tangential state of one carrier's points as the results report it.
     FrictionState friction_state(const std::vector<ContactPointState>& points) const;
     /// Friction against a deformable master: anchors each Gauss point at the foot of
