@@ -381,6 +381,16 @@ private:
         return scalar_difference(value, value_before);
     }
 
+    /// Why a level's estimate is above its difference: the floor (level_error).
+    std::string floor_note(double estimate, double difference) const
+    {
+        const double fall = largest_fall(a_.quantity);
+        return estimate * fall >= 1.0
+                   ? fmt::format(" (100 % over {:g}: the level before had not resolved the {}; the difference is {})",
+                                 fall, io::deck_name(a_.quantity), percent(difference))
+                   : fmt::format(" (the last estimate over {:g}; the difference is {})", fall, percent(difference));
+    }
+
     void log_level(const Level& level) const
     {
         const std::string slow = level.bound && *level.bound > *level.discretization + level.penalty_error
@@ -393,8 +403,7 @@ private:
                                  level.dofs, level.wall_s, io::deck_name(a_.quantity), level.value,
                                  level.estimate ? percent(*level.estimate) : std::string("- (level 0)"),
                                  level.difference && *level.difference < *level.discretization
-                                     ? fmt::format(" (the last estimate over {:g}; the difference is {})",
-                                                   largest_fall(a_.quantity), percent(*level.difference))
+                                     ? floor_note(*level.discretization, *level.difference)
                                      : std::string(),
                                  level.penalty_error > 0.0
                                      ? fmt::format(" (the penalty's part {})", percent(level.penalty_error))

@@ -6,7 +6,7 @@
 // Each level halves the spans where the pressure changed most (span_marking.hpp), once:
 // the element size there falls by 2, and an error of order 1 in h by about 2.
 // Level k's estimate is
-//   e_k = max(d_k, e_{k-1} / largest_fall(quantity)),
+//   e_k = max(d_k, min(e_{k-1}, 1) / largest_fall(quantity)),
 // d_k the relative difference of the quantity to level k - 1. The difference alone is
 // Richardson's |q_k - q_{k-1}| / (2^p - 1) with p = 1; the floor keeps a level whose
 // refinement happened not to move the answer much (the error fell by 1.2 where the levels
@@ -107,10 +107,13 @@ inline double largest_fall(io::AccuracyQuantity quantity)
 }
 
 /// The estimated relative error of a level from its relative difference d_k to the level
-/// before and the estimate of that level: max(d_k, e_{k-1} / fall).
+/// before and the estimate of that level: max(d_k, min(e_{k-1}, 1) / fall). An estimate
+/// above 100 % says only that the quantity is not resolved yet (a coarse level's force
+/// 0.14 after 1.32: d = 848 %); as a floor it carries no more than that, else one such
+/// level would hold the next ones' estimates far above their own differences.
 inline double level_error(double difference, std::optional<double> previous, double fall)
 {
-    return previous ? std::max(difference, *previous / fall) : difference;
+    return previous ? std::max(difference, std::min(*previous, 1.0) / fall) : difference;
 }
 
 /// The relative resolution of the stick zone measured on `side` (side_quantity): whether

@@ -405,5 +405,18 @@ TEST(Accuracy, TheStickZoneIsResolvedToTheWeightsOfItsEdgePoints)
     EXPECT_LE(resolution, h / (1.0 - h / std::sqrt(2.0)));
 }
 
+TEST(Accuracy, AnEstimateAboveOneFloorsTheNextLevelOnlyAsAnUnresolvedQuantity)
+{
+    // A roller pressed into a soft block, force target (a deck of mine): the coarse levels'
+    // forces 1.32 then 0.139, d = 848 %. Carried as the floor, 8.48 / 2^3 would still be
+    // 106 % three levels later, where the levels differ by 18 %.
+    EXPECT_DOUBLE_EQ(level_error(0.24, 8.48, 2.0), 0.5);
+    EXPECT_DOUBLE_EQ(level_error(0.389, 0.5, 2.0), 0.389);
+    EXPECT_DOUBLE_EQ(level_error(0.179, 0.389, 2.0), 0.1945);
+    // Below 100 % the floor is the estimate before over the fall, as it always was.
+    EXPECT_DOUBLE_EQ(level_error(0.01, 0.3, 3.0), 0.1);
+    EXPECT_DOUBLE_EQ(level_error(0.7, std::nullopt, 2.0), 0.7);
+}
+
 }  // namespace
 }  // namespace iga::analysis
