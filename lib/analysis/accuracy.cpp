@@ -8,6 +8,7 @@
 #include "analysis/size_estimate.hpp"
 #include "analysis/span_marking.hpp"
 #include "analysis/zone_refinement.hpp"
+#include "analysis/zone_symmetry.hpp"
 #include "core/error.hpp"
 #include "io/deck_names.hpp"
 #include "io/deck_writer.hpp"
@@ -327,7 +328,7 @@ private:
         level.index = k;
         level.dofs = static_cast<long long>(level_run.numbers.at("dofs"));
         level.wall_s = level_run.wall_s;
-        level.value = side_quantity(a_.quantity, *side, field);
+        level.value = side_quantity(a_.quantity, *side, field, mirrors(*side, field));
         level.reference_error = reference_error(deck_, a_, level_run, field);
         if (const auto previous = fields_.find(side->side_name); previous != fields_.end()) {
             differences_.push_back(level_difference(previous->second, field, *side, level.value, levels_.back().value));
@@ -352,6 +353,15 @@ private:
         return true;
     }
 
+    /// How many symmetry planes of the measured side's body cut its zone (zone_symmetry.hpp).
+    int mirrors(const io::ContactSideResult& side, const SidePressure& field) const
+    {
+        if (a_.quantity != io::AccuracyQuantity::contact_radius && a_.quantity != io::AccuracyQuantity::stick_zone)
+            return 0;
+        const io::Body& body = *deck_.find_body(side.side_name.substr(0, side.side_name.find('.')));
+        return zone_mirrors(symmetry_planes(deck_, body), field.side, side.gauss_points, zone_points(a_.quantity, side));
+    }
+
     /// The penalty's part of level k's error, E* / (eps a) with a measured at level k, where
     /// the target held the pair's penalty at this level and the one before (else the change
     /// of the penalty is in the levels' difference); 0 otherwise.
@@ -364,19 +374,20 @@ private:
         return a && *a > 0.0 ? at(k).hertz_modulus / (at(k).penalty * *a) : 0.0;
     }
 
-    /// d_k of the quantity. The stick zone, a sum of its Gauss points' weights, stays the
-    /// same while no point at its edge changes state, however much the pressure moved (a
-    /// coarse level's one sticking point): its difference is not taken below the
-    /// resolution it is measured with (level_estimate.hpp, zone_resolution).
+    /// d_k of the quantity. A zone (the contact zone, the stick zone), a sum of its Gauss
+    /// points' weights, stays the same while no point at its edge changes state, however
+    /// much the pressure moved (a coarse level's one or two pressed points): its difference
+    /// is not taken below the resolution it is measured with (level_estimate.hpp,
+    /// zone_resolution).
     double level_difference(const SidePressure& before, const SidePressure& now, const io::ContactSideResult& side,
                             double value, double value_before) const
     {
         switch (a_.quantity) {
         case io::AccuracyQuantity::pressure_l2: return pressure_difference(before, now).relative;
+        case io::AccuracyQuantity::contact_radius:
         case io::AccuracyQuantity::stick_zone:
-            return std::max(scalar_difference(value, value_before), zone_resolution(side));
-        case io::AccuracyQuantity::force:
-        case io::AccuracyQuantity::contact_radius: break;
+            return std::max(scalar_difference(value, value_before), zone_resolution(a_.quantity, side));
+        case io::AccuracyQuantity::force: break;
         }
         return scalar_difference(value, value_before);
     }

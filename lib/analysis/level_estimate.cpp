@@ -54,22 +54,21 @@ void for_each_side_point(const nurbs::Patch& side, F&& f)
 
 }  // namespace
 
-double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult& side, const SidePressure& field)
+double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult& side, const SidePressure& field,
+                     int mirrors)
 {
     switch (quantity) {
     case io::AccuracyQuantity::force:
         return side.normal_force;
     case io::AccuracyQuantity::contact_radius:
     case io::AccuracyQuantity::stick_zone: {
-        const io::GaussPointData& g = side.gauss_points;
-        const bool stick = quantity == io::AccuracyQuantity::stick_zone;
-        IGA_CHECK(!stick || g.status.size() == static_cast<std::size_t>(g.pressure.size()),
-                  "accuracy: the side " + side.side_name + " has no friction states for stick_zone");
-        double measure = 0.0;
-        for (Index k = 0; k < g.pressure.size(); ++k)
-            if (g.pressure(k) > 0.0 && (!stick || g.status[static_cast<std::size_t>(k)] == stick_status))
-                measure += g.weight(k);
-        return field.side.n_par() == 1 ? measure : std::sqrt(measure / std::numbers::pi);
+        double measure = 0.0;  // of the modelled part
+        for (const Index k : zone_points(quantity, side))
+            measure += side.gauss_points.weight(k);
+        const double whole = std::ldexp(measure, std::min(mirrors, field.side.n_par()));
+        if (field.side.n_par() == 2)
+            return std::sqrt(whole / std::numbers::pi);
+        return quantity == io::AccuracyQuantity::contact_radius ? 0.5 * whole : whole;
     }
     case io::AccuracyQuantity::pressure_l2: {
         double norm2 = 0.0;
@@ -83,23 +82,38 @@ double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult&
     throw Error("accuracy: unknown quantity");
 }
 
-double zone_resolution(const io::ContactSideResult& side)
+std::vector<Index> zone_points(io::AccuracyQuantity quantity, const io::ContactSideResult& side)
 {
     const io::GaussPointData& g = side.gauss_points;
-    std::vector<Index> zone;  // the sticking, pressed points
+    const bool stick = quantity == io::AccuracyQuantity::stick_zone;
+    IGA_CHECK(!stick || g.status.size() == static_cast<std::size_t>(g.pressure.size()),
+              "accuracy: the side " + side.side_name + " has no friction states for stick_zone");
+    std::vector<Index> zone;
     for (Index k = 0; k < g.pressure.size(); ++k)
-        if (g.pressure(k) > 0.0 && k < static_cast<Index>(g.status.size()) && g.status[static_cast<std::size_t>(k)] == stick_status)
+        if (g.pressure(k) > 0.0 && (!stick || g.status[static_cast<std::size_t>(k)] == stick_status))
             zone.push_back(k);
-    if (zone.empty())
+    return zone;
+}
+
+double zone_resolution(io::AccuracyQuantity quantity, const io::ContactSideResult& side)
+{
+    const io::GaussPointData& g = side.gauss_points;
+    const std::vector<Index> zone = zone_points(quantity, side);
+    if (zone.size() <= 1)
         return 1.0;
     double measure = 0.0;
     for (const Index k : zone)
         measure += g.weight(k);
-    if (g.parameter.cols() == 1) {  // a curve: the zone's two ends along it
-        const auto [first, last] = std::minmax_element(zone.begin(), zone.end(), [&](Index a, Index b) {
-            return g.parameter(a, 0) < g.parameter(b, 0);
-        });
-        return zone.size() == 1 ? 1.0 : (g.weight(*first) + g.weight(*last)) / measure;
+    if (g.parameter.cols() == 1) {  // a curve: the zone's two ends along it, but not an end of the side
+        const auto by_parameter = [&](Index a, Index b) { return g.parameter(a, 0) < g.parameter(b, 0); };
+        const auto [first, last] = std::minmax_element(zone.begin(), zone.end(), by_parameter);
+        const auto [side_first, side_last] = std::minmax_element(g.parameter.col(0).begin(), g.parameter.col(0).end());
+        double edges = 0.0;
+        if (g.parameter(*first, 0) > *side_first)
+            edges += g.weight(*first);
+        if (g.parameter(*last, 0) < *side_last)
+            edges += g.weight(*last);
+        return edges / measure;
     }
     VecN centroid = VecN::Zero(g.reference_coordinates.cols());
     for (const Index k : zone)

@@ -23,9 +23,9 @@
 // level) and partly not (up to d_k = sqrt(1 + r^2) e_k): in 3D, where a level adds twice
 // the dofs and r is about 2, the second dominates and the estimate is high by up to 2.
 //
-// A zone measured from Gauss points (stick_zone) moves only when a point at its edge
-// changes state: its difference is floored at its resolution (zone_resolution), so a level
-// whose one sticking point stays the one sticking point does not claim it converged.
+// A zone measured from Gauss points (contact_radius, stick_zone) moves only when a point
+// at its edge changes state: its difference is floored at its resolution (zone_resolution),
+// so a level whose one or two pressed points stay the same does not claim it converged.
 //
 // Where the differences fall more slowly than by slow_ratio over slow_levels levels in a
 // row (a flat punch's corner: 4.3, 3.1, 2.2, 1.5 % of
@@ -65,11 +65,13 @@ struct SidePressure {
 /// gauss_points/status of a sticking point (docs/results.md).
 inline constexpr int stick_status = 1;
 
-/// The value of `quantity` on one side: the normal force; the zone's length (2D) or the
-/// radius of a disc of its area (3D) from the pressed Gauss points' weights, and the same
-/// of the pressed points that stick for stick_zone; for pressure_l2 the L2 norm of the
-/// recovered pressure.
-double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult& side, const SidePressure& field);
+/// The value of `quantity` on one side: the normal force; for contact_radius the whole
+/// zone's half-width (2D) or the radius of a disc of its area (3D), from the pressed Gauss
+/// points' weights, the modelled part mirrored across the `mirrors` symmetry planes that cut
+/// it (zone_symmetry.hpp); for stick_zone the same of the pressed points that stick, its
+/// length in 2D; for pressure_l2 the L2 norm of the recovered pressure (of the modelled part).
+double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult& side, const SidePressure& field,
+                     int mirrors = 0);
 
 /// The difference of two levels' pressures over the fine level's side.
 struct PressureDifference {
@@ -116,11 +118,16 @@ inline double level_error(double difference, std::optional<double> previous, dou
     return previous ? std::max(difference, std::min(*previous, 1.0) / fall) : difference;
 }
 
-/// The relative resolution of the stick zone measured on `side` (side_quantity): whether
-/// a Gauss point at its edge sticks changes the measure by that point's weight. In 2D
-/// (a curve) the weights of its first and last sticking points over the zone's length; in
-/// 3D the width sqrt(w) of the sticking point farthest from the zone's centroid over that
-/// distance. 1 with no sticking point.
-double zone_resolution(const io::ContactSideResult& side);
+/// The Gauss points of `side` whose weights make the zone of `quantity` (contact_radius:
+/// the pressed points; stick_zone: the pressed points that stick).
+std::vector<Index> zone_points(io::AccuracyQuantity quantity, const io::ContactSideResult& side);
+
+/// The relative resolution of the zone of `quantity` (contact_radius or stick_zone)
+/// measured on `side` (side_quantity): whether a Gauss point at its edge is in the zone
+/// changes the measure by that point's weight. In 2D (a curve) the weights of its first and
+/// last points over the zone's length, leaving out an end that is the side's own (a
+/// symmetry line: it does not move); in 3D the width sqrt(w) of the point farthest from the
+/// zone's centroid over that distance. 1 with one point or none.
+double zone_resolution(io::AccuracyQuantity quantity, const io::ContactSideResult& side);
 
 }  // namespace iga::analysis

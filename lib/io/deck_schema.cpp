@@ -293,9 +293,11 @@ constexpr Row deck_rows[] = {
     {"accuracy.target.pair", text("name"), required, "the contact pair whose zone is refined and measured"},
     {"accuracy.target.quantity", choice<AccuracyQuantity>(), fallback("`pressure_l2`"),
      "`pressure_l2`: the post-processed pressure over the contact side, in the L2 norm. `force`: the contact "
-     "normal force. `contact_radius`: the contact zone's half-width (2D) or radius (3D). `stick_zone`: the "
-     "sticking part of the zone at the end of the load path, its length (2D) or the radius of a disc of its "
-     "area (3D); the pair needs friction"},
+     "normal force. `contact_radius`: the contact zone's half-width (2D) or radius (3D), of the whole zone on a "
+     "half or quarter model (its symmetry planes are read from the constraints: "
+     "[accuracy_on_demand.md](accuracy_on_demand.md#symmetry-planes)). `stick_zone`: the sticking part of the "
+     "zone at the end of the load path, its length (2D) or the radius of a disc of its area (3D), also of the "
+     "whole zone; the pair needs friction"},
     {"accuracy.target.error", number(above(0)), required,
      "the relative error allowed, e.g. `0.01`; the run ends at the first level whose estimated error, times the "
      "safety factor 1.25, is at most this"},

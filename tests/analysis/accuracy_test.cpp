@@ -355,7 +355,7 @@ TEST(Accuracy, RefineLevelsFoldedIntoTheKnotsGiveTheSameHalvedPatch)
     }
 }
 
-TEST(Accuracy, TheStickZoneIsResolvedToTheWeightsOfItsEdgePoints)
+TEST(Accuracy, AZoneIsResolvedToTheWeightsOfItsEdgePoints)
 {
     // A curve: ten points of growing weight, points 3-6 stick. Whether the end points 3 and
     // 6 stick changes the measure by their weights; the points inside do not matter.
@@ -370,14 +370,23 @@ TEST(Accuracy, TheStickZoneIsResolvedToTheWeightsOfItsEdgePoints)
         g.weight(k) = 1.0 + 0.1 * static_cast<double>(k);
         g.status.push_back(k >= 3 && k <= 6 ? stick_status : 2);
     }
-    EXPECT_TRUE(test::near(zone_resolution(curve), (1.3 + 1.6) / (1.3 + 1.4 + 1.5 + 1.6), 1e-14));
+    EXPECT_TRUE(test::near(zone_resolution(io::AccuracyQuantity::stick_zone, curve), (1.3 + 1.6) / (1.3 + 1.4 + 1.5 + 1.6), 1e-14));
     g.pressure(6) = 0.0;  // open: it no longer counts, whatever its state says
-    EXPECT_TRUE(test::near(zone_resolution(curve), (1.3 + 1.5) / (1.3 + 1.4 + 1.5), 1e-14));
+    EXPECT_TRUE(test::near(zone_resolution(io::AccuracyQuantity::stick_zone, curve), (1.3 + 1.5) / (1.3 + 1.4 + 1.5), 1e-14));
     g.status.assign(10, 2);
     g.status[4] = stick_status;
-    EXPECT_EQ(zone_resolution(curve), 1.0) << "one sticking point says nothing of the zone's size";
+    EXPECT_EQ(zone_resolution(io::AccuracyQuantity::stick_zone, curve), 1.0) << "one sticking point says nothing of the zone's size";
     g.status[4] = 2;
-    EXPECT_EQ(zone_resolution(curve), 1.0);
+    EXPECT_EQ(zone_resolution(io::AccuracyQuantity::stick_zone, curve), 1.0);
+
+    // The contact zone of the same curve: points 0-4 pressed (parameters 0.9 down to 0.5).
+    // Point 0 is the side's end (a symmetry line), which does not move: only point 4 is an
+    // edge. Two pressed points at a coarse level cannot claim a converged zone.
+    g.pressure.tail(5).setZero();
+    EXPECT_TRUE(test::near(zone_resolution(io::AccuracyQuantity::contact_radius, curve),
+                           1.4 / (1.0 + 1.1 + 1.2 + 1.3 + 1.4), 1e-14));
+    g.pressure.segment(2, 3).setZero();
+    EXPECT_TRUE(test::near(zone_resolution(io::AccuracyQuantity::contact_radius, curve), 1.1 / 2.1, 1e-14));
 
     // A surface: a grid of cells of width h, those within radius 1 of the origin stick. The
     // farthest sticking point from the centroid (the origin) lies at most h/sqrt(2) inside
@@ -400,7 +409,7 @@ TEST(Accuracy, TheStickZoneIsResolvedToTheWeightsOfItsEdgePoints)
         s.reference_coordinates.row(k) << x, y, 0.0;
         s.status.push_back(std::hypot(x, y) <= 1.0 ? stick_status : 2);
     }
-    const double resolution = zone_resolution(surface);
+    const double resolution = zone_resolution(io::AccuracyQuantity::stick_zone, surface);
     EXPECT_GE(resolution, h);
     EXPECT_LE(resolution, h / (1.0 - h / std::sqrt(2.0)));
 }

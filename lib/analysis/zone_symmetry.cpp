@@ -1,0 +1,75 @@
+#include "analysis/zone_symmetry.hpp"
+
+#include "analysis/geometry.hpp"
+#include "analysis/multipatch.hpp"
+#include "nurbs/side_patch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace iga::analysis {
+
+namespace {
+
+/// Coordinates within this fraction of a patch's size count as equal.
+constexpr double plane_tolerance = 1e-9;
+
+double size_of(const RowMatrix& points)
+{
+    return (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
+}
+
+}  // namespace
+
+std::vector<SymmetryPlane> symmetry_planes(const io::Deck& deck, const io::Body& body)
+{
+    std::vector<SymmetryPlane> planes;
+    if (body.rigid || body.multi_patch())
+        return planes;
+    const nurbs::Patch patch = build_patch(body, deck.analysis.dimension);
+    const double tolerance = plane_tolerance * size_of(patch.control_points());
+    for (const io::Constraint& c : deck.constraints) {
+        if (c.body != body.name || !c.patch.empty() || !c.surface.empty())
+            continue;
+        const auto held = static_cast<int>(std::count(c.fixed.begin(), c.fixed.end(), true));
+        if (held == 0 || held == static_cast<int>(c.fixed.size()))
+            continue;  // free, or a clamp
+        const RowMatrix x = nurbs::extract_side(patch, named_side(c.side, u_reversed(body, 0))).patch.control_points();
+        for (int i = 0; i < static_cast<int>(x.cols()); ++i) {
+            const auto k = static_cast<std::size_t>(i);
+            const bool flat = x.col(i).maxCoeff() - x.col(i).minCoeff() <= tolerance;
+            if (flat && c.fixed[k] && c.value[k] == 0.0)
+                planes.push_back({i, x.col(i).mean()});
+        }
+    }
+    return planes;
+}
+
+int zone_mirrors(const std::vector<SymmetryPlane>& planes, const nurbs::Patch& side, const io::GaussPointData& g,
+                 const std::vector<Index>& zone)
+{
+    const double tolerance = plane_tolerance * size_of(side.control_points());
+    int mirrors = 0;
+    for (const SymmetryPlane& plane : planes) {
+        const auto distance = [&](Index k) { return std::abs(g.reference_coordinates(k, plane.axis) - plane.coordinate); };
+        if ((side.control_points().col(plane.axis).array() - plane.coordinate).abs().minCoeff() > tolerance)
+            continue;  // the side does not reach the plane
+        // The zone's first row along the plane, or a zone nearer to the plane than its own
+        // extent across it (a coarse level's zone that has lifted off the plane in a ring).
+        double nearest = std::numeric_limits<double>::infinity(), farthest = 0.0, width = 0.0;
+        for (const Index k : zone) {
+            if (distance(k) < nearest) {
+                nearest = distance(k);
+                width = g.reference_coordinates.cols() == 2 ? g.weight(k) : std::sqrt(g.weight(k));
+            }
+            farthest = std::max(farthest, distance(k));
+        }
+        const bool cut = !zone.empty() && (nearest < 0.75 * width || nearest < farthest - nearest);
+        if (cut)
+            ++mirrors;
+    }
+    return mirrors;
+}
+
+}  // namespace iga::analysis
