@@ -6,6 +6,8 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <tuple>
+#include <utility>
 
 namespace iga::analysis {
 
@@ -28,9 +30,51 @@ std::string penalty_facts(const FailureContext& c)
 /// or just below it when the increment before the failure was cut).
 constexpr double friction_limit_fraction = 0.99;
 
-/// "... block.v0 in contact pair 'p' ...: friction force 1.5 against mu N = 1.5" for
-/// the first frictional side at its Coulomb limit at `last`; empty if none.
-std::string saturated_friction(const Scene& scene, const io::StepData& last)
+/// A displacement component with more than this share of the friction force's direction
+/// holds a body along the contact.
+constexpr double along_share = 0.01;
+
+/// The body of a results side "body.side".
+std::string body_of(const std::string& side_name)
+{
+    return side_name.substr(0, side_name.find('.'));
+}
+
+/// True when deformable body `name` has no prescribed displacement along `direction` (a
+/// component that has a share of it) and touches nothing but `pair`: then only that pair's
+/// friction holds it along the contact against its loads.
+bool held_only_by(const Scene& scene, const io::StepData& last, const std::string& name, const std::string& pair,
+                  const std::vector<double>& direction)
+{
+    const auto body = std::find_if(scene.bodies.begin(), scene.bodies.end(),
+                                   [&](const BodyModel& b) { return b.name == name; });
+    if (body == scene.bodies.end() || !scene.dofs)
+        return false;
+    const int b = static_cast<int>(body - scene.bodies.begin());
+    const assembly::DofMap& dofs = *scene.dofs;
+    double length = 0.0;
+    for (const double t : direction)
+        length += t * t;
+    length = std::sqrt(length);
+    for (int i = 0; i < dofs.dimension() && i < static_cast<int>(direction.size()); ++i) {
+        if (std::abs(direction[static_cast<std::size_t>(i)]) <= along_share * length)
+            continue;  // a component across the slide may be held (a pressed top)
+        for (int node = dofs.node_offset(b); node < dofs.node_offset(b) + dofs.n_nodes(b); ++node)
+            if (dofs.is_constrained(dofs.dof(node, i)))
+                return false;
+    }
+    for (const io::ContactPairResult& other : last.contact)
+        if (other.name != pair)
+            for (const io::ContactSideResult& side : other.sides)
+                if (body_of(side.side_name) == name)
+                    return false;
+    return true;
+}
+
+/// The first frictional side at its Coulomb limit at `last`, in words ("... block.v0 in
+/// contact pair 'p' ...: friction force 1.5 against mu N = 1.5"), and a body of its pair
+/// that only that contact holds (held_only_by); empty if none.
+std::pair<std::string, std::string> saturated_friction(const Scene& scene, const io::StepData& last)
 {
     for (const io::ContactPairResult& pair : last.contact) {
         const auto model = std::find_if(scene.pairs.begin(), scene.pairs.end(),
@@ -46,10 +90,15 @@ std::string saturated_friction(const Scene& scene, const io::StepData& last)
             const double limit = mu * std::abs(side.normal_force);
             if (!(limit > 0.0) || tangential < friction_limit_fraction * limit)
                 continue;
-            return fmt::format("in the last converged increment (load factor {:.4g}) the friction on {} in contact "
-                               "pair '{}' had reached its limit: friction force {:.4g} against mu N = {:.4g} "
-                               "(mu = {:g})",
-                               last.load_factor, side.side_name, pair.name, tangential, limit, mu);
+            std::string free_body;
+            for (const io::ContactSideResult& s : pair.sides)
+                if (free_body.empty() && held_only_by(scene, last, body_of(s.side_name), pair.name, side.friction_force))
+                    free_body = body_of(s.side_name);
+            return {fmt::format("in the last converged increment (load factor {:.4g}) the friction on {} in contact "
+                                "pair '{}' had reached its limit: friction force {:.4g} against mu N = {:.4g} "
+                                "(mu = {:g})",
+                                last.load_factor, side.side_name, pair.name, tangential, limit, mu),
+                    free_body};
         }
     }
     return {};
@@ -64,7 +113,7 @@ FailureContext failure_context(const Scene& scene, const io::StepData* last)
     if (!c.has_contact)
         return c;
     if (last)
-        c.saturated_friction = saturated_friction(scene, *last);
+        std::tie(c.saturated_friction, c.held_by_friction) = saturated_friction(scene, *last);
     double E_min = std::numeric_limits<double>::infinity(), penalty_max = 0;
     for (const BodyModel& b : scene.bodies)
         E_min = std::min(E_min, b.material.E);
@@ -89,10 +138,14 @@ std::string friction_limit_note(const FailureContext& c)
         return {};
     std::string fact = c.saturated_friction;
     fact.front() = static_cast<char>(std::toupper(static_cast<unsigned char>(fact.front())));
+    const std::string remedy = "lower that load, raise friction.coefficient, or drive the body by a displacement";
+    if (!c.held_by_friction.empty())
+        return ". " + fact + ". Body " + c.held_by_friction +
+               " has no prescribed displacement along the contact and no other contact: only this friction holds "
+               "it there, so no equilibrium exists beyond this load, whatever the steps; " + remedy;
     return ". " + fact +
            ": if a force, not a prescribed displacement, pushes that body along the contact, no equilibrium "
-           "exists beyond this load, whatever the steps; lower that load, raise friction.coefficient, or drive "
-           "the body by a displacement";
+           "exists beyond this load, whatever the steps; " + remedy;
 }
 
 std::string advice_for_cause(solver::FailureCause cause, const FailureContext& c)

@@ -20,6 +20,9 @@ struct FailureContext {
     /// A frictional side whose friction force had reached mu N in the last converged
     /// increment, in words; empty if none.
     std::string saturated_friction;
+    /// A body of that pair with no prescribed displacement along the friction force and no
+    /// other contact, which only that friction holds along the contact; empty if none.
+    std::string held_by_friction;
 };
 
 /// The scene's facts; `last` (the last converged state, if any) tells saturated friction.
