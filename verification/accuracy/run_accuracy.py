@@ -103,22 +103,33 @@ def stick_zone_theory(path, E=1000.0, nu=0.3, R=1.0, mu=0.3):
     return 2.0 * a * math.sqrt(1.0 - Q / (mu * P))
 
 
+def levels_run(app, work, name, deck, sets, stem, columns, failures):
+    """Runs an accuracy case into WORK/<stem>.h5 and prints its title and the head of its
+    per-level table (`columns`: the measured value and the exact one). Returns the
+    /accuracy/levels rows, whether the target was reached and the levels' folder; None
+    (with a failure) when the run exited otherwise than 0 or 1."""
+    out = os.path.join(work, stem + ".h5")
+    code, wall, err = run(app, deck, sets, out)
+    if code not in (0, 1):
+        failures.append(f"{name}: the accuracy run exited {code}: {err.strip()[-200:]}")
+        return None
+    with h5py.File(out, "r") as f:
+        levels = f["accuracy/levels"][()]
+        reached = int(f["accuracy"].attrs["reached"])
+    print(f"{name} ({'reached' if reached else 'not reached'}, {wall:.3g} s for all levels)")
+    print(f"| level | dofs | {columns} | error | estimated | estimate / error |")
+    print("|---|---|---|---|---|---|---|")
+    return levels, reached, os.path.join(work, stem + "_levels")
+
+
 def stick_zone_case(app, work, failures):
     """Runs the stick-zone case; prints a per-level table; the last level within
     STICK_TOLERANCE of theory and every estimate within a factor of two of the error."""
     name, deck = STICK_CASE
-    out = os.path.join(work, "stick_zone.h5")
-    code, wall, err = run(app, deck, [], out)
-    if code not in (0, 1):
-        failures.append(f"{name}: the accuracy run exited {code}: {err.strip()[-200:]}")
+    ran = levels_run(app, work, name, deck, [], "stick_zone", "2c measured | 2c theory", failures)
+    if ran is None:
         return
-    with h5py.File(out, "r") as f:
-        levels = f["accuracy/levels"][()]
-        reached = int(f["accuracy"].attrs["reached"])
-    folder = os.path.join(work, "stick_zone_levels")
-    print(f"{name} ({'reached' if reached else 'not reached'}, {wall:.3g} s for all levels)")
-    print("| level | dofs | 2c measured | 2c theory | error | estimated | estimate / error |")
-    print("|---|---|---|---|---|---|---|")
+    levels, reached, folder = ran
     for row in levels:
         k = int(row[0])
         theory = stick_zone_theory(os.path.join(folder, f"level{k}.h5"))
@@ -150,18 +161,10 @@ def contact_radius_case(app, work, failures):
     """Runs the half-width case; prints a per-level table; the level that meets the
     target within it of Hertz's a (from the level's /reference)."""
     name, deck, sets, target = RADIUS_CASE
-    out = os.path.join(work, "contact_radius.h5")
-    code, wall, err = run(app, deck, sets, out)
-    if code not in (0, 1):
-        failures.append(f"{name}: the accuracy run exited {code}: {err.strip()[-200:]}")
+    ran = levels_run(app, work, name, deck, sets, "contact_radius", "half-width | Hertz a", failures)
+    if ran is None:
         return
-    with h5py.File(out, "r") as f:
-        levels = f["accuracy/levels"][()]
-        reached = int(f["accuracy"].attrs["reached"])
-    folder = os.path.join(work, "contact_radius_levels")
-    print(f"{name} ({'reached' if reached else 'not reached'}, {wall:.3g} s for all levels)")
-    print("| level | dofs | half-width | Hertz a | error | estimated | estimate / error |")
-    print("|---|---|---|---|---|---|---|")
+    levels, reached, folder = ran
     error = math.nan
     for row in levels:
         k = int(row[0])
