@@ -141,12 +141,6 @@ int run_command(int argc, char** argv, const Communicator& comm)
                                          refine_levels, bytes / 1e9, limits.memory_name, limits.memory_bytes / 1e9));
         if (deck.accuracy) {
             // The levels refine from the deck's knots: the halvings become knots of the deck.
-            for (const io::Body& body : deck.bodies)
-                if (!body.rigid && body.multi_patch())
-                    throw UsageError(fmt::format("--refine-levels with accuracy: writes the halvings into each body's "
-                                                 "knots, which body '{}' (several patches) cannot take; leave it out "
-                                                 "and refine that body in the deck",
-                                                 body.name));
             analysis::fold_halvings(deck, refine_levels);
             deck.resolved_yaml = io::write_resolved_yaml(deck);
         }

@@ -66,21 +66,38 @@ const io::ContactSideResult* measured_side(const RunOutcome& outcome, const std:
     return p && !p->sides.empty() ? &p->sides.front() : nullptr;
 }
 
-/// Side `side` (as the deck names it) of a single-patch body, as analysed.
-nurbs::Patch side_patch(const io::Deck& deck, const io::Body& body, Side side)
+/// Side `side` (as the deck names it) of patch `patch` of a body ("" for a single-patch
+/// body), as analysed: the patch refined and glued.
+nurbs::Patch side_patch(const io::Deck& deck, const io::Body& body, const std::string& patch, Side side)
 {
-    const nurbs::Patch patch = build_patch(body, deck.analysis.dimension);
-    return nurbs::extract_side(patch, named_side(side, u_reversed(body, 0))).patch;
+    const BodyPatches parts = build_body_patches(deck, body);
+    const BodySide at = resolve_sides(body, parts.names, patch, side, "").front();
+    return nurbs::extract_side(parts.patches[static_cast<std::size_t>(at.patch)], at.side).patch;
 }
 
-/// The recovered pressure of a results side ("body.side") on the level's analysed side patch.
+/// The body, patch and side of a results side name, "body.side" or "body.patch.side".
+struct SideLabel {
+    const io::Body* body = nullptr;
+    std::string patch;
+    std::optional<Side> side;
+};
+
+SideLabel parse_label(const io::Deck& deck, const std::string& label)
+{
+    const std::size_t first = label.find('.'), last = label.rfind('.');
+    SideLabel out{deck.find_body(label.substr(0, first)), "", parse_side(label.substr(last + 1))};
+    if (last != first)
+        out.patch = label.substr(first + 1, last - first - 1);
+    return out;
+}
+
+/// The recovered pressure of a results side ("body.side", "body.patch.side") on the
+/// level's analysed side patch.
 SidePressure side_pressure(const io::Deck& deck, const io::ContactSideResult& result)
 {
-    const std::size_t dot = result.side_name.find('.');
-    const io::Body* body = deck.find_body(result.side_name.substr(0, dot));
-    const std::optional<Side> named = parse_side(result.side_name.substr(dot + 1));
-    IGA_CHECK(body != nullptr && named.has_value(), "accuracy: cannot find the contact side " + result.side_name);
-    SidePressure out{side_patch(deck, *body, *named), result.postprocessed.control_point_pressure};
+    const SideLabel at = parse_label(deck, result.side_name);
+    IGA_CHECK(at.body != nullptr && at.side.has_value(), "accuracy: cannot find the contact side " + result.side_name);
+    SidePressure out{side_patch(deck, *at.body, at.patch, *at.side), result.postprocessed.control_point_pressure};
     IGA_CHECK(out.control_pressure.size() == out.side.n_control_points(),
               "accuracy: the recovered pressure of " + result.side_name + " does not match its side");
     return out;
@@ -126,7 +143,7 @@ LevelPenalty tie_penalty(io::Deck& deck, const io::Accuracy& a, std::optional<do
             if (!s->deformable())
                 continue;
             const io::Body& body = *deck.find_body(s->body);
-            h = std::min(h, smallest_element_size(side_patch(deck, body, *s->side)));
+            h = std::min(h, smallest_element_size(side_patch(deck, body, s->patch, *s->side)));
             const double e = contact_modulus(to_material(*deck.find_material(body.material), deck.analysis));
             modulus = std::min(modulus, e);
             compliance += 1.0 / e;
@@ -358,7 +375,7 @@ private:
     {
         if (a_.quantity != io::AccuracyQuantity::contact_radius && a_.quantity != io::AccuracyQuantity::stick_zone)
             return 0;
-        const io::Body& body = *deck_.find_body(side.side_name.substr(0, side.side_name.find('.')));
+        const io::Body& body = *parse_label(deck_, side.side_name).body;
         return zone_mirrors(symmetry_planes(deck_, body), field.side, side.gauss_points, zone_points(a_.quantity, side));
     }
 
@@ -448,17 +465,18 @@ private:
         for (const io::ContactSurface* s : {&deck_pair.first, &deck_pair.second}) {
             if (!s->deformable() || !bodies.insert(s->body).second)  // a body refined once per level
                 continue;
-            const std::string name = s->body + "." + std::string(side_name(*s->side));
+            const std::string name = s->body + "." + io::side_text(s->patch, *s->side, "");
             const auto now = fields_.find(name), before = previous_fields_.find(name);
             SurfaceMarks marks;
             if (now != fields_.end() && before != previous_fields_.end())
                 marks = marks_from_indicators(now->second.side, indicator(pair, name, before->second, now->second));
             if (marks.empty())
-                marks = marks_from_zone(side_patch(deck_, *deck_.find_body(s->body), *s->side), widened(*zone, model_size));
+                marks = marks_from_zone(side_patch(deck_, *deck_.find_body(s->body), s->patch, *s->side),
+                                        widened(*zone, model_size));
             sides.emplace_back(s, std::move(marks));
         }
         for (const auto& [s, marks] : sides)
-            for (const std::string& line : refine_side(deck_, s->body, *s->side, marks))
+            for (const std::string& line : refine_side(deck_, s->body, s->patch, *s->side, marks))
                 levels_.back().refined.push_back(line);
         for (const std::string& line : levels_.back().refined)
             context_.log(Verbosity::verbose, "  refined " + line);

@@ -69,6 +69,15 @@ void add_to_insert(std::vector<double>& insert, const nurbs::Patch& patch, bool 
     std::sort(insert.begin(), insert.end());
 }
 
+/// The deck's refine that acts on patch p of `body` alone: a single-patch body's own, else
+/// the patch's (applied after the body's, before gluing: glue_patches carries its knots
+/// across the interfaces). The resolved deck writes a geometry file's patches inline once
+/// one has a refine of its own (io/deck_writer.hpp).
+io::Refine& deck_refine(io::Body& body, int p)
+{
+    return body.multi_patch() ? body.patches[static_cast<std::size_t>(p)].refine : body.refine;
+}
+
 std::vector<double> merged(std::vector<double> breaks, const std::vector<double>& knots)
 {
     breaks.insert(breaks.end(), knots.begin(), knots.end());
@@ -127,20 +136,26 @@ std::vector<double> graded_knots(std::vector<double> breaks, const SpanLengths& 
     return added;
 }
 
-std::vector<std::string> refine_side(io::Deck& deck, const std::string& body_name, Side side, const SurfaceMarks& marks)
+std::vector<std::string> refine_side(io::Deck& deck, const std::string& body_name, const std::string& patch_name,
+                                     Side side, const SurfaceMarks& marks)
 {
     const auto found = std::find_if(deck.bodies.begin(), deck.bodies.end(),
                                     [&](const io::Body& b) { return b.name == body_name; });
     io::Body* body = found == deck.bodies.end() ? nullptr : &*found;
-    IGA_CHECK(body != nullptr && !body->rigid && !body->multi_patch(),
-              "accuracy: '" + body_name + "' is not a single-patch deformable body");
-    const nurbs::Patch patch = build_patch(*body, deck.analysis.dimension);
+    IGA_CHECK(body != nullptr && !body->rigid, "accuracy: '" + body_name + "' is not a deformable body");
+    // The patch as analysed: refined, and glued, so that its spans include the knots its
+    // neighbours carried over.
+    const BodyPatches parts = build_body_patches(deck, *body);
+    const BodySide at = resolve_sides(*body, parts.names, patch_name, side, "").front();
+    const nurbs::Patch& patch = parts.patches[static_cast<std::size_t>(at.patch)];
+    io::Refine& refine = deck_refine(*body, at.patch);
+    const std::string label = body->name + (patch_name.empty() ? "" : "." + patch_name);
     const int n_par = patch.n_par();
-    const bool reversed = u_reversed(*body, 0);
-    const Side analysed = named_side(side, reversed);
+    const bool reversed = u_reversed(*body, at.patch);
+    const Side analysed = at.side;
     const int normal = side_direction(analysed);
     IGA_CHECK(static_cast<int>(marks.spans.size()) == n_par - 1,
-              "accuracy: the marks of " + body_name + " do not match its side");
+              "accuracy: the marks of " + label + " do not match its side");
     // The zone's point in the body's parameters: the side's directions skip the normal one.
     VecN xi(n_par);
     for (int j = 0, k = 0; k < n_par; ++k) {
@@ -184,12 +199,12 @@ std::vector<std::string> refine_side(io::Deck& deck, const std::string& body_nam
         knots[kk].insert(knots[kk].end(), graded.begin(), graded.end());
         if (knots[kk].empty())
             continue;
-        body->refine.insert.resize(static_cast<std::size_t>(n_par));
-        add_to_insert(body->refine.insert[kk], patch, reversed, k, knots[kk]);
-        lines.push_back(k == normal ? fmt::format("{}: {} {} span(s) halved below {}", body->name, "uvw"[k],
+        refine.insert.resize(static_cast<std::size_t>(n_par));
+        add_to_insert(refine.insert[kk], patch, reversed, k, knots[kk]);
+        lines.push_back(k == normal ? fmt::format("{}: {} {} span(s) halved below {}", label, "uvw"[k],
                                                   graded.size(), side_name(side))
-                                    : fmt::format("{}: {} {} span(s) halved at the zone, {} more to grade",
-                                                  body->name, "uvw"[k], marked_count[kk], graded.size()));
+                                    : fmt::format("{}: {} {} span(s) halved at the zone, {} more to grade", label,
+                                                  "uvw"[k], marked_count[kk], graded.size()));
     }
     return lines;
 }
@@ -199,19 +214,23 @@ void fold_halvings(io::Deck& deck, int halvings)
     for (io::Body& body : deck.bodies) {
         if (body.rigid)
             continue;
-        IGA_CHECK(!body.multi_patch(), "fold_halvings: body '" + body.name + "' is multi-patch");
-        const nurbs::Patch patch = build_patch(body, deck.analysis.dimension);
-        const bool reversed = u_reversed(body, 0);
-        body.refine.insert.resize(static_cast<std::size_t>(patch.n_par()));
-        for (int k = 0; k < patch.n_par(); ++k) {
-            std::vector<double> breaks = patch.knots(k).breakpoints();
-            std::vector<double>& insert = body.refine.insert[static_cast<std::size_t>(k)];
-            for (int h = 0; h < halvings; ++h) {
-                std::vector<double> mids;
-                for (std::size_t i = 0; i + 1 < breaks.size(); ++i)
-                    mids.push_back(0.5 * (breaks[i] + breaks[i + 1]));
-                add_to_insert(insert, patch, reversed, k, mids);
-                breaks = merged(std::move(breaks), mids);
+        // Each patch's glued spans: the midpoints on the two sides of an interface match.
+        const BodyPatches parts = build_body_patches(deck, body);
+        for (std::size_t p = 0; p < parts.patches.size(); ++p) {
+            const nurbs::Patch& patch = parts.patches[p];
+            const bool reversed = u_reversed(body, static_cast<int>(p));
+            io::Refine& refine = deck_refine(body, static_cast<int>(p));
+            refine.insert.resize(static_cast<std::size_t>(patch.n_par()));
+            for (int k = 0; k < patch.n_par(); ++k) {
+                std::vector<double> breaks = patch.knots(k).breakpoints();
+                std::vector<double>& insert = refine.insert[static_cast<std::size_t>(k)];
+                for (int h = 0; h < halvings; ++h) {
+                    std::vector<double> mids;
+                    for (std::size_t i = 0; i + 1 < breaks.size(); ++i)
+                        mids.push_back(0.5 * (breaks[i] + breaks[i + 1]));
+                    add_to_insert(insert, patch, reversed, k, mids);
+                    breaks = merged(std::move(breaks), mids);
+                }
             }
         }
     }
@@ -220,14 +239,25 @@ void fold_halvings(io::Deck& deck, int halvings)
 std::string refine_text(const io::Deck& deck, const std::string& pair_name)
 {
     std::string text;
-    for (const io::Body* body : pair_bodies(deck, find_pair(deck, pair_name))) {
-        text += fmt::format("# bodies.{}.refine.insert\ninsert:\n", body->name);
-        for (const std::vector<double>& knots : body->refine.insert) {
+    const auto lists = [&](const std::string& path, const io::Refine& refine) {
+        text += fmt::format("# {}.refine.insert\ninsert:\n", path);
+        for (const std::vector<double>& knots : refine.insert) {
             std::vector<std::string> words;
             for (const double k : knots)
                 words.push_back(io::format_number(k));
             text += fmt::format("  - [{}]\n", fmt::join(words, ", "));
         }
+    };
+    for (const io::Body* body : pair_bodies(deck, find_pair(deck, pair_name))) {
+        if (!body->geometry_file.empty())
+            text += fmt::format("# {}'s patches come from {}, whose patches take no refine of their own: paste the "
+                                "body's inline `patches:` from the last level's /deck, or these lists into them\n",
+                                body->name, body->geometry_file);
+        if (!body->multi_patch())
+            lists("bodies." + body->name, body->refine);
+        for (const io::PatchData& patch : body->patches)
+            if (!patch.refine.insert.empty())  // a patch that only gluing refined keeps its deck text
+                lists(fmt::format("bodies.{}.patches.{}", body->name, patch.name), patch.refine);
     }
     return text;
 }

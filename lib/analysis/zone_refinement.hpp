@@ -25,8 +25,12 @@
 // parameters of the patch as built (a mirrored body's u runs the other way in the
 // analysed patch), so that the final lists are deck text a user can paste.
 //
-// Single-patch deformable bodies and patch sides only: refining one patch of a multi-patch
-// body would break the match of its interfaces (the deck reader refuses such a target).
+// A patch side of a multi-patch body (`patch.side`): the spans are those of the patch as
+// analysed, glued (nurbs/topology.hpp), and the knots go into that patch's own
+// `refine.insert`; gluing carries them across its interfaces into the neighbours, whole
+// lines as within one patch, so the body stays conforming. The grading stops at the
+// patch's sides. A named surface (several patch sides) is not refined: the deck reader
+// refuses such a target.
 
 #include "analysis/span_marking.hpp"
 #include "core/side.hpp"
@@ -45,11 +49,12 @@ inline constexpr double growth = 1.0;
 /// The first span below the side, against the shortest span marked along it.
 inline constexpr double depth_aspect = 6.0;
 
-/// Halves the marked spans of side `side` (as the deck names it) of body `body`, grades
-/// every direction, and adds the knots to the deck's refine.insert of the body. Returns
-/// one line per direction refined, e.g. "cylinder: u 12 span(s) halved at the zone in
-/// [0.0391, 0.133], 5 more to grade".
-std::vector<std::string> refine_side(io::Deck& deck, const std::string& body, Side side, const SurfaceMarks& marks);
+/// Halves the marked spans of side `side` (as the deck names it) of patch `patch` of body
+/// `body` ("" for a single-patch body), grades every direction of that patch, and adds the
+/// knots to the deck's refine.insert of the body or the patch. Returns one line per
+/// direction refined, e.g. "cylinder: u 12 span(s) halved at the zone, 5 more to grade".
+std::vector<std::string> refine_side(io::Deck& deck, const std::string& body, const std::string& patch, Side side,
+                                     const SurfaceMarks& marks);
 
 /// Where a direction's grading starts besides its own spans: the side's end of the
 /// depth direction, with the largest length of the span there (h0 > 0).
@@ -68,12 +73,13 @@ using SpanLengths = std::function<std::vector<double>(const std::vector<double>&
 std::vector<double> graded_knots(std::vector<double> breaks, const SpanLengths& lengths, GradingSource source = {});
 
 /// Every knot span of every deformable body halved `halvings` times, written into the
-/// bodies' refine.insert lists (the deck's parameters): --refine-levels folded into an
-/// `accuracy:` deck, whose levels refine from the deck's knots. Precondition: no
-/// deformable body is multi-patch.
+/// bodies' (a multi-patch body: each patch's) refine.insert lists, in the deck's
+/// parameters: --refine-levels folded into an `accuracy:` deck, whose levels refine from
+/// the deck's knots.
 void fold_halvings(io::Deck& deck, int halvings);
 
-/// The deck text of the bodies' refine.insert lists (what a user pastes into the deck).
+/// The deck text of the refine.insert lists of the pair's bodies, or of each of their
+/// patches (what a user pastes into the deck).
 std::string refine_text(const io::Deck& deck, const std::string& pair);
 
 }  // namespace iga::analysis

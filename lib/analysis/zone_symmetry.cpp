@@ -25,22 +25,33 @@ double size_of(const RowMatrix& points)
 std::vector<SymmetryPlane> symmetry_planes(const io::Deck& deck, const io::Body& body)
 {
     std::vector<SymmetryPlane> planes;
-    if (body.rigid || body.multi_patch())
+    if (body.rigid)
         return planes;
-    const nurbs::Patch patch = build_patch(body, deck.analysis.dimension);
-    const double tolerance = plane_tolerance * size_of(patch.control_points());
+    const BodyPatches parts = build_body_patches(deck, body);
+    double size = 0.0;
+    for (const nurbs::Patch& patch : parts.patches)
+        size = std::max(size, size_of(patch.control_points()));
+    const double tolerance = plane_tolerance * size;
     for (const io::Constraint& c : deck.constraints) {
-        if (c.body != body.name || !c.patch.empty() || !c.surface.empty())
+        if (c.body != body.name)
             continue;
         const auto held = static_cast<int>(std::count(c.fixed.begin(), c.fixed.end(), true));
         if (held == 0 || held == static_cast<int>(c.fixed.size()))
             continue;  // free, or a clamp
-        const RowMatrix x = nurbs::extract_side(patch, named_side(c.side, u_reversed(body, 0))).patch.control_points();
-        for (int i = 0; i < static_cast<int>(x.cols()); ++i) {
-            const auto k = static_cast<std::size_t>(i);
-            const bool flat = x.col(i).maxCoeff() - x.col(i).minCoeff() <= tolerance;
-            if (flat && c.fixed[k] && c.value[k] == 0.0)
-                planes.push_back({i, x.col(i).mean()});
+        // Every patch side the constraint names (a named surface: all of them) lies in the plane.
+        for (const BodySide& at : resolve_sides(body, parts.names, c.patch, c.side, c.surface)) {
+            const RowMatrix x =
+                nurbs::extract_side(parts.patches[static_cast<std::size_t>(at.patch)], at.side).patch.control_points();
+            for (int i = 0; i < static_cast<int>(x.cols()); ++i) {
+                const auto k = static_cast<std::size_t>(i);
+                const bool flat = x.col(i).maxCoeff() - x.col(i).minCoeff() <= tolerance;
+                const double coordinate = x.col(i).mean();
+                const bool known = std::any_of(planes.begin(), planes.end(), [&](const SymmetryPlane& p) {
+                    return p.axis == i && std::abs(p.coordinate - coordinate) <= tolerance;
+                });  // two patches' sides on one plane, or two constraints on one side
+                if (flat && c.fixed[k] && c.value[k] == 0.0 && !known)
+                    planes.push_back({i, coordinate});
+            }
         }
     }
     return planes;

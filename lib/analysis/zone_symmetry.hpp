@@ -23,7 +23,8 @@ struct SymmetryPlane {
     double coordinate = 0.0;
 };
 
-/// The symmetry planes of a single-patch body (above), from the deck's constraints on it.
+/// The symmetry planes of a body (above), from the deck's constraints on it (on a
+/// multi-patch body, on its patch sides and named surfaces), each plane once.
 std::vector<SymmetryPlane> symmetry_planes(const io::Deck& deck, const io::Body& body);
 
 /// How many of `planes` cut the zone made of the Gauss points `zone` of a contact side: a

@@ -567,20 +567,17 @@ Output read_output(const Cursor& root, const std::string& file_label, const std:
 }
 
 /// Why the zone of `pair` cannot be refined (accuracy:): refinement toward it is written for
-/// single-patch bodies and patch sides; "" when it can.
+/// patch sides (`side`, `patch.side`); "" when it can.
 std::string zone_refinement_limit(const Deck& deck, const std::string& pair_name)
 {
     for (const ContactPair& pair : deck.contact) {
         if (pair.name != pair_name)
             continue;
         for (const ContactSurface* s : {&pair.first, &pair.second}) {
-            const Body* body = s->deformable() ? deck.find_body(s->body) : nullptr;
-            if (body && body->multi_patch())
-                return "body '" + s->body + "' has several patches: refining one would break the match of their "
-                       "interfaces, and refinement toward the zone is written for single-patch bodies only";
             if (!s->surface.empty())
                 return "the side '" + s->body + "." + s->surface +
-                       "' is a named surface: refinement toward the zone is written for a patch side only";
+                       "' is a named surface: refinement toward the zone takes one patch side (`side`, or "
+                       "`patch.side` of a multi-patch body)";
         }
     }
     return "";

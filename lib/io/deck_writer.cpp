@@ -175,7 +175,11 @@ void write_body(YAML::Emitter& out, const Body& b)
         out << YAML::Key << "nurbs" << YAML::Value;
         write_nurbs(out, *b.nurbs);
     }
-    if (!b.geometry_file.empty()) {
+    // A geometry file's patches take no refine of their own: once one has (accuracy:
+    // levels refine a patch), the body is written as inline patches.
+    const bool own_refine = std::any_of(b.patches.begin(), b.patches.end(),
+                                        [](const PatchData& p) { return p.refine != Refine{}; });
+    if (!b.geometry_file.empty() && !own_refine) {
         out << YAML::Key << "geometry" << YAML::Value << YAML::Flow << YAML::BeginMap;
         out << YAML::Key << "file" << YAML::Value << b.geometry_file;
         write_transform(out, b.geometry_transform);

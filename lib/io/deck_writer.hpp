@@ -10,7 +10,9 @@
 // takes them for floats). output.file is written as resolved (relative to the
 // working directory, or absolute), hence the empty deck_dir when reading back.
 // A contact quadrature of 0 ("degree + 2 of each side", which depends on the
-// side) is left out; empty refine entries are left out.
+// side) is left out; empty refine entries are left out. A body from a geometry file
+// whose patches carry a refine of their own (only `accuracy:` levels give them one; the
+// file's patches take none) is written as inline patches, and reads back as such.
 
 #include "io/deck.hpp"
 

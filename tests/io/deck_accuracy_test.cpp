@@ -75,5 +75,41 @@ TEST(DeckAccuracy, MistakesAreNamedAtTheirKey)
               std::string::npos);
 }
 
+// A multi-patch body's zone is refined on one patch side (`patch.side`); a named surface of
+// several patch sides is named as what the refinement does not take.
+TEST(DeckAccuracy, APatchSideOfAMultiPatchBodyIsATargetANamedSurfaceIsNot)
+{
+    const std::string two_patches = R"(format: 1
+analysis: {dimension: 2, plane: strain}
+materials:
+  - {name: rubber, model: linear_elastic, E: 1000.0, nu: 0.3}
+bodies:
+  - name: block
+    material: rubber
+    patches:
+      - {name: low, nurbs: {degrees: [1, 1], knots: [[0, 0, 1, 1], [0, 0, 1, 1]],
+                           control_points: [[0, 0, 1], [1, 0, 1], [0, 1, 1], [1, 1, 1]]}}
+      - {name: high, nurbs: {degrees: [1, 1], knots: [[0, 0, 1, 1], [0, 0, 1, 1]],
+                            control_points: [[0, 1, 1], [1, 1, 1], [0, 2, 1], [1, 2, 1]]}}
+    surfaces:
+      bottom: [low.v0]
+  - name: floor
+    rigid: {plane: {point: [0.0, 0.0], normal: [0.0, 1.0]}}
+constraints:
+  - {body: block, side: high.v1, displacement: [0.0, -0.01]}
+contact:
+  - {name: press, between: [block.low.v0, floor], penalty: 1.0e4}
+accuracy:
+  target: {pair: press, error: 0.05}
+)";
+    const Deck d = read(two_patches);
+    ASSERT_TRUE(d.accuracy.has_value());
+    EXPECT_EQ(d.accuracy->pair, "press");
+    EXPECT_NE(issue_of(two_patches, {"contact.press.between=[block.bottom, floor]"})
+                  .find("accuracy.target.pair = press: the side 'block.bottom' is a named surface: refinement toward "
+                        "the zone takes one patch side"),
+              std::string::npos);
+}
+
 }  // namespace
 }  // namespace iga::io
