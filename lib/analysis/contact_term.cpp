@@ -107,6 +107,8 @@ std::vector<std::string> ContactTerm::warnings(const io::StepData& step) const
     const auto result = std::find_if(step.contact.begin(), step.contact.end(),
                                      [&](const io::ContactPairResult& r) { return r.name == model_.name; });
     std::vector<std::string> out = driven_through_warnings(scene_, model_, step);
+    for (std::string& line : undeclared_contact_warnings(scene_, model_, step))
+        out.push_back(std::move(line));
     if (result != step.contact.end()) {
         for (std::string& line : pair_warnings(scene_, model_, *result, step.load_factor))
             out.push_back(std::move(line));

@@ -190,7 +190,7 @@ BodyModel body_model(const io::Deck& deck, const io::Body& body, int refine_leve
         for (int a = 0; a < patch.n_control_points(); ++a)
             model.node_points.row(node[static_cast<std::size_t>(a)]) = patch.control_points().row(a);
         PatchModel pm{built.names[p], patch, node, static_cast<int>(model.elements.size()),
-                      static_cast<int>(elements.size())};
+                      static_cast<int>(elements.size()), u_reversed(body, static_cast<int>(p))};
         for (mechanics::ElementGeometry& element : elements) {
             for (int& a : element.indices)
                 a = node[static_cast<std::size_t>(a)];

@@ -53,6 +53,7 @@ struct PatchModel {
     std::vector<int> node;    ///< patch control point -> body node
     int first_element = 0;    ///< its elements are BodyModel::elements[first_element, + n_elements)
     int n_elements = 0;
+    bool u_reversed = false;  ///< its transform reversed u: the deck's u0/u1 are swapped (geometry.hpp)
 };
 
 /// A deformable body: one or more patches glued conformingly (analysis/multipatch.hpp).

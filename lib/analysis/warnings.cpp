@@ -1,4 +1,6 @@
 #include "analysis/warnings.hpp"
+#include "analysis/geometry.hpp"
+#include "nurbs/side_patch.hpp"
 #include "core/text.hpp"
 
 #include <fmt/format.h>
@@ -198,6 +200,42 @@ RowMatrix current_control_points(const BodyModel& body, const io::StepData& step
     return out;
 }
 
+/// The displacement of patch p of `body` in `step` (n_cp x d), or nullptr.
+const RowMatrix* patch_displacement(const BodyModel& body, std::size_t p, const io::StepData& step)
+{
+    if (body.patches.size() == 1)
+        for (const auto& [name, u] : step.displacement)
+            if (name == body.name)
+                return &u;
+    for (const auto& [name, patches] : step.patch_displacement)
+        if (name == body.name)
+            for (const auto& [patch, u] : patches)
+                if (patch == body.patches[p].name)
+                    return &u;
+    return nullptr;
+}
+
+/// The deepest point of a (deformed) side inside a rigid obstacle, sampled at 3 points
+/// per element and direction inside the elements; 0 when none is inside.
+double deepest_point(const nurbs::Patch& side, const contact::RigidObstacle& obstacle, double load_factor)
+{
+    constexpr std::array<double, 3> at{1.0 / 6.0, 0.5, 5.0 / 6.0};
+    const int n = side.n_par();
+    double depth = 0.0;
+    for (const nurbs::Element& e : side.elements())
+        for (int c = 0; c < (n == 1 ? 3 : 9); ++c) {
+            VecN xi(n);
+            for (int j = 0; j < n; ++j) {
+                const auto jj = static_cast<std::size_t>(j);
+                xi(j) = e.lower[jj] + at[static_cast<std::size_t>(j == 0 ? c % 3 : c / 3)] * (e.upper[jj] - e.lower[jj]);
+            }
+            const contact::ObstacleFoot foot = obstacle.foot(nurbs::evaluate(side, xi, 0).x, load_factor);
+            if (foot.ok)
+                depth = std::max(depth, foot.gap);
+        }
+    return depth;
+}
+
 /// Knot spans the pressed Gauss points of a deformable side occupy, per parameter
 /// direction of the side (pieces of a named surface add up), and the side's spans.
 struct ZoneSpans {
@@ -289,6 +327,72 @@ std::vector<std::string> driven_through_warnings(const Scene& scene, const PairM
                         "can hold, or a contact side that does not face the obstacle)",
                         model.name, step.load_factor, body.name, depth, model.label[static_cast<std::size_t>(k)],
                         100.0 * std::min(depth / thickness, 1.0), thickness)};
+}
+
+std::vector<std::string> undeclared_contact_warnings(const Scene& scene, const PairModel& model,
+                                                     const io::StepData& step)
+{
+    const int k = model.obstacle;
+    if (k < 0)
+        return {};
+    const int b = model.body[static_cast<std::size_t>(1 - k)];
+    const BodyModel& body = scene.bodies[static_cast<std::size_t>(b)];
+    const auto& obstacle = std::get<contact::RigidObstacle>(model.pair.surface(k));
+    const std::string& obstacle_name = model.label[static_cast<std::size_t>(k)];
+    // The body's nodes on a surface that some pair checks against this obstacle, and the
+    // deepest penetration those pairs leave.
+    std::set<int> checked;
+    double penetration = 0.0;
+    for (const PairModel& other : scene.pairs) {
+        const int j = other.obstacle;
+        if (j < 0 || other.label[static_cast<std::size_t>(j)] != obstacle_name ||
+            other.body[static_cast<std::size_t>(1 - j)] != b)
+            continue;
+        const std::vector<int>& nodes = other.parent_index[static_cast<std::size_t>(1 - j)];
+        checked.insert(nodes.begin(), nodes.end());
+        for (const io::ContactPairResult& result : step.contact)
+            if (result.name == other.name)
+                for (const io::ContactSideResult& side : result.sides)
+                    penetration = std::max(penetration, attribute(side, "max_penetration"));
+    }
+    const double allowed = std::max(undeclared_depth_to_penetration * penetration, undeclared_depth_to_body * body.size());
+    double worst = 0.0;
+    std::string where;
+    for (std::size_t p = 0; p < body.patches.size(); ++p) {
+        const PatchModel& patch = body.patches[p];
+        const RowMatrix* u = patch_displacement(body, p, step);
+        if (u == nullptr || u->rows() != patch.patch.n_control_points())
+            continue;
+        const nurbs::Patch current = patch.patch.with_control_points(patch.patch.control_points() + *u);
+        for (int s = 0; s < 2 * patch.patch.n_par(); ++s) {
+            const auto side = static_cast<Side>(s);
+            const bool glued = std::any_of(body.interfaces.begin(), body.interfaces.end(), [&](const nurbs::Interface& i) {
+                return (i.patch_a == static_cast<int>(p) && i.side_a == side) ||
+                       (i.patch_b == static_cast<int>(p) && i.side_b == side);
+            });
+            const nurbs::SidePatch reference = nurbs::extract_side(patch.patch, side);
+            const bool in_pair = std::all_of(reference.parent_index.begin(), reference.parent_index.end(), [&](int a) {
+                return checked.count(patch.node[static_cast<std::size_t>(a)]) > 0;
+            });
+            if (glued || in_pair || nurbs::is_collapsed(reference, 1e-12 * body.size()))
+                continue;
+            const double depth = deepest_point(nurbs::extract_side(current, side).patch, obstacle, step.load_factor);
+            if (depth > worst) {
+                worst = depth;
+                const std::string named(side_name(named_side(side, patch.u_reversed)));
+                where = patch.name.empty() ? named : patch.name + "." + named;
+            }
+        }
+    }
+    if (!(worst > allowed))
+        return {};
+    return {fmt::format("contact pair '{}': at load factor {:.4g} the side {}.{} lies {:.3g} inside the obstacle "
+                        "'{}', and no contact pair checks it against '{}' (this pair's side is {}, which penetrates "
+                        "{:.3g}): the body has passed into the obstacle where the deck declares no contact, so the "
+                        "results are not those of a body the obstacle stops. Name the side that meets the obstacle "
+                        "in the pair (several patch sides: a named surface, `surfaces:`)",
+                        model.name, step.load_factor, body.name, where, worst, obstacle_name, obstacle_name,
+                        model.label[static_cast<std::size_t>(1 - k)], penetration)};
 }
 
 std::vector<std::string> pair_warnings(const Scene& scene, const PairModel& model, const io::ContactPairResult& pair,

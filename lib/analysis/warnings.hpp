@@ -20,6 +20,8 @@
 //  - a contact zone only a few knot spans across (resolved_zone_spans);
 //  - a body driven into its rigid obstacle by half its thickness or more (a penalty
 //    far too soft, a load the contact cannot hold, a side that does not face it).
+//  - a boundary side that no pair checks against a rigid obstacle inside that
+//    obstacle: the pair names the wrong side, and the body passed into the obstacle.
 // A body that starts entirely inside a rigid obstacle is an error, not a warning
 // (analysis/obstacles.hpp).
 
@@ -70,6 +72,14 @@ constexpr int resolved_zone_spans = 4;
 /// of its thickness along the obstacle's normal has been driven through, not stopped:
 /// a sound run's penetration is a per-cent of the body at most (penetration_to_body).
 constexpr double driven_through = 0.5;
+/// A boundary side of a body that no pair checks against a rigid obstacle, inside that
+/// obstacle by more than the larger of these (times the deepest penetration of the pairs
+/// that do check the body against it, times the body size), has passed into it: a pair
+/// that names the wrong side (a disc's side beside its lowest one, which touches the
+/// floor only after the disc has sunk 0.29 into it). A side next to a contact side
+/// reaches in only where the two meet, as deep as the contact side there.
+constexpr double undeclared_depth_to_penetration = 4.0;
+constexpr double undeclared_depth_to_body = 1e-3;
 /// Contact forces below this fraction of E L^(d-1) (L the body size) are round-off
 /// of grazing contact, not a resolved force: no disagreement is reported for them.
 constexpr double negligible_contact_force = 1e-8;
@@ -95,5 +105,11 @@ std::vector<std::string> resolution_warnings(const PairModel& model, const io::C
 /// A body driven into its rigid obstacle by more than driven_through of its thickness
 /// at the converged state `step` (see above); none for a pair of deformable sides.
 std::vector<std::string> driven_through_warnings(const Scene& scene, const PairModel& model, const io::StepData& step);
+
+/// A boundary side of the pair's body (not glued, not on any pair's surface against the
+/// pair's rigid obstacle) that lies inside that obstacle at the converged state `step`
+/// (see above); none for a pair of deformable sides.
+std::vector<std::string> undeclared_contact_warnings(const Scene& scene, const PairModel& model,
+                                                     const io::StepData& step);
 
 }  // namespace iga::analysis

@@ -265,6 +265,25 @@ TEST(Warnings, ABodyDrivenThroughItsObstacleIsReported)
     EXPECT_EQ(joined(sound.warnings).find("driven through"), std::string::npos) << joined(sound.warnings);
 }
 
+TEST(Warnings, ASideThatNoPairChecksAndThatPassesIntoTheObstacleIsReported)
+{
+    // The five-patch disc with its pair on p3.v1, the ring patch left of the lowest one:
+    // p3.v1 faces the floor at its lower end, so the run completes, with the disc sunk
+    // into the floor at p4.v1, the side that would have touched first.
+    const auto dir = scratch_dir("undeclared_contact");
+    const auto outcome = run_deck(source_path("inputs/disc_on_plane_2d.yaml"),
+                                  {"contact.disc_floor.between=[disc.p3.v1, floor]"}, dir / "run.h5");
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+    const std::string all = joined(outcome.warnings);
+    EXPECT_NE(all.find("the side disc.p4.v1 lies"), std::string::npos) << all;
+    EXPECT_NE(all.find("no contact pair checks it against 'floor' (this pair's side is disc.p3.v1"), std::string::npos)
+        << all;
+    // The deck's own surface of the three lower ring sides: the floor stops the disc.
+    const auto sound = run_deck(source_path("inputs/disc_on_plane_2d.yaml"), {}, dir / "sound.h5");
+    ASSERT_EQ(sound.status, "completed") << sound.message;
+    EXPECT_EQ(joined(sound.warnings).find("no contact pair checks"), std::string::npos) << joined(sound.warnings);
+}
+
 TEST(Warnings, AConstraintOnACollapsedSideIsReportedAndALoadThereRefused)
 {
     // The upper quarter disc's u1 is its collapsed corner (1, 1): a symmetry condition
