@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <deque>
 #include <limits>
 
 namespace iga::analysis {
@@ -85,6 +86,17 @@ std::vector<double> merged(std::vector<double> breaks, const std::vector<double>
     return breaks;
 }
 
+/// The middle of side `side` of `patch` in its parameters (the side's own direction at its end).
+VecN side_middle(const nurbs::Patch& patch, Side side)
+{
+    VecN xi(patch.n_par());
+    for (int k = 0; k < patch.n_par(); ++k)
+        xi(k) = 0.5 * (patch.knots(k).front() + patch.knots(k).back());
+    const int k = side_direction(side);
+    xi(k) = side_at_end(side) ? patch.knots(k).back() : patch.knots(k).front();
+    return xi;
+}
+
 }  // namespace
 
 std::vector<double> graded_knots(std::vector<double> breaks, const SpanLengths& lengths, GradingSource source)
@@ -134,6 +146,51 @@ std::vector<double> graded_knots(std::vector<double> breaks, const SpanLengths& 
         breaks = std::move(next);
     }
     return added;
+}
+
+std::vector<std::string> grade_neighbours(io::Deck& deck, io::Body& body, int refined)
+{
+    std::vector<std::string> lines;
+    std::vector<bool> graded;
+    std::deque<int> queue{refined};
+    while (!queue.empty()) {
+        const int p = queue.front();
+        queue.pop_front();
+        const BodyPatches parts = build_body_patches(deck, body);  // with the knots written so far
+        graded.resize(parts.patches.size(), false);
+        graded[static_cast<std::size_t>(refined)] = true;
+        for (const nurbs::Interface& i : parts.topology.interfaces) {
+            const bool from_a = i.patch_a == p;
+            if (!from_a && i.patch_b != p)
+                continue;
+            const int q = from_a ? i.patch_b : i.patch_a;
+            if (graded[static_cast<std::size_t>(q)])
+                continue;
+            graded[static_cast<std::size_t>(q)] = true;
+            queue.push_back(q);
+            const Side side_p = from_a ? i.side_a : i.side_b, side_q = from_a ? i.side_b : i.side_a;
+            const nurbs::Patch& from = parts.patches[static_cast<std::size_t>(p)];
+            const nurbs::Patch& to = parts.patches[static_cast<std::size_t>(q)];
+            const int kp = side_direction(side_p), kq = side_direction(side_q);
+            // p's span at the interface, measured across it, is where q's spans start.
+            const std::vector<double> across =
+                lengths_along(from, kp, side_middle(from, side_p), from.knots(kp).breakpoints());
+            const double h0 = side_at_end(side_p) ? across.back() : across.front();
+            const std::vector<double> added = graded_knots(
+                to.knots(kq).breakpoints(),
+                [&](const std::vector<double>& b) { return lengths_along(to, kq, side_middle(to, side_q), b); },
+                GradingSource{side_at_end(side_q), h0});
+            if (added.empty())
+                continue;
+            io::Refine& refine = deck_refine(body, q);
+            refine.insert.resize(static_cast<std::size_t>(to.n_par()));
+            add_to_insert(refine.insert[static_cast<std::size_t>(kq)], to, u_reversed(body, q), kq, added);
+            lines.push_back(fmt::format("{}.{}: {} {} span(s) halved from its interface with {}", body.name,
+                                        parts.names[static_cast<std::size_t>(q)], "uvw"[kq], added.size(),
+                                        parts.names[static_cast<std::size_t>(p)]));
+        }
+    }
+    return lines;
 }
 
 std::vector<std::string> refine_side(io::Deck& deck, const std::string& body_name, const std::string& patch_name,
@@ -206,6 +263,9 @@ std::vector<std::string> refine_side(io::Deck& deck, const std::string& body_nam
                                     : fmt::format("{}: {} {} span(s) halved at the zone, {} more to grade", label,
                                                   "uvw"[k], marked_count[kk], graded.size()));
     }
+    if (body->multi_patch())
+        for (std::string& line : grade_neighbours(deck, *body, at.patch))
+            lines.push_back(std::move(line));
     return lines;
 }
 

@@ -24,6 +24,7 @@
 
 #include <array>
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <numbers>
 
@@ -390,6 +391,39 @@ TEST(Accuracy, AMultiPatchBodyIsRefinedInThePatchOfItsContactSideAndStaysConform
     const std::vector<std::string> refine = io::h5::read_dataset(r.id(), "/accuracy/refine").strings;
     ASSERT_EQ(refine.size(), 1u);
     EXPECT_NE(refine.front().find("# bodies.cylinder.patches.lower.refine.insert"), std::string::npos) << refine.front();
+}
+
+// The same body cut at a tenth of its depth: the contact patch is thinner than the zone's
+// stresses reach, so its neighbour must be graded from their interface (grade_neighbours).
+// Without that, `upper` kept its 2 depth spans, the errors stalled at 1.6 % against
+// Hertz while the levels' differences fell to 0.5 %, and level 8's estimate was 0.48 of
+// its error: one more level would have claimed the target.
+TEST(Accuracy, AThinContactPatchGradesItsNeighbourFromTheirInterface)
+{
+    std::ifstream in(test::source_path("tests/analysis/decks/hertz_accuracy_two_patches_2d.yaml"));
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+             {"[0.0, 0.5, 1.0]", "[0.0, 0.1, 1.0]"},
+             {"[1.0, 0.5, 0.7071067811865476]", "[1.0, 0.1, 0.7071067811865476]"},
+             {"levels: 9", "levels: 10"}})
+        for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
+            text.replace(at, from.size(), to);
+    const auto dir = test::scratch_dir("accuracy_thin_patch");
+    io::Deck deck = io::read_deck_text(text, "thin.yaml", test::source_path("tests/analysis/decks"));
+    ASSERT_EQ(deck.bodies.front().patches.front().nurbs.control_points[3][1], 0.1);
+    const double target = deck.accuracy->error;
+    deck.output.file = (dir / "thin.h5").string();
+    const RunOutcome outcome = run_to_accuracy(deck, RunOptions{}, RunContext(nullptr, Verbosity::quiet));
+    ASSERT_EQ(outcome.status, "completed") << outcome.message;
+
+    const test::Results r(dir / "thin.h5");
+    const RowMatrix levels = r.matrix("/accuracy/levels");
+    const Index last = levels.rows() - 1;
+    EXPECT_TRUE(test::at_most(levels(last, 5), target)) << "the error against Hertz meets the target";
+    const double ratio = levels(last, 3) / levels(last, 5);
+    EXPECT_TRUE(test::at_least(ratio, 1.0 / estimate_factor)) << "level " << last;
+    EXPECT_TRUE(test::at_most(ratio, estimate_factor)) << "level " << last;
+    EXPECT_GT(r.reals("/bodies/cylinder/patches/upper/knots/v").size(), 7u) << "upper's depth is graded";
 }
 
 // --refine-levels on a multi-patch body: each patch's glued spans halved, written into the
