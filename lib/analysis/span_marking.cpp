@@ -91,9 +91,13 @@ SurfaceMarks marks_from_indicators(const nurbs::Patch& side, const RowMatrix& et
     IGA_CHECK(eta2.rows() == static_cast<Index>(elements.size()) && eta2.cols() == n_par,
               "accuracy: one indicator per element and direction of the side is needed");
     SurfaceMarks marks{std::vector<std::set<int>>(static_cast<std::size_t>(n_par)), VecN::Zero(n_par)};
-    Index largest = 0;
-    if (eta2.size() == 0 || !(eta2.rowwise().sum().maxCoeff(&largest) > 0.0))
+    const Vector per_element = eta2.rowwise().sum();
+    if (eta2.size() == 0 || !(per_element.maxCoeff() > 0.0))
         return marks;
+    // The first element that ties with the largest: of two mirror elements, always the same one.
+    Index largest = 0;
+    while (per_element(largest) < per_element.maxCoeff() * (1.0 - tie_tolerance))
+        ++largest;
     marks.center = element_center(elements[static_cast<std::size_t>(largest)], n_par);
     // A slab is one span of one direction; all directions' slabs compete for the bulk.
     std::map<std::pair<int, int>, double> slab;  // (direction, span) -> its elements' indicators along it
@@ -107,13 +111,17 @@ SurfaceMarks marks_from_indicators(const nurbs::Patch& side, const RowMatrix& et
         total += value;
     }
     std::sort(order.begin(), order.end(), std::greater<>());
-    double taken = 0.0;
-    for (const auto& [value, key] : order) {
-        if (taken >= fraction * total)
-            break;
-        marks.spans[static_cast<std::size_t>(key.first)].insert(key.second);
-        taken += value;
-    }
+    std::size_t n_marked = 0;
+    for (double taken = 0.0; n_marked < order.size() && taken < fraction * total; ++n_marked)
+        taken += order[n_marked].first;
+    // The slabs that tie with the last one marked are marked with it: a symmetric zone's
+    // mirror spans are refined alike, and round-off (another rank count's sums) does not
+    // choose between them.
+    const double last = n_marked > 0 ? order[n_marked - 1].first : 0.0;
+    while (n_marked < order.size() && order[n_marked].first >= last * (1.0 - tie_tolerance))
+        ++n_marked;
+    for (std::size_t i = 0; i < n_marked; ++i)
+        marks.spans[static_cast<std::size_t>(order[i].second.first)].insert(order[i].second.second);
     return marks;
 }
 

@@ -30,6 +30,11 @@ namespace iga::analysis {
 /// Share of a direction's indicator the marked spans carry (Dörfler's theta).
 inline constexpr double bulk_fraction = 0.9;
 
+/// Indicators within this relative distance of each other tie: the slabs that tie with the
+/// last one Dörfler's criterion takes are marked too (a symmetric zone's mirror spans; sums
+/// in another order on another number of ranks differ by about 1e-12 of them).
+inline constexpr double tie_tolerance = 1e-6;
+
 /// Smallest margin around the zone, as a fraction of the largest contact side's size (a
 /// zone of one Gauss point has no extent).
 inline constexpr double min_margin = 0.01;
@@ -54,8 +59,9 @@ struct SurfaceMarks {
 };
 
 /// Dörfler's marking of `side` from the squared indicator of each of its elements (rows in
-/// side.elements() order), split over the directions (columns); the center is the
-/// element with the largest indicator.
+/// side.elements() order), split over the directions (columns), with the slabs that tie
+/// with the last one taken; the center is the first element that ties with the largest
+/// indicator.
 SurfaceMarks marks_from_indicators(const nurbs::Patch& side, const RowMatrix& element_indicator2,
                                    double fraction = bulk_fraction);
 

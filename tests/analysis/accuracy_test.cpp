@@ -223,6 +223,20 @@ TEST(Accuracy, DoerflersMarkingTakesTheFewestSlabsThatCarryTheBulkAlongTheDirect
     const SurfaceMarks all = marks_from_indicators(side, eta2, 0.99);
     EXPECT_EQ(all.spans[0].size(), 1u);
     EXPECT_EQ(all.spans[1].size(), 2u);
+
+    // Mirror slabs tie: a zone centred on the side's middle v line, its edge in the first and
+    // last u spans alike, to round-off (another number of ranks sums in another order).
+    // 60 % is reached with one of them; both are marked, whichever round-off favours.
+    for (const double bias : {1e-12, -1e-12}) {
+        RowMatrix mirrored = RowMatrix::Zero(6, 2);
+        for (std::size_t e = 0; e < elements.size(); ++e)
+            if (elements[e].lower[0] < 0.1 || elements[e].upper[0] > 0.9)
+                mirrored(static_cast<Index>(e), 0) = elements[e].lower[0] < 0.1 ? 1.0 + bias : 1.0;
+        mirrored.col(1).setConstant(0.01);
+        const SurfaceMarks both = marks_from_indicators(side, mirrored, 0.4);
+        EXPECT_EQ(both.spans[0].size(), 2u) << "bias " << bias;
+        EXPECT_TRUE(test::near(both.center(0), 1.0 / 6.0, 1e-12)) << "the first of the tying elements, bias " << bias;
+    }
 }
 
 /// Gauss data of one point at the centre of each element of `side`: sticking where
