@@ -66,50 +66,132 @@ const io::ContactSideResult* measured_side(const RunOutcome& outcome, const std:
     return p && !p->sides.empty() ? &p->sides.front() : nullptr;
 }
 
-/// Side `side` (as the deck names it) of patch `patch` of a body ("" for a single-patch
-/// body), as analysed: the patch refined and glued.
-nurbs::Patch side_patch(const io::Deck& deck, const io::Body& body, const std::string& patch, Side side)
+/// One patch side of a contact surface, as analysed: its patch refined and glued.
+struct SurfacePiece {
+    std::string patch;  ///< the deck's patch name ("" for a single-patch body)
+    Side side = Side::u0;  ///< as the deck names it
+    nurbs::Patch side_patch;
+    /// Its control points' numbers in the surface's numbering (DeformableSide::make: each
+    /// body node where it first appears, piece after piece).
+    std::vector<int> surface_index;
+};
+
+/// The patch sides of a body's contact surface (`side`, `patch.side`, or a named surface),
+/// as analysed, in the surface's order.
+std::vector<SurfacePiece> surface_pieces(const io::Deck& deck, const io::Body& body, const std::string& patch,
+                                         std::optional<Side> side, const std::string& surface)
 {
     const BodyPatches parts = build_body_patches(deck, body);
-    const BodySide at = resolve_sides(body, parts.names, patch, side, "").front();
-    return nurbs::extract_side(parts.patches[static_cast<std::size_t>(at.patch)], at.side).patch;
+    const std::vector<BodySide> sides = resolve_sides(body, parts.names, patch, side.value_or(Side::u0), surface);
+    std::vector<SurfacePiece> out;
+    std::map<int, int> surface_of_node;
+    for (const BodySide& at : sides) {
+        const auto p = static_cast<std::size_t>(at.patch);
+        nurbs::SidePatch extracted = nurbs::extract_side(parts.patches[p], at.side);
+        SurfacePiece piece{parts.names[p], at.named, std::move(extracted.patch), {}};
+        for (std::size_t a = 0; a < extracted.parent_index.size(); ++a) {
+            const int node = sides.size() == 1 ? static_cast<int>(a)  // one side: its own numbering
+                                               : parts.topology.node[p][static_cast<std::size_t>(extracted.parent_index[a])];
+            piece.surface_index.push_back(
+                surface_of_node.try_emplace(node, static_cast<int>(surface_of_node.size())).first->second);
+        }
+        out.push_back(std::move(piece));
+    }
+    return out;
 }
 
-/// The body, patch and side of a results side name, "body.side" or "body.patch.side".
+/// The body and surface of a results side name: "body.side", "body.patch.side" or
+/// "body.surface".
 struct SideLabel {
     const io::Body* body = nullptr;
     std::string patch;
     std::optional<Side> side;
+    std::string surface;
 };
 
 SideLabel parse_label(const io::Deck& deck, const std::string& label)
 {
     const std::size_t first = label.find('.'), last = label.rfind('.');
-    SideLabel out{deck.find_body(label.substr(0, first)), "", parse_side(label.substr(last + 1))};
-    if (last != first)
+    SideLabel out{deck.find_body(label.substr(0, first)), "", parse_side(label.substr(last + 1)), ""};
+    if (!out.side)
+        out.surface = label.substr(first + 1);
+    else if (last != first)
         out.patch = label.substr(first + 1, last - first - 1);
     return out;
 }
 
-/// The recovered pressure of a results side ("body.side", "body.patch.side") on the
-/// level's analysed side patch.
-SidePressure side_pressure(const io::Deck& deck, const io::ContactSideResult& result)
+std::vector<SurfacePiece> surface_pieces(const io::Deck& deck, const SideLabel& at)
+{
+    return surface_pieces(deck, *at.body, at.patch, at.side, at.surface);
+}
+
+/// The recovered pressure of a results side on the level's analysed patch sides.
+SurfacePressure side_pressure(const io::Deck& deck, const io::ContactSideResult& result)
 {
     const SideLabel at = parse_label(deck, result.side_name);
-    IGA_CHECK(at.body != nullptr && at.side.has_value(), "accuracy: cannot find the contact side " + result.side_name);
-    SidePressure out{side_patch(deck, *at.body, at.patch, *at.side), result.postprocessed.control_point_pressure};
-    IGA_CHECK(out.control_pressure.size() == out.side.n_control_points(),
+    IGA_CHECK(at.body != nullptr && (at.side || !at.surface.empty()),
+              "accuracy: cannot find the contact side " + result.side_name);
+    const Vector& p = result.postprocessed.control_point_pressure;
+    SurfacePressure out;
+    Index numbered = 0;
+    for (SurfacePiece& piece : surface_pieces(deck, at)) {
+        Vector values(static_cast<Index>(piece.surface_index.size()));
+        for (std::size_t a = 0; a < piece.surface_index.size(); ++a) {
+            const Index i = piece.surface_index[a];
+            IGA_CHECK(i < p.size(), "accuracy: the recovered pressure of " + result.side_name + " does not match its side");
+            values(static_cast<Index>(a)) = p(i);
+            numbered = std::max(numbered, i + 1);
+        }
+        out.push_back(SidePressure{std::move(piece.side_patch), std::move(values)});
+    }
+    IGA_CHECK(numbered == p.size() && (result.patch_sides.empty() || result.patch_sides.size() == out.size()),
               "accuracy: the recovered pressure of " + result.side_name + " does not match its side");
     return out;
 }
 
 /// The recovered pressures of all sides of a pair that carry one, by side name.
-std::map<std::string, SidePressure> side_pressures(const io::Deck& deck, const io::ContactPairResult& pair)
+std::map<std::string, SurfacePressure> side_pressures(const io::Deck& deck, const io::ContactPairResult& pair)
 {
-    std::map<std::string, SidePressure> out;
+    std::map<std::string, SurfacePressure> out;
     for (const io::ContactSideResult& side : pair.sides)
         if (side.postprocessed.control_point_pressure.size() > 0)
             out.emplace(side.side_name, side_pressure(deck, side));
+    return out;
+}
+
+/// The control points of a surface's patch sides, one block of rows per piece.
+RowMatrix surface_points(const SurfacePressure& field)
+{
+    Index rows = 0;
+    for (const SidePressure& piece : field)
+        rows += piece.side.n_control_points();
+    RowMatrix out(rows, field.front().side.dim());
+    rows = 0;
+    for (const SidePressure& piece : field) {
+        out.middleRows(rows, piece.side.n_control_points()) = piece.side.control_points();
+        rows += piece.side.n_control_points();
+    }
+    return out;
+}
+
+/// The Gauss points of piece `piece` of a surface (gauss_points/patch); all of them on
+/// one patch side. What the stick zone's edge reads of them.
+io::GaussPointData piece_points(const io::GaussPointData& g, int piece)
+{
+    if (g.patch.empty())
+        return g;
+    std::vector<Index> rows;
+    for (std::size_t i = 0; i < g.patch.size(); ++i)
+        if (g.patch[i] == piece)
+            rows.push_back(static_cast<Index>(i));
+    io::GaussPointData out;
+    out.parameter = g.parameter(rows, Eigen::all);
+    out.reference_coordinates = g.reference_coordinates(rows, Eigen::all);
+    out.pressure = g.pressure(rows);
+    if (g.weight.size() > 0)
+        out.weight = g.weight(rows);
+    for (const Index i : rows)
+        out.status.push_back(g.status[static_cast<std::size_t>(i)]);
     return out;
 }
 
@@ -143,7 +225,8 @@ LevelPenalty tie_penalty(io::Deck& deck, const io::Accuracy& a, std::optional<do
             if (!s->deformable())
                 continue;
             const io::Body& body = *deck.find_body(s->body);
-            h = std::min(h, smallest_element_size(side_patch(deck, body, s->patch, *s->side)));
+            for (const SurfacePiece& piece : surface_pieces(deck, body, s->patch, s->side, s->surface))
+                h = std::min(h, smallest_element_size(piece.side_patch));
             const double e = contact_modulus(to_material(*deck.find_material(body.material), deck.analysis));
             modulus = std::min(modulus, e);
             compliance += 1.0 / e;
@@ -184,7 +267,7 @@ std::optional<double> zone_half_width(const io::ContactPairResult& pair)
 /// The error of the same quantity against the deck's analytic reference, if any: for the
 /// pressure in the estimate's own norm (level_estimate.hpp, reference_pressure_error).
 std::optional<double> reference_error(const io::Deck& deck, const io::Accuracy& a, const RunOutcome& outcome,
-                                      const SidePressure& field)
+                                      const SurfacePressure& field)
 {
     if (!deck.output.reference || deck.output.reference->pair != a.pair)
         return std::nullopt;
@@ -339,8 +422,8 @@ private:
         }
         const io::ContactSideResult* side = measured_side(level_run, a_.pair);
         IGA_CHECK(side != nullptr, "accuracy: the results of level " + std::to_string(k) + " lack the pair " + a_.pair);
-        std::map<std::string, SidePressure> fields = side_pressures(deck_, *pair_result(level_run, a_.pair));
-        const SidePressure& field = fields.at(side->side_name);
+        std::map<std::string, SurfacePressure> fields = side_pressures(deck_, *pair_result(level_run, a_.pair));
+        const SurfacePressure& field = fields.at(side->side_name);
         Level level;
         level.index = k;
         level.dofs = static_cast<long long>(level_run.numbers.at("dofs"));
@@ -371,12 +454,13 @@ private:
     }
 
     /// How many symmetry planes of the measured side's body cut its zone (zone_symmetry.hpp).
-    int mirrors(const io::ContactSideResult& side, const SidePressure& field) const
+    int mirrors(const io::ContactSideResult& side, const SurfacePressure& field) const
     {
         if (a_.quantity != io::AccuracyQuantity::contact_radius && a_.quantity != io::AccuracyQuantity::stick_zone)
             return 0;
         const io::Body& body = *parse_label(deck_, side.side_name).body;
-        return zone_mirrors(symmetry_planes(deck_, body), field.side, side.gauss_points, zone_points(a_.quantity, side));
+        return zone_mirrors(symmetry_planes(deck_, body), surface_points(field), side.gauss_points,
+                            zone_points(a_.quantity, side));
     }
 
     /// The penalty's part of level k's error, E* / (eps a) with a measured at level k, where
@@ -396,7 +480,7 @@ private:
     /// much the pressure moved (a coarse level's one or two pressed points): its difference
     /// is not taken below the resolution it is measured with (level_estimate.hpp,
     /// zone_resolution).
-    double level_difference(const SidePressure& before, const SidePressure& now, const io::ContactSideResult& side,
+    double level_difference(const SurfacePressure& before, const SurfacePressure& now, const io::ContactSideResult& side,
                             double value, double value_before) const
     {
         switch (a_.quantity) {
@@ -459,47 +543,79 @@ private:
                     model_size = std::max(model_size, (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm());
         const io::ContactPair& deck_pair = *std::find_if(deck_.contact.begin(), deck_.contact.end(),
                                                          [&](const io::ContactPair& p) { return p.name == a_.pair; });
-        // Marks first, for every side, on the level's patches; then the knots.
-        std::vector<std::pair<const io::ContactSurface*, SurfaceMarks>> sides;
+        // Marks first, for every surface, on the level's patches; then the knots.
+        struct Marked {
+            const io::ContactSurface* surface;
+            std::vector<SurfacePiece> pieces;
+            std::vector<SurfaceMarks> marks;  ///< one per piece
+        };
+        std::vector<Marked> surfaces;
         std::set<std::string> bodies;
         for (const io::ContactSurface* s : {&deck_pair.first, &deck_pair.second}) {
             if (!s->deformable() || !bodies.insert(s->body).second)  // a body refined once per level
                 continue;
-            const std::string name = s->body + "." + io::side_text(s->patch, *s->side, "");
+            Marked m{s, surface_pieces(deck_, *deck_.find_body(s->body), s->patch, s->side, s->surface), {}};
+            const std::string name = s->body + "." + io::side_text(s->patch, s->side.value_or(Side::u0), s->surface);
             const auto now = fields_.find(name), before = previous_fields_.find(name);
-            SurfaceMarks marks;
-            if (now != fields_.end() && before != previous_fields_.end())
-                marks = marks_from_indicators(now->second.side, indicator(pair, name, before->second, now->second));
-            if (marks.empty())
-                marks = marks_from_zone(side_patch(deck_, *deck_.find_body(s->body), s->patch, *s->side),
-                                        widened(*zone, model_size));
-            sides.emplace_back(s, std::move(marks));
+            if (now != fields_.end() && before != previous_fields_.end()) {
+                std::vector<const nurbs::Patch*> sides;
+                for (const SidePressure& piece : now->second)
+                    sides.push_back(&piece.side);
+                m.marks = marks_from_indicators(sides, indicator(pair, name, before->second, now->second));
+            }
+            if (std::all_of(m.marks.begin(), m.marks.end(), [](const SurfaceMarks& x) { return x.empty(); })) {
+                m.marks.clear();
+                for (const SurfacePiece& piece : m.pieces)
+                    m.marks.push_back(marks_from_zone(piece.side_patch, widened(*zone, model_size)));
+            }
+            surfaces.push_back(std::move(m));
         }
-        for (const auto& [s, marks] : sides)
-            for (const std::string& line : refine_side(deck_, s->body, s->patch, *s->side, marks))
-                levels_.back().refined.push_back(line);
+        for (const Marked& m : surfaces)
+            for (std::size_t k = 0; k < m.pieces.size(); ++k) {
+                if (m.marks[k].empty())
+                    continue;
+                // A piece refined before this one may have halved some of its spans (gluing).
+                const SurfaceMarks marks =
+                    k == 0 ? m.marks[k]
+                           : remap_marks(m.marks[k], m.pieces[k].side_patch,
+                                         surface_pieces(deck_, *deck_.find_body(m.surface->body), m.surface->patch,
+                                                        m.surface->side, m.surface->surface)[k]
+                                             .side_patch);
+                for (const std::string& line :
+                     refine_side(deck_, m.surface->body, m.pieces[k].patch, m.pieces[k].side, marks))
+                    levels_.back().refined.push_back(line);
+            }
         for (const std::string& line : levels_.back().refined)
             context_.log(Verbosity::verbose, "  refined " + line);
     }
 
-    /// The squared indicator on each element of side `name` (rows) and direction (columns):
-    /// where the pressure changed from the level before; for stick_zone, as much again where
-    /// the stick zone's edge lies (span_marking.hpp), each part normalized to its total, so
-    /// that the bulk takes the spans of both the contact zone's edge and the stick zone's.
-    RowMatrix indicator(const io::ContactPairResult& pair, const std::string& name, const SidePressure& before,
-                        const SidePressure& now) const
+    /// The squared indicator on each element (rows) and direction (columns) of each piece of
+    /// surface `name`: where the pressure changed from the level before; for stick_zone, as
+    /// much again where the stick zone's edge lies (span_marking.hpp), each part normalized
+    /// to its total over the surface, so that the bulk takes the spans of both the contact
+    /// zone's edge and the stick zone's.
+    std::vector<RowMatrix> indicator(const io::ContactPairResult& pair, const std::string& name,
+                                     const SurfacePressure& before, const SurfacePressure& now) const
     {
-        RowMatrix eta2 = pressure_difference(before, now).element2;
+        std::vector<RowMatrix> eta2 = pressure_difference(before, now).element2;
         const auto side = std::find_if(pair.sides.begin(), pair.sides.end(),
                                        [&](const io::ContactSideResult& s) { return s.side_name == name; });
         if (a_.quantity != io::AccuracyQuantity::stick_zone || side == pair.sides.end())
             return eta2;
-        const RowMatrix edge = stick_edge_indicator(now.side, side->gauss_points, stick_status);
-        const double p_total = eta2.sum(), edge_total = edge.sum();
-        if (p_total > 0.0)
-            eta2 /= p_total;
-        if (edge_total > 0.0)
-            eta2 += edge / edge_total;
+        std::vector<RowMatrix> edge;
+        double p_total = 0.0, edge_total = 0.0;
+        for (std::size_t k = 0; k < now.size(); ++k) {
+            edge.push_back(stick_edge_indicator(now[k].side, piece_points(side->gauss_points, static_cast<int>(k)),
+                                                stick_status));
+            p_total += eta2[k].sum();
+            edge_total += edge.back().sum();
+        }
+        for (std::size_t k = 0; k < now.size(); ++k) {
+            if (p_total > 0.0)
+                eta2[k] /= p_total;
+            if (edge_total > 0.0)
+                eta2[k] += edge[k] / edge_total;
+        }
         return eta2;
     }
 
@@ -567,8 +683,8 @@ private:
     std::vector<double> differences_;  ///< d_1 .. d_k
     std::vector<LevelPenalty> penalties_;  ///< the target pair's penalty on each level run
     std::optional<double> half_width_;     ///< of the last level's pressed zone (zone_half_width)
-    std::map<std::string, SidePressure> fields_;           ///< the last level's recovered pressures, by side
-    std::map<std::string, SidePressure> previous_fields_;  ///< the level's before
+    std::map<std::string, SurfacePressure> fields_;           ///< the last level's recovered pressures, by side
+    std::map<std::string, SurfacePressure> previous_fields_;  ///< the level's before
     RunOutcome last_run_;  ///< of the last completed level (or of a failed level 0)
     std::string stop_reason_;
     bool reached_ = false;

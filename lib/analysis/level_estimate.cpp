@@ -54,9 +54,11 @@ void for_each_side_point(const nurbs::Patch& side, F&& f)
 
 }  // namespace
 
-double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult& side, const SidePressure& field,
+double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult& side, const SurfacePressure& field,
                      int mirrors)
 {
+    IGA_CHECK(!field.empty(), "accuracy: a contact surface has at least one patch side");
+    const int n_par = field.front().side.n_par();
     switch (quantity) {
     case io::AccuracyQuantity::force:
         return side.normal_force;
@@ -65,17 +67,18 @@ double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult&
         double measure = 0.0;  // of the modelled part
         for (const Index k : zone_points(quantity, side))
             measure += side.gauss_points.weight(k);
-        const double whole = std::ldexp(measure, std::min(mirrors, field.side.n_par()));
-        if (field.side.n_par() == 2)
+        const double whole = std::ldexp(measure, std::min(mirrors, n_par));
+        if (n_par == 2)
             return std::sqrt(whole / std::numbers::pi);
         return quantity == io::AccuracyQuantity::contact_radius ? 0.5 * whole : whole;
     }
     case io::AccuracyQuantity::pressure_l2: {
         double norm2 = 0.0;
-        for_each_side_point(field.side, [&](std::size_t, const nurbs::Element&, const VecN& xi, double w) {
-            const double p = pressure_at(field, xi);
-            norm2 += w * p * p;
-        });
+        for (const SidePressure& piece : field)
+            for_each_side_point(piece.side, [&](std::size_t, const nurbs::Element&, const VecN& xi, double w) {
+                const double p = pressure_at(piece, xi);
+                norm2 += w * p * p;
+            });
         return std::sqrt(norm2);
     }
     }
@@ -104,7 +107,8 @@ double zone_resolution(io::AccuracyQuantity quantity, const io::ContactSideResul
     double measure = 0.0;
     for (const Index k : zone)
         measure += g.weight(k);
-    if (g.parameter.cols() == 1) {  // a curve: the zone's two ends along it, but not an end of the side
+    const bool curve = g.parameter.cols() == 1;
+    if (curve && g.patch.empty()) {  // a curve: the zone's two ends along it, but not an end of the side
         const auto by_parameter = [&](Index a, Index b) { return g.parameter(a, 0) < g.parameter(b, 0); };
         const auto [first, last] = std::minmax_element(zone.begin(), zone.end(), by_parameter);
         const auto [side_first, side_last] = std::minmax_element(g.parameter.col(0).begin(), g.parameter.col(0).end());
@@ -126,49 +130,57 @@ double zone_resolution(io::AccuracyQuantity quantity, const io::ContactSideResul
             distance = r;
             outer = k;
         }
-    return distance > 0.0 ? std::min(1.0, std::sqrt(g.weight(outer)) / distance) : 1.0;
+    const double width = curve ? g.weight(outer) : std::sqrt(g.weight(outer));
+    return distance > 0.0 ? std::min(1.0, width / distance) : 1.0;
 }
 
-PressureDifference pressure_difference(const SidePressure& coarse, const SidePressure& fine)
+PressureDifference pressure_difference(const SurfacePressure& coarse, const SurfacePressure& fine)
 {
-    IGA_CHECK(coarse.side.n_par() == fine.side.n_par(), "accuracy: two levels' contact sides differ in dimension");
-    const int n_par = fine.side.n_par();
+    IGA_CHECK(coarse.size() == fine.size(), "accuracy: two levels' contact surfaces differ in their patch sides");
     PressureDifference out;
-    out.element2 = RowMatrix::Zero(static_cast<Index>(fine.side.elements().size()), n_par);
     double difference2 = 0.0, norm2 = 0.0;
-    std::array<double, 3> change{};  // the fine pressure's change across the element, per direction
-    for_each_side_point(fine.side, [&](std::size_t e, const nurbs::Element& element, const VecN& xi, double w) {
-        const nurbs::BasisValues b = nurbs::rational_basis(fine.side, xi, 1);
-        double p_fine = 0.0;
-        change.fill(0.0);
-        for (std::size_t a = 0; a < b.indices.size(); ++a) {
-            const double p_a = fine.control_pressure(b.indices[a]);
-            p_fine += b.R(static_cast<Index>(a)) * p_a;
-            for (int k = 0; k < n_par; ++k)
-                change[static_cast<std::size_t>(k)] += b.dR(static_cast<Index>(a), k) * p_a;
-        }
-        double total = 0.0;
-        for (int k = 0; k < n_par; ++k) {
-            const auto kk = static_cast<std::size_t>(k);
-            change[kk] *= element.upper[kk] - element.lower[kk];
-            total += change[kk] * change[kk];
-        }
-        const double p_coarse = pressure_at(coarse, xi);
-        const double d2 = w * (p_fine - p_coarse) * (p_fine - p_coarse);
-        for (int k = 0; k < n_par; ++k) {  // the direction the pressure changes in is the one to refine
-            const double c = change[static_cast<std::size_t>(k)];
-            out.element2(static_cast<Index>(e), k) += d2 * (total > 0.0 ? c * c / total : 1.0 / n_par);
-        }
-        difference2 += d2;
-        norm2 += w * p_fine * p_fine;
-    });
+    for (std::size_t piece = 0; piece < fine.size(); ++piece) {
+        const SidePressure& c = coarse[piece];
+        const SidePressure& f = fine[piece];
+        IGA_CHECK(c.side.n_par() == f.side.n_par(), "accuracy: two levels' contact sides differ in dimension");
+        const int n_par = f.side.n_par();
+        RowMatrix& element2 =
+            out.element2.emplace_back(RowMatrix::Zero(static_cast<Index>(f.side.elements().size()), n_par));
+        std::array<double, 3> change{};  // the fine pressure's change across the element, per direction
+        for_each_side_point(f.side, [&](std::size_t e, const nurbs::Element& element, const VecN& xi, double w) {
+            const nurbs::BasisValues b = nurbs::rational_basis(f.side, xi, 1);
+            double p_fine = 0.0;
+            change.fill(0.0);
+            for (std::size_t a = 0; a < b.indices.size(); ++a) {
+                const double p_a = f.control_pressure(b.indices[a]);
+                p_fine += b.R(static_cast<Index>(a)) * p_a;
+                for (int k = 0; k < n_par; ++k)
+                    change[static_cast<std::size_t>(k)] += b.dR(static_cast<Index>(a), k) * p_a;
+            }
+            double total = 0.0;
+            for (int k = 0; k < n_par; ++k) {
+                const auto kk = static_cast<std::size_t>(k);
+                change[kk] *= element.upper[kk] - element.lower[kk];
+                total += change[kk] * change[kk];
+            }
+            const double p_coarse = pressure_at(c, xi);
+            const double d2 = w * (p_fine - p_coarse) * (p_fine - p_coarse);
+            for (int k = 0; k < n_par; ++k) {  // the direction the pressure changes in is the one to refine
+                const double ck = change[static_cast<std::size_t>(k)];
+                element2(static_cast<Index>(e), k) += d2 * (total > 0.0 ? ck * ck / total : 1.0 / n_par);
+            }
+            difference2 += d2;
+            norm2 += w * p_fine * p_fine;
+        });
+    }
     out.relative = norm2 > 0.0 ? std::sqrt(difference2 / norm2) : std::numeric_limits<double>::infinity();
     return out;
 }
 
-double reference_pressure_error(const io::ReferenceData& ref, const SidePressure& field)
+double reference_pressure_error(const io::ReferenceData& ref, const SurfacePressure& field)
 {
-    const int d = field.side.dim();
+    IGA_CHECK(!field.empty(), "accuracy: a contact surface has at least one patch side");
+    const int d = field.front().side.dim();
     IGA_CHECK(static_cast<int>(ref.center.size()) == d && (ref.normal.size() == 3 || static_cast<int>(ref.tangent.size()) == d),
               "accuracy: the reference of pair '" + ref.pair + "' has no centre and direction");
     const VecN c = Eigen::Map<const Eigen::VectorXd>(ref.center.data(), d);
@@ -176,14 +188,15 @@ double reference_pressure_error(const io::ReferenceData& ref, const SidePressure
     const VecN axis = point ? VecN(Eigen::Map<const Eigen::VectorXd>(ref.normal.data(), 3).normalized())
                             : VecN(Eigen::Map<const Eigen::VectorXd>(ref.tangent.data(), d).normalized());
     double error2 = 0.0, norm2 = 0.0;
-    for_each_side_point(field.side, [&](std::size_t, const nurbs::Element&, const VecN& xi, double w) {
-        const VecN offset = nurbs::evaluate(field.side, xi, 0).x - c;
-        const double s = point ? (offset - offset.dot(axis) * axis).norm() : std::abs(offset.dot(axis));
-        const double exact = s < ref.a ? ref.p0 * std::sqrt(1.0 - (s / ref.a) * (s / ref.a)) : 0.0;
-        const double p = pressure_at(field, xi);
-        error2 += w * (p - exact) * (p - exact);
-        norm2 += w * exact * exact;
-    });
+    for (const SidePressure& piece : field)
+        for_each_side_point(piece.side, [&](std::size_t, const nurbs::Element&, const VecN& xi, double w) {
+            const VecN offset = nurbs::evaluate(piece.side, xi, 0).x - c;
+            const double s = point ? (offset - offset.dot(axis) * axis).norm() : std::abs(offset.dot(axis));
+            const double exact = s < ref.a ? ref.p0 * std::sqrt(1.0 - (s / ref.a) * (s / ref.a)) : 0.0;
+            const double p = pressure_at(piece, xi);
+            error2 += w * (p - exact) * (p - exact);
+            norm2 += w * exact * exact;
+        });
     return norm2 > 0.0 ? std::sqrt(error2 / norm2) : std::numeric_limits<double>::infinity();
 }
 

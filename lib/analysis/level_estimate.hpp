@@ -56,11 +56,16 @@ namespace iga::analysis {
 /// The safety factor of the band (see above).
 inline constexpr double safety_factor = 1.25;
 
-/// The recovered contact pressure of one level on its side.
+/// The recovered contact pressure of one level on one patch side.
 struct SidePressure {
     nurbs::Patch side;        ///< the analysed side, reference configuration
     Vector control_pressure;  ///< p_A, one per control point of `side`
 };
+
+/// The recovered contact pressure of one level on a contact surface: its patch sides in the
+/// surface's order, one or the pieces of a named surface (a control point two pieces share
+/// carries the same p_A in both). Norms and differences are sums over the pieces.
+using SurfacePressure = std::vector<SidePressure>;
 
 /// gauss_points/status of a sticking point (docs/results.md).
 inline constexpr int stick_status = 1;
@@ -70,19 +75,20 @@ inline constexpr int stick_status = 1;
 /// points' weights, the modelled part mirrored across the `mirrors` symmetry planes that cut
 /// it (zone_symmetry.hpp); for stick_zone the same of the pressed points that stick, its
 /// length in 2D; for pressure_l2 the L2 norm of the recovered pressure (of the modelled part).
-double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult& side, const SidePressure& field,
+double side_quantity(io::AccuracyQuantity quantity, const io::ContactSideResult& side, const SurfacePressure& field,
                      int mirrors = 0);
 
-/// The difference of two levels' pressures over the fine level's side.
+/// The difference of two levels' pressures over the fine level's surface.
 struct PressureDifference {
     double relative = 0.0;  ///< || fine - coarse ||_L2 / || fine ||_L2
-    /// || fine - coarse ||^2_L2 on each element of fine.side (rows, elements() order), split
-    /// over the side's directions (columns) by the share of the fine pressure's change
-    /// across the element along each: the edge of a disc-shaped zone crosses a span of u
-    /// where it runs along u, and that span needs refining in v, not in u.
-    RowMatrix element2;
+    /// Per piece: || fine - coarse ||^2_L2 on each element of the piece's side (rows,
+    /// elements() order), split over the side's directions (columns) by the share of the
+    /// fine pressure's change across the element along each: the edge of a disc-shaped zone
+    /// crosses a span of u where it runs along u, and that span needs refining in v, not in u.
+    std::vector<RowMatrix> element2;
 };
-PressureDifference pressure_difference(const SidePressure& coarse, const SidePressure& fine);
+/// Piece k of `coarse` and of `fine` are the same patch side on two levels.
+PressureDifference pressure_difference(const SurfacePressure& coarse, const SurfacePressure& fine);
 
 /// || p - p_ref ||_L2 / || p_ref ||_L2 over the side, p_ref the reference's Hertz pressure
 /// p0 sqrt(1 - s^2/a^2) at each point's reference coordinates X: s the distance from the
@@ -91,7 +97,7 @@ PressureDifference pressure_difference(const SidePressure& coarse, const SidePre
 /// reference's stored l2 is measured on |x| <= 1.2a and normalized by p0 sqrt(a), and in
 /// 3D on the ring-averaged radial curve, which leaves out every error that varies around
 /// the ring (on the 3D sphere levels about half of it).
-double reference_pressure_error(const io::ReferenceData& reference, const SidePressure& field);
+double reference_pressure_error(const io::ReferenceData& reference, const SurfacePressure& field);
 
 /// The rate by which the last differences shrank per level, where it shows slower
 /// convergence than the estimate assumes: the last slow_levels ratios d_{j-1}/d_j all
@@ -127,7 +133,10 @@ std::vector<Index> zone_points(io::AccuracyQuantity quantity, const io::ContactS
 /// changes the measure by that point's weight. In 2D (a curve) the weights of its first and
 /// last points over the zone's length, leaving out an end that is the side's own (a
 /// symmetry line: it does not move); in 3D the width sqrt(w) of the point farthest from the
-/// zone's centroid over that distance. 1 with one point or none.
+/// zone's centroid over that distance. A curve of several patch sides (gauss_points/patch)
+/// has no one parameter along it: it is measured as a surface is, with the width w of the
+/// point farthest from the centroid (up to twice the resolution of a zone that ends at the
+/// side's end: conservative). 1 with one point or none.
 double zone_resolution(io::AccuracyQuantity quantity, const io::ContactSideResult& side);
 
 }  // namespace iga::analysis

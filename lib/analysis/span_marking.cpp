@@ -84,27 +84,35 @@ ZoneBox element_box(const nurbs::Patch& patch, const nurbs::Element& element)
     return box;
 }
 
-SurfaceMarks marks_from_indicators(const nurbs::Patch& side, const RowMatrix& eta2, double fraction)
+std::vector<SurfaceMarks> marks_from_indicators(const std::vector<const nurbs::Patch*>& sides,
+                                                const std::vector<RowMatrix>& eta2, double fraction)
 {
-    const std::vector<nurbs::Element> elements = side.elements();
-    const int n_par = side.n_par();
-    IGA_CHECK(eta2.rows() == static_cast<Index>(elements.size()) && eta2.cols() == n_par,
-              "accuracy: one indicator per element and direction of the side is needed");
-    SurfaceMarks marks{std::vector<std::set<int>>(static_cast<std::size_t>(n_par)), VecN::Zero(n_par)};
-    const Vector per_element = eta2.rowwise().sum();
-    if (eta2.size() == 0 || !(per_element.maxCoeff() > 0.0))
-        return marks;
-    // The first element that ties with the largest: of two mirror elements, always the same one.
-    Index largest = 0;
-    while (per_element(largest) < per_element.maxCoeff() * (1.0 - tie_tolerance))
-        ++largest;
-    marks.center = element_center(elements[static_cast<std::size_t>(largest)], n_par);
-    // A slab is one span of one direction; all directions' slabs compete for the bulk.
-    std::map<std::pair<int, int>, double> slab;  // (direction, span) -> its elements' indicators along it
-    for (std::size_t e = 0; e < elements.size(); ++e)
-        for (int k = 0; k < n_par; ++k)
-            slab[{k, elements[e].span[static_cast<std::size_t>(k)]}] += eta2(static_cast<Index>(e), k);
-    std::vector<std::pair<double, std::pair<int, int>>> order;
+    IGA_CHECK(sides.size() == eta2.size(), "accuracy: one indicator matrix per patch side is needed");
+    std::vector<SurfaceMarks> marks;
+    // A slab is one span of one direction of one piece; all compete for the bulk.
+    std::map<std::array<int, 3>, double> slab;  // (piece, direction, span) -> its elements' indicators along it
+    for (std::size_t piece = 0; piece < sides.size(); ++piece) {
+        const std::vector<nurbs::Element> elements = sides[piece]->elements();
+        const int n_par = sides[piece]->n_par();
+        const RowMatrix& eta = eta2[piece];
+        IGA_CHECK(eta.rows() == static_cast<Index>(elements.size()) && eta.cols() == n_par,
+                  "accuracy: one indicator per element and direction of the side is needed");
+        SurfaceMarks& m = marks.emplace_back(SurfaceMarks{std::vector<std::set<int>>(static_cast<std::size_t>(n_par)),
+                                                          VecN::Zero(n_par)});
+        const Vector per_element = eta.rowwise().sum();
+        if (eta.size() == 0 || !(per_element.maxCoeff() > 0.0))
+            continue;
+        // The first element that ties with the largest: of two mirror elements, always the same one.
+        Index largest = 0;
+        while (per_element(largest) < per_element.maxCoeff() * (1.0 - tie_tolerance))
+            ++largest;
+        m.center = element_center(elements[static_cast<std::size_t>(largest)], n_par);
+        for (std::size_t e = 0; e < elements.size(); ++e)
+            for (int k = 0; k < n_par; ++k)
+                slab[{static_cast<int>(piece), k, elements[e].span[static_cast<std::size_t>(k)]}] +=
+                    eta(static_cast<Index>(e), k);
+    }
+    std::vector<std::pair<double, std::array<int, 3>>> order;
     double total = 0.0;
     for (const auto& [key, value] : slab) {
         order.emplace_back(value, key);
@@ -120,9 +128,34 @@ SurfaceMarks marks_from_indicators(const nurbs::Patch& side, const RowMatrix& et
     const double last = n_marked > 0 ? order[n_marked - 1].first : 0.0;
     while (n_marked < order.size() && order[n_marked].first >= last * (1.0 - tie_tolerance))
         ++n_marked;
-    for (std::size_t i = 0; i < n_marked; ++i)
-        marks.spans[static_cast<std::size_t>(order[i].second.first)].insert(order[i].second.second);
+    for (std::size_t i = 0; i < n_marked; ++i) {
+        const auto [piece, k, span] = order[i].second;
+        marks[static_cast<std::size_t>(piece)].spans[static_cast<std::size_t>(k)].insert(span);
+    }
     return marks;
+}
+
+SurfaceMarks marks_from_indicators(const nurbs::Patch& side, const RowMatrix& eta2, double fraction)
+{
+    return marks_from_indicators(std::vector<const nurbs::Patch*>{&side}, std::vector<RowMatrix>{eta2}, fraction)
+        .front();
+}
+
+SurfaceMarks remap_marks(const SurfaceMarks& marks, const nurbs::Patch& marked, const nurbs::Patch& now)
+{
+    SurfaceMarks out{std::vector<std::set<int>>(marks.spans.size()), marks.center};
+    for (std::size_t k = 0; k < marks.spans.size(); ++k) {
+        const std::vector<double>& before = marked.knots(static_cast<int>(k)).knot_values();
+        const std::vector<double>& after = now.knots(static_cast<int>(k)).knot_values();
+        for (const int i : marks.spans[k]) {
+            const double a = before[static_cast<std::size_t>(i)], b = before[static_cast<std::size_t>(i) + 1];
+            // The span of `now` that starts at a (the last knot equal to a) and still ends at b.
+            const auto end = std::upper_bound(after.begin(), after.end(), a);
+            if (end != after.begin() && end != after.end() && *(end - 1) == a && *end == b)
+                out.spans[k].insert(static_cast<int>(end - after.begin()) - 1);
+        }
+    }
+    return out;
 }
 
 RowMatrix stick_edge_indicator(const nurbs::Patch& side, const io::GaussPointData& points, int stick_status)

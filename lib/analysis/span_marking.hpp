@@ -64,6 +64,17 @@ struct SurfaceMarks {
 /// indicator.
 SurfaceMarks marks_from_indicators(const nurbs::Patch& side, const RowMatrix& element_indicator2,
                                    double fraction = bulk_fraction);
+/// The same over the pieces of a named surface together (their slabs compete for one
+/// bulk): one SurfaceMarks per piece, each piece's center its own.
+std::vector<SurfaceMarks> marks_from_indicators(const std::vector<const nurbs::Patch*>& sides,
+                                                const std::vector<RowMatrix>& element_indicator2,
+                                                double fraction = bulk_fraction);
+
+/// Marks made on side `marked`, on the same side `now` after other knots went in (another
+/// piece of a named surface refined first, and gluing carried its knots across): each
+/// marked span [t_i, t_{i+1}) of `marked` by its index in `now`, or dropped where `now`
+/// has split it already (it is halved).
+SurfaceMarks remap_marks(const SurfaceMarks& marks, const nurbs::Patch& marked, const nurbs::Patch& now);
 
 /// The squared indicator of a stick zone's edge on each element of `side` (rows in
 /// side.elements() order, split over the directions in the columns), from the side's own

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <algorithm>
 #include <limits>
+#include <optional>
 #include <set>
 
 namespace iga::analysis {
@@ -295,14 +296,36 @@ std::vector<std::string> resolution_warnings(const PairModel& model, const io::C
     return out;
 }
 
-std::vector<std::string> driven_through_warnings(const Scene& scene, const PairModel& model, const io::StepData& step)
+namespace {
+
+/// A pair of a deformable body and a rigid obstacle, as the warnings below read it.
+struct ObstaclePair {
+    int k = -1;  ///< the obstacle's surface in the pair
+    int b = -1;  ///< the body's index in the scene
+    const BodyModel* body = nullptr;
+    const contact::RigidObstacle* obstacle = nullptr;
+};
+
+std::optional<ObstaclePair> obstacle_pair(const Scene& scene, const PairModel& model)
 {
     const int k = model.obstacle;
     if (k < 0)
-        return {};
+        return std::nullopt;
     const int b = model.body[static_cast<std::size_t>(1 - k)];
-    const BodyModel& body = scene.bodies[static_cast<std::size_t>(b)];
-    const auto& obstacle = std::get<contact::RigidObstacle>(model.pair.surface(k));
+    return ObstaclePair{k, b, &scene.bodies[static_cast<std::size_t>(b)],
+                        &std::get<contact::RigidObstacle>(model.pair.surface(k))};
+}
+
+}  // namespace
+
+std::vector<std::string> driven_through_warnings(const Scene& scene, const PairModel& model, const io::StepData& step)
+{
+    const std::optional<ObstaclePair> at = obstacle_pair(scene, model);
+    if (!at)
+        return {};
+    const int k = at->k;
+    const BodyModel& body = *at->body;
+    const contact::RigidObstacle& obstacle = *at->obstacle;
     const RowMatrix points = current_control_points(body, step);
     // The deepest control point inside the obstacle, and the body's thickness along the
     // obstacle's normal there (by the convex-hull property, the body lies within them).
@@ -332,12 +355,12 @@ std::vector<std::string> driven_through_warnings(const Scene& scene, const PairM
 std::vector<std::string> undeclared_contact_warnings(const Scene& scene, const PairModel& model,
                                                      const io::StepData& step)
 {
-    const int k = model.obstacle;
-    if (k < 0)
+    const std::optional<ObstaclePair> at = obstacle_pair(scene, model);
+    if (!at)
         return {};
-    const int b = model.body[static_cast<std::size_t>(1 - k)];
-    const BodyModel& body = scene.bodies[static_cast<std::size_t>(b)];
-    const auto& obstacle = std::get<contact::RigidObstacle>(model.pair.surface(k));
+    const int k = at->k, b = at->b;
+    const BodyModel& body = *at->body;
+    const contact::RigidObstacle& obstacle = *at->obstacle;
     const std::string& obstacle_name = model.label[static_cast<std::size_t>(k)];
     // The body's nodes on a surface that some pair checks against this obstacle, and the
     // deepest penetration those pairs leave.

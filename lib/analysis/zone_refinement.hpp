@@ -33,8 +33,9 @@
 // is graded from the refined patch's span there, and so on outward. Without it a thin
 // contact patch (a tenth of the 2D Hertz quarter's depth) left its neighbour at 2 spans:
 // the levels stalled at 1.6 % against Hertz while their differences fell to 0.5 %, an
-// estimate of half the error. A named surface (several patch sides) is not refined: the
-// deck reader refuses such a target.
+// estimate of half the error. A named surface is refined piece by piece, each patch side
+// by this function with the marks of that piece (accuracy.cpp; span_marking.hpp,
+// remap_marks, for the spans an earlier piece split through gluing).
 
 #include "analysis/span_marking.hpp"
 #include "core/side.hpp"

@@ -57,14 +57,14 @@ std::vector<SymmetryPlane> symmetry_planes(const io::Deck& deck, const io::Body&
     return planes;
 }
 
-int zone_mirrors(const std::vector<SymmetryPlane>& planes, const nurbs::Patch& side, const io::GaussPointData& g,
+int zone_mirrors(const std::vector<SymmetryPlane>& planes, const RowMatrix& side_points, const io::GaussPointData& g,
                  const std::vector<Index>& zone)
 {
-    const double tolerance = plane_tolerance * size_of(side.control_points());
+    const double tolerance = plane_tolerance * size_of(side_points);
     int mirrors = 0;
     for (const SymmetryPlane& plane : planes) {
         const auto distance = [&](Index k) { return std::abs(g.reference_coordinates(k, plane.axis) - plane.coordinate); };
-        if ((side.control_points().col(plane.axis).array() - plane.coordinate).abs().minCoeff() > tolerance)
+        if ((side_points.col(plane.axis).array() - plane.coordinate).abs().minCoeff() > tolerance)
             continue;  // the side does not reach the plane
         // The zone's first row along the plane, or a zone nearer to the plane than its own
         // extent across it (a coarse level's zone that has lifted off the plane in a ring).

@@ -28,14 +28,15 @@ struct SymmetryPlane {
 std::vector<SymmetryPlane> symmetry_planes(const io::Deck& deck, const io::Body& body);
 
 /// How many of `planes` cut the zone made of the Gauss points `zone` of a contact side: a
-/// plane cuts it when the side reaches the plane (one of its control points lies on it)
+/// plane cuts it when the side reaches the plane (one of `side_points`, the control points
+/// of its patch sides, lies on it)
 /// and the zone reaches the plane: its nearest point lies within three quarters of its own
 /// width of it (w on a curve, sqrt(w) on a surface; with n Gauss points per span the first
 /// row lies 0.11 (n = 3) to 0.05 (n = 5) of a span from the span's end and is 0.28 to 0.12
 /// of it wide, the second lies 0.5 to 0.23 from it, farther than its width), or the zone
 /// is nearer to the plane than its own extent across it (a coarse level's zone can lift
 /// off the plane in a ring: a roller on a soft block at 312 dofs pressed from 0.02 to 0.06).
-int zone_mirrors(const std::vector<SymmetryPlane>& planes, const nurbs::Patch& side, const io::GaussPointData& g,
+int zone_mirrors(const std::vector<SymmetryPlane>& planes, const RowMatrix& side_points, const io::GaussPointData& g,
                  const std::vector<Index>& zone);
 
 }  // namespace iga::analysis

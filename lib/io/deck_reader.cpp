@@ -566,23 +566,6 @@ Output read_output(const Cursor& root, const std::string& file_label, const std:
     return o;
 }
 
-/// Why the zone of `pair` cannot be refined (accuracy:): refinement toward it is written for
-/// patch sides (`side`, `patch.side`); "" when it can.
-std::string zone_refinement_limit(const Deck& deck, const std::string& pair_name)
-{
-    for (const ContactPair& pair : deck.contact) {
-        if (pair.name != pair_name)
-            continue;
-        for (const ContactSurface* s : {&pair.first, &pair.second}) {
-            if (!s->surface.empty())
-                return "the side '" + s->body + "." + s->surface +
-                       "' is a named surface: refinement toward the zone takes one patch side (`side`, or "
-                       "`patch.side` of a multi-patch body)";
-        }
-    }
-    return "";
-}
-
 std::optional<Accuracy> read_accuracy(const Cursor& root, const Deck& deck, const KnownNames& known)
 {
     const Cursor c = root.child("accuracy");
@@ -598,8 +581,6 @@ std::optional<Accuracy> read_accuracy(const Cursor& root, const Deck& deck, cons
             if (std::find(known.pairs.begin(), known.pairs.end(), *pair) == known.pairs.end())
                 target.child("pair").fail("unknown contact pair '" + *pair + "'" +
                                           hint_or_list(*pair, known.pairs, "pairs"));
-            else if (const std::string limit = zone_refinement_limit(deck, *pair); !limit.empty())
-                target.child("pair").fail(limit);
         }
         a.quantity = target.read_or("quantity", a.quantity);
         if (a.quantity == AccuracyQuantity::stick_zone) {

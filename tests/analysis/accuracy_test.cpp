@@ -20,6 +20,7 @@
 #include "run_support.hpp"
 #include "support/tolerance.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <array>
@@ -40,19 +41,49 @@ VecN vec2(double x, double y)
     return v;
 }
 
-/// Runs the accuracy levels of the deck quietly into `dir`.
-RunOutcome run_levels(const std::vector<std::string>& overrides, const std::filesystem::path& results)
+/// Runs the accuracy levels of `deck` quietly into `results`.
+RunOutcome run_levels(io::Deck deck, const std::filesystem::path& results)
 {
-    io::Deck deck = io::read_deck(deck_path, overrides);
     deck.output.file = results.string();
     const RunContext context(nullptr, Verbosity::quiet);
     return run_to_accuracy(deck, RunOptions{}, context);
+}
+
+/// A deck of tests/analysis/decks run to its target into the scratch folder `scratch`.
+struct DeckLevels {
+    double target = 0.0;
+    std::filesystem::path results;
+    RunOutcome outcome;
+};
+
+DeckLevels run_deck_levels(const std::string& deck_file, const std::string& scratch)
+{
+    const io::Deck deck = io::read_deck(test::source_path("tests/analysis/decks/" + deck_file), {});
+    const std::filesystem::path results = test::scratch_dir(scratch) / "levels.h5";
+    return {deck.accuracy->error, results, run_levels(deck, results)};
+}
+
+/// The same for this file's Hertz deck with `overrides`.
+RunOutcome run_levels(const std::vector<std::string>& overrides, const std::filesystem::path& results)
+{
+    return run_levels(io::read_deck(deck_path, overrides), results);
 }
 
 // An estimate within a factor of two of the true error (the bar), the error
 // measured in the estimate's own norm (reference_pressure_error); measured 0.53-1.63 on
 // this start (docs/accuracy_on_demand.md).
 constexpr double estimate_factor = 2.0;
+
+/// Each level's estimate (column 3 of /accuracy/levels) within estimate_factor of its error
+/// against the reference (column 5), from level `first` on.
+void expect_estimates_track_the_error(const RowMatrix& levels, Index first = 1)
+{
+    for (Index k = first; k < levels.rows(); ++k) {
+        const double ratio = levels(k, 3) / levels(k, 5);
+        EXPECT_TRUE(test::at_least(ratio, 1.0 / estimate_factor)) << "level " << k;
+        EXPECT_TRUE(test::at_most(ratio, estimate_factor)) << "level " << k;
+    }
+}
 
 TEST(Accuracy, ACoarseHertzStartReachesItsTargetWithEstimatesWithinAFactorOfTwo)
 {
@@ -69,11 +100,9 @@ TEST(Accuracy, ACoarseHertzStartReachesItsTargetWithEstimatesWithinAFactorOfTwo)
     EXPECT_TRUE(std::isnan(levels(0, 3))) << "level 0 has nothing to be compared with";
     for (Index k = 1; k < levels.rows(); ++k) {
         EXPECT_GT(levels(k, 1), levels(k - 1, 1)) << "every level adds dofs";
-        const double ratio = levels(k, 3) / levels(k, 5);
         EXPECT_TRUE(test::at_least(levels(k, 4), levels(k, 3))) << "level " << k;
-        EXPECT_TRUE(test::at_least(ratio, 1.0 / estimate_factor)) << "level " << k;
-        EXPECT_TRUE(test::at_most(ratio, estimate_factor)) << "level " << k;
     }
+    expect_estimates_track_the_error(levels);
     const Index last = levels.rows() - 1;
     EXPECT_TRUE(test::at_most(safety_factor * levels(last, 4), target));
     EXPECT_TRUE(test::at_most(levels(last, 5), target)) << "the error against Hertz meets the target too";
@@ -163,7 +192,7 @@ TEST(Accuracy, ThePressureDifferenceOfTwoLevelsIsExactOnKnownFields)
     // about 1e-12, not to round-off.
     const SidePressure one = arc_pressure(3, [](int) { return 2.0; });
     io::ContactSideResult side;
-    EXPECT_TRUE(test::near(side_quantity(io::AccuracyQuantity::pressure_l2, side, one),
+    EXPECT_TRUE(test::near(side_quantity(io::AccuracyQuantity::pressure_l2, side, {one}),
                            2.0 * std::sqrt(std::numbers::pi / 2.0), 1e-10));
     // The same spline on a finer knot vector is the same field: no difference.
     const SidePressure coarse = arc_pressure(0, [](int a) { return a == 1 ? 3.0 : 1.0; });
@@ -174,16 +203,16 @@ TEST(Accuracy, ThePressureDifferenceOfTwoLevelsIsExactOnKnownFields)
     const nurbs::Patch as_curve(coarse.side.all_knots(), values, coarse.side.weights());
     const nurbs::Patch refined_values = nurbs::insert_knots(as_curve, 0, {0.3, 0.5, 0.8});
     const SidePressure fine{refined_side, refined_values.control_points().col(0)};
-    EXPECT_TRUE(test::at_most(pressure_difference(coarse, fine).relative, 1e-13));
+    EXPECT_TRUE(test::at_most(pressure_difference({coarse}, {fine}).relative, 1e-13));
     // A field scaled by (1 + s) differs by s / (1 + s) of its own norm; the elements'
     // shares of the difference add up to it.
     SidePressure scaled = fine;
     scaled.control_pressure *= 1.1;
-    const PressureDifference d = pressure_difference(coarse, scaled);
+    const PressureDifference d = pressure_difference({coarse}, {scaled});
     EXPECT_TRUE(test::near(d.relative, 0.1 / 1.1, 1e-13));
-    const double norm = side_quantity(io::AccuracyQuantity::pressure_l2, side, scaled);
-    EXPECT_EQ(d.element2.rows(), static_cast<Index>(scaled.side.elements().size()));
-    EXPECT_TRUE(test::near_rel(std::sqrt(d.element2.sum()) / norm, 0.1 / 1.1, 1e-12));
+    const double norm = side_quantity(io::AccuracyQuantity::pressure_l2, side, {scaled});
+    EXPECT_EQ(d.element2.front().rows(), static_cast<Index>(scaled.side.elements().size()));
+    EXPECT_TRUE(test::near_rel(std::sqrt(d.element2.front().sum()) / norm, 0.1 / 1.1, 1e-12));
     // Against a Hertz reference, no pressure at all is wrong by all of the reference's norm.
     io::ReferenceData hertz;
     hertz.a = 0.1;
@@ -192,7 +221,72 @@ TEST(Accuracy, ThePressureDifferenceOfTwoLevelsIsExactOnKnownFields)
     hertz.tangent = {1.0, 0.0};
     SidePressure none = fine;
     none.control_pressure.setZero();
-    EXPECT_TRUE(test::near(reference_pressure_error(hertz, none), 1.0, 1e-14));
+    EXPECT_TRUE(test::near(reference_pressure_error(hertz, {none}), 1.0, 1e-14));
+}
+
+/// The straight side y = 0, x in [x0, x1], of a bilinear square, split at the knots `inner`.
+nurbs::Patch line_side(double x0, double x1, const std::vector<double>& inner)
+{
+    nurbs::Patch square = nurbs::rectangle(vec2(x0, 0.0), vec2(x1 - x0, 1.0));
+    if (!inner.empty())
+        square = nurbs::insert_knots(square, 0, inner);
+    return nurbs::extract_side(square, Side::v0).patch;
+}
+
+// A named surface's pieces are one surface: its norms, differences and errors are those of
+// the single side they split (here the line [0, 1] cut at x = 0.5, linear pressures whose
+// control values are nodal values), and Dörfler's bulk is taken over both pieces at once.
+TEST(Accuracy, TheNormsOfASurfaceOfTwoPiecesAreThoseOfTheSideTheySplit)
+{
+    const nurbs::Patch whole = line_side(0.0, 1.0, {0.5});
+    const auto values = [](std::initializer_list<double> v) {
+        return Vector(Eigen::Map<const Vector>(v.begin(), static_cast<Index>(v.size())));
+    };
+    const SurfacePressure coarse_whole{SidePressure{whole, values({0.0, 0.5, 1.0})}};
+    const SurfacePressure fine_whole{SidePressure{whole, values({0.0, 0.7, 1.0})}};
+    const nurbs::Patch left = line_side(0.0, 0.5, {}), right = line_side(0.5, 1.0, {});
+    const SurfacePressure coarse_pieces{SidePressure{left, values({0.0, 0.5})}, SidePressure{right, values({0.5, 1.0})}};
+    const SurfacePressure fine_pieces{SidePressure{left, values({0.0, 0.7})}, SidePressure{right, values({0.7, 1.0})}};
+    const io::ContactSideResult side;
+    EXPECT_TRUE(test::near_rel(side_quantity(io::AccuracyQuantity::pressure_l2, side, fine_pieces),
+                               side_quantity(io::AccuracyQuantity::pressure_l2, side, fine_whole), 1e-14));
+    const PressureDifference one = pressure_difference(coarse_whole, fine_whole);
+    const PressureDifference two = pressure_difference(coarse_pieces, fine_pieces);
+    EXPECT_TRUE(test::near_rel(two.relative, one.relative, 1e-14));
+    ASSERT_EQ(two.element2.size(), 2u);
+    EXPECT_TRUE(test::near_rel(two.element2[0](0, 0), one.element2[0](0, 0), 1e-14));
+    EXPECT_TRUE(test::near_rel(two.element2[1](0, 0), one.element2[0](1, 0), 1e-14));
+    io::ReferenceData hertz;
+    hertz.a = 0.4;
+    hertz.p0 = 1.0;
+    hertz.center = {0.3, 0.0};
+    hertz.tangent = {1.0, 0.0};
+    EXPECT_TRUE(test::near_rel(reference_pressure_error(hertz, fine_pieces), reference_pressure_error(hertz, fine_whole),
+                               1e-14));
+    // The bulk over both pieces: the left piece's one slab carries 0.9 of it, the right
+    // piece gets no mark at 60 %, its own at 99 %.
+    const std::vector<const nurbs::Patch*> sides{&left, &right};
+    const std::vector<RowMatrix> eta2{RowMatrix::Constant(1, 1, 0.9), RowMatrix::Constant(1, 1, 0.1)};
+    const std::vector<SurfaceMarks> bulk = marks_from_indicators(sides, eta2, 0.6);
+    ASSERT_EQ(bulk.size(), 2u);
+    EXPECT_EQ(bulk[0].spans[0].size(), 1u);
+    EXPECT_TRUE(bulk[1].empty());
+    EXPECT_FALSE(marks_from_indicators(sides, eta2, 0.99)[1].empty());
+}
+
+// Marks made before another piece's refinement reached this side through gluing: a marked
+// span keeps its ends and is found by them; a span split already is not halved again.
+TEST(Accuracy, MarksAreCarriedOverKnotsAnotherPieceInserted)
+{
+    const nurbs::Patch marked = line_side(0.0, 1.0, {1.0 / 3.0, 2.0 / 3.0});
+    const int middle = 2;  // knot index of [1/3, 2/3) in {0, 0, 1/3, 2/3, 1, 1}
+    const SurfaceMarks marks{{std::set<int>{middle}}, VecN::Constant(1, 0.5)};
+    const SurfaceMarks moved = remap_marks(marks, marked, nurbs::insert_knots(marked, 0, {0.1}));
+    EXPECT_EQ(moved.spans[0], std::set<int>{middle + 1}) << "a knot before it shifts its index";
+    EXPECT_DOUBLE_EQ(moved.center(0), 0.5);
+    EXPECT_TRUE(remap_marks(marks, marked, nurbs::insert_knots(marked, 0, {0.5})).empty())
+        << "halved already: no second halving";
+    EXPECT_EQ(remap_marks(marks, marked, marked).spans[0], marks.spans[0]);
 }
 
 TEST(Accuracy, DoerflersMarkingTakesTheFewestSlabsThatCarryTheBulkAlongTheDirectionThePressureChanges)
@@ -280,7 +374,7 @@ TEST(Accuracy, TheStickZonesEdgeIsMarkedAcrossTheDirectionWhereStickingAndSlippi
     result.gauss_points.pressure(0) = 0.0;  // the element at u, v in the first spans: sticking, now open
     ASSERT_EQ(result.gauss_points.status[0], stick_status);
     const SidePressure field{side, Vector::Zero(side.n_control_points())};
-    EXPECT_TRUE(test::near(side_quantity(io::AccuracyQuantity::stick_zone, result, field), std::sqrt(5.0 / std::numbers::pi), 1e-14));
+    EXPECT_TRUE(test::near(side_quantity(io::AccuracyQuantity::stick_zone, result, {field}), std::sqrt(5.0 / std::numbers::pi), 1e-14));
     // An element whose own points stick and slip, amid sticking neighbours: the edge may run
     // either way through it, so every direction alike.
     g = centre_points(side, [](const nurbs::Element&) { return true; });
@@ -378,22 +472,15 @@ TEST(Accuracy, RefineLevelsFoldedIntoTheKnotsGiveTheSameHalvedPatch)
 // within a factor of two of the error against Hertz, as on the one-patch start.
 TEST(Accuracy, AMultiPatchBodyIsRefinedInThePatchOfItsContactSideAndStaysConforming)
 {
-    const auto dir = test::scratch_dir("accuracy_two_patches");
-    io::Deck deck = io::read_deck(test::source_path("tests/analysis/decks/hertz_accuracy_two_patches_2d.yaml"), {});
-    const double target = deck.accuracy->error;
-    deck.output.file = (dir / "hertz.h5").string();
-    const RunOutcome outcome = run_to_accuracy(deck, RunOptions{}, RunContext(nullptr, Verbosity::quiet));
-    ASSERT_EQ(outcome.status, "completed") << outcome.message;
-
-    const test::Results r(dir / "hertz.h5");
+    const DeckLevels run = run_deck_levels("hertz_accuracy_two_patches_2d.yaml", "accuracy_two_patches");
+    ASSERT_EQ(run.outcome.status, "completed") << run.outcome.message;
+    const double target = run.target;
+    const test::Results r(run.results);
     const RowMatrix levels = r.matrix("/accuracy/levels");
     ASSERT_GE(levels.rows(), 3);
-    for (Index k = 1; k < levels.rows(); ++k) {
+    for (Index k = 1; k < levels.rows(); ++k)
         EXPECT_GT(levels(k, 1), levels(k - 1, 1)) << "every level adds dofs";
-        const double ratio = levels(k, 3) / levels(k, 5);
-        EXPECT_TRUE(test::at_least(ratio, 1.0 / estimate_factor)) << "level " << k;
-        EXPECT_TRUE(test::at_most(ratio, estimate_factor)) << "level " << k;
-    }
+    expect_estimates_track_the_error(levels);
     EXPECT_TRUE(test::at_most(levels(levels.rows() - 1, 5), target)) << "the error against Hertz meets the target";
     // Conforming: the arc's knots reached the patch above; its depth kept the deck's 2 spans.
     const std::vector<double> lower_u = r.reals("/bodies/cylinder/patches/lower/knots/u");
@@ -423,21 +510,47 @@ TEST(Accuracy, AThinContactPatchGradesItsNeighbourFromTheirInterface)
         for (std::size_t at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size()))
             text.replace(at, from.size(), to);
     const auto dir = test::scratch_dir("accuracy_thin_patch");
-    io::Deck deck = io::read_deck_text(text, "thin.yaml", test::source_path("tests/analysis/decks"));
+    const io::Deck deck = io::read_deck_text(text, "thin.yaml", test::source_path("tests/analysis/decks"));
     ASSERT_EQ(deck.bodies.front().patches.front().nurbs.control_points[3][1], 0.1);
     const double target = deck.accuracy->error;
-    deck.output.file = (dir / "thin.h5").string();
-    const RunOutcome outcome = run_to_accuracy(deck, RunOptions{}, RunContext(nullptr, Verbosity::quiet));
+    const RunOutcome outcome = run_levels(deck, dir / "thin.h5");
     ASSERT_EQ(outcome.status, "completed") << outcome.message;
 
     const test::Results r(dir / "thin.h5");
     const RowMatrix levels = r.matrix("/accuracy/levels");
     const Index last = levels.rows() - 1;
     EXPECT_TRUE(test::at_most(levels(last, 5), target)) << "the error against Hertz meets the target";
-    const double ratio = levels(last, 3) / levels(last, 5);
-    EXPECT_TRUE(test::at_least(ratio, 1.0 / estimate_factor)) << "level " << last;
-    EXPECT_TRUE(test::at_most(ratio, estimate_factor)) << "level " << last;
+    expect_estimates_track_the_error(levels, last);
     EXPECT_GT(r.reals("/bodies/cylinder/patches/upper/knots/v").size(), 7u) << "upper's depth is graded";
+}
+
+// A named surface across an interface (the half cylinder of two patches glued under the
+// peak, a test deck): both pieces are marked together and refined in their own patches;
+// the zone is symmetric about the interface, and so are the knots. The target is reached
+// with the estimates within a factor of two of the error against Hertz at every level.
+TEST(Accuracy, ANamedSurfaceAcrossAnInterfaceIsRefinedInEachOfItsPatches)
+{
+    const DeckLevels run = run_deck_levels("hertz_accuracy_named_surface_2d.yaml", "accuracy_named_surface");
+    ASSERT_EQ(run.outcome.status, "completed") << run.outcome.message;
+    const double target = run.target;
+    const test::Results r(run.results);
+    const RowMatrix levels = r.matrix("/accuracy/levels");
+    ASSERT_GE(levels.rows(), 3);
+    expect_estimates_track_the_error(levels);
+    EXPECT_TRUE(test::at_most(levels(levels.rows() - 1, 5), target)) << "the error against Hertz meets the target";
+    // left's u runs to the lowest point at 1, right's from it at 0: mirror knots.
+    const std::vector<double> left_u = r.reals("/bodies/cylinder/patches/left/knots/u");
+    const std::vector<double> right_u = r.reals("/bodies/cylinder/patches/right/knots/u");
+    ASSERT_EQ(left_u.size(), right_u.size());
+    EXPECT_GT(left_u.size(), 8u + 5u) << "more than the deck's 8 spans along the arc";
+    for (std::size_t i = 0; i < left_u.size(); ++i)
+        EXPECT_TRUE(test::near(left_u[i], 1.0 - right_u[right_u.size() - 1 - i], 1e-12)) << "knot " << i;
+    const std::vector<std::string> refine = io::h5::read_dataset(r.id(), "/accuracy/refine").strings;
+    ASSERT_EQ(refine.size(), 1u);
+    for (const char* patch : {"left", "right"})
+        EXPECT_NE(refine.front().find(fmt::format("# bodies.cylinder.patches.{}.refine.insert", patch)),
+                  std::string::npos)
+            << refine.front();
 }
 
 // --refine-levels on a multi-patch body: each patch's glued spans halved, written into the

@@ -65,8 +65,8 @@ TEST(ZoneSymmetry, TheWholeZoneIsTheModelledPartMirroredAcrossThePlanesThatCutIt
     }
     const SidePressure field{arc, Vector::Zero(arc.n_control_points())};
     const auto half_width = [&] {
-        const int m = zone_mirrors(planes, arc, g, zone_points(io::AccuracyQuantity::contact_radius, side));
-        return side_quantity(io::AccuracyQuantity::contact_radius, side, field, m);
+        const int m = zone_mirrors(planes, arc.control_points(), g, zone_points(io::AccuracyQuantity::contact_radius, side));
+        return side_quantity(io::AccuracyQuantity::contact_radius, side, {field}, m);
     };
 
     g.pressure.head(5).setOnes();  // x in [0, 0.1]: the half of a zone of half-width 0.1
@@ -106,11 +106,11 @@ TEST(ZoneSymmetry, AQuarterOfADiscOnAnOctantGivesTheDiscsRadius)
         }
     }
     const SidePressure field{face, Vector::Zero(face.n_control_points())};
-    const int m = zone_mirrors(symmetry_planes(deck, body), face, g, zone_points(io::AccuracyQuantity::contact_radius, side));
+    const int m = zone_mirrors(symmetry_planes(deck, body), face.control_points(), g, zone_points(io::AccuracyQuantity::contact_radius, side));
     EXPECT_EQ(m, 2);
-    EXPECT_NEAR(side_quantity(io::AccuracyQuantity::contact_radius, side, field, m), std::sqrt(4.0 * area / std::numbers::pi),
+    EXPECT_NEAR(side_quantity(io::AccuracyQuantity::contact_radius, side, {field}, m), std::sqrt(4.0 * area / std::numbers::pi),
                 1e-14);
-    EXPECT_NEAR(side_quantity(io::AccuracyQuantity::contact_radius, side, field, m), a, 0.05 * a);
+    EXPECT_NEAR(side_quantity(io::AccuracyQuantity::contact_radius, side, {field}, m), a, 0.05 * a);
 }
 
 }  // namespace
