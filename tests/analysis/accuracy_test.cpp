@@ -613,6 +613,20 @@ TEST(Accuracy, AZoneIsResolvedToTheWeightsOfItsEdgePoints)
     g.pressure.segment(2, 3).setZero();
     EXPECT_TRUE(test::near(zone_resolution(io::AccuracyQuantity::contact_radius, curve), 1.1 / 2.1, 1e-14));
 
+    // A curve of two patch sides (gauss_points/patch) has no one parameter along it: points
+    // 0-4 pressed at x = 0 ... 0.4, of equal weight w; the farthest from their centroid
+    // lies 0.2 from it, and the resolution is w / 0.2 (at most 1).
+    g.pressure.head(5).setOnes();
+    g.weight.head(5).setConstant(1.0);
+    for (Index k = 0; k < 10; ++k) {
+        g.reference_coordinates(k, 0) = 0.1 * static_cast<double>(k);
+        g.patch.push_back(k < 2 ? 0 : 1);
+    }
+    EXPECT_TRUE(test::near(zone_resolution(io::AccuracyQuantity::contact_radius, curve), 1.0, 1e-14))
+        << "width 1 over distance 0.2: capped at 1";
+    g.weight.head(5).setConstant(0.05);
+    EXPECT_TRUE(test::near(zone_resolution(io::AccuracyQuantity::contact_radius, curve), 0.05 / 0.2, 1e-14));
+
     // A surface: a grid of cells of width h, those within radius 1 of the origin stick. The
     // farthest sticking point from the centroid (the origin) lies at most h/sqrt(2) inside
     // the circle, and the resolution is h over its distance.
