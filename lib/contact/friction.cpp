@@ -33,7 +33,8 @@ TangentialResponse coulomb_response(const FrictionLaw& law, const FrictionHistor
     Matrix G = P;
     if (std::isfinite(normal_radius))
         G -= (normal.dot(w) * P + normal * gt.transpose()) / normal_radius;
-    out = coulomb_return_map(law, -eps * gt, -eps * G, pressure, d_pressure, committed.slipping);
+    out = coulomb_return_map(law, -eps * gt, -eps * G, pressure, d_pressure, committed.slipping,
+                             trial_round_off(law, std::max(y.norm(), committed.anchor.norm())));
     out.next = committed;
     out.frame_traction = out.traction;
     out.elastic_slip = (out.traction - P * multiplier).norm() / eps;
@@ -46,7 +47,8 @@ TangentialResponse coulomb_response(const FrictionLaw& law, const FrictionHistor
 }
 
 TangentialResponse coulomb_return_map(const FrictionLaw& law, const VecN& trial, const Matrix& d_trial,
-                                      double pressure, const Vector& d_pressure, bool was_slipping)
+                                      double pressure, const Vector& d_pressure, bool was_slipping,
+                                      double trial_round_off)
 {
     const Index d = trial.size();
     const Index m = d_trial.cols();
@@ -54,7 +56,7 @@ TangentialResponse coulomb_return_map(const FrictionLaw& law, const VecN& trial,
     TangentialResponse out;
     const double s_norm = trial.norm();
     const double limit = law.coefficient * pressure;
-    const bool on_cone = was_slipping && s_norm >= (1.0 - cone_band) * limit;
+    const bool on_cone = was_slipping && s_norm >= limit - std::max(cone_band * limit, trial_round_off);
     if (s_norm <= limit && !on_cone) {
         out.status = StickSlip::stick;
         out.traction = trial;

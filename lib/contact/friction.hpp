@@ -82,12 +82,30 @@ struct TangentialResponse {
 /// tangent the next increment's predictor solves with would hold the point fast and drag
 /// the surface along (the ironing die started every increment with half its points stuck).
 /// Within `cone_band` of the cone such a point slips: the traction is the same, the
-/// tangent is the sliding one.
+/// tangent is the sliding one. `trial_round_off` (absolute, a traction) widens the band
+/// to what the trial's round-off can be: eps_T times the round-off of the positions it
+/// is the difference of (trial_round_off below). At a small pressure that is more than
+/// cone_band of mu p: a point of the dragged block (verification/scenes/block_drag_2d.yaml)
+/// at p = 0.29 with eps_T = 1.1e6 read 1 - 1.3e-9 of the cone under --threads 2 and on
+/// the cone under --threads 1, and the two predictors' steps from the same converged
+/// state parted by 9 %.
 TangentialResponse coulomb_return_map(const FrictionLaw& law, const VecN& trial, const Matrix& d_trial,
-                                      double pressure, const Vector& d_pressure, bool was_slipping = false);
+                                      double pressure, const Vector& d_pressure, bool was_slipping = false,
+                                      double trial_round_off = 0.0);
 
 /// Relative band around the Coulomb cone in which a point that slipped keeps slipping.
 inline constexpr double cone_band = 1e-9;
+
+/// Positions are known to this fraction of their magnitude (about 45 eps: the sums of
+/// the basis times the control points and the pull-back to the anchor's frame).
+inline constexpr double position_round_off = 1e-14;
+
+/// The round-off of a trial traction eps_T (x - a) between positions of magnitude up to
+/// `length`.
+inline double trial_round_off(const FrictionLaw& law, double length)
+{
+    return law.tangential_penalty * position_round_off * length;
+}
 
 /// Coulomb's law at the slave point y (master frame) with outward normal n of
 /// the master, contact pressure p >= 0 and its derivative dp/dy (d), and the

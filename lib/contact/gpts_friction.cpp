@@ -153,7 +153,8 @@ TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W
                 result.tangent.middleRows((n_s + b) * d, d) += W * master.R(b) * trial.ds;
         return out;
     }
-    out = coulomb_return_map(law, trial.s, trial.ds, result.pressure, d_pressure, !touching && committed.slipping);
+    out = coulomb_return_map(law, trial.s, trial.ds, result.pressure, d_pressure, !touching && committed.slipping,
+                             trial_round_off(law, std::max(reference.point.norm(), committed.anchor.norm())));
     out.next = FrictionHistory{committed.anchor, committed.slip, true, out.status == StickSlip::slip};
     // t_T pulled back to the master's reference space (F_s of it is t_T again).
     const Matrix& G = reference.tangents;

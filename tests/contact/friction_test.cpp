@@ -11,8 +11,11 @@
 #include "contact/rigid_obstacle.hpp"
 
 #include "support/finite_difference.hpp"
+#include "support/tolerance.hpp"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace iga::contact {
 namespace {
@@ -177,6 +180,35 @@ TEST(Friction, APointThatSlippedSlidesOnFromTheCone)
     stuck.slipping = false;
     stuck.anchor(0) += 1e-13;
     EXPECT_EQ(coulomb_response(law, stuck, none, y, n, 1.0, dp).status, StickSlip::stick);
+}
+
+// The trial traction eps_T (y - a) is a difference of positions: at y = (4, 0) one unit in
+// the last place of the anchor moves it by eps_T 8.9e-16, here 1.1e-8 of mu p (p small,
+// eps_T large, as at the dragged block's slipping point that read stick under another
+// thread count). Either side of the cone by a few such units a slipping point slips on;
+// a slide back inside the cone by far more than its round-off sticks.
+TEST(Friction, ThePositionsRoundOffOnTheConeIsNotAStick)
+{
+    const VecN n = (VecN(2) << 0.0, 1.0).finished();
+    const VecN y = (VecN(2) << 4.0, 0.0).finished();
+    const FrictionLaw law{0.3, 1.1e6};
+    const double p = 0.29;
+    const VecN dp = VecN::Zero(2);
+    const VecN none = VecN::Zero(2);
+    const TangentialResponse slid =
+        coulomb_response(law, {(VecN(2) << 4.0 - 1e-6, 0.0).finished(), 0.0}, none, y, n, p, dp);
+    ASSERT_EQ(slid.status, StickSlip::slip);
+    for (const int units : {-4, -1, 1, 4}) {
+        FrictionHistory committed = slid.next;
+        for (int k = 0; k < std::abs(units); ++k)
+            committed.anchor(0) = std::nextafter(committed.anchor(0), units > 0 ? 10.0 : -10.0);
+        const TangentialResponse on = coulomb_response(law, committed, none, y, n, p, dp);
+        EXPECT_EQ(on.status, StickSlip::slip) << "anchor moved by " << units << " units in the last place";
+        EXPECT_TRUE(test::near_rel(on.traction.norm(), law.coefficient * p, 1e-6));
+    }
+    FrictionHistory back = slid.next;
+    back.anchor(0) += 1e-12;  // |s| falls by 1.1e-6, 1.3e-5 of mu p: inside the cone
+    EXPECT_EQ(coulomb_response(law, back, none, y, n, p, dp).status, StickSlip::stick);
 }
 
 TEST(Friction, TangentEqualsFiniteDifferences2DPlane)
