@@ -9,11 +9,11 @@
 #include "analysis/span_marking.hpp"
 #include "analysis/zone_refinement.hpp"
 #include "analysis/zone_symmetry.hpp"
+#include "contact/contact_pair.hpp"
 #include "core/error.hpp"
 #include "io/deck_names.hpp"
 #include "io/deck_writer.hpp"
 #include "io/h5_file.hpp"
-#include "nurbs/side_patch.hpp"
 
 #include <fmt/format.h>
 
@@ -71,8 +71,7 @@ struct SurfacePiece {
     std::string patch;  ///< the deck's patch name ("" for a single-patch body)
     Side side = Side::u0;  ///< as the deck names it
     nurbs::Patch side_patch;
-    /// Its control points' numbers in the surface's numbering (DeformableSide::make: each
-    /// body node where it first appears, piece after piece).
+    /// Its control points' numbers in the surface's numbering (contact::DeformableSide).
     std::vector<int> surface_index;
 };
 
@@ -83,19 +82,23 @@ std::vector<SurfacePiece> surface_pieces(const io::Deck& deck, const io::Body& b
 {
     const BodyPatches parts = build_body_patches(deck, body);
     const std::vector<BodySide> sides = resolve_sides(body, parts.names, patch, side.value_or(Side::u0), surface);
-    std::vector<SurfacePiece> out;
-    std::map<int, int> surface_of_node;
+    std::vector<const nurbs::Patch*> parents;
+    std::vector<Side> which;
+    std::vector<std::vector<int>> nodes;
     for (const BodySide& at : sides) {
-        const auto p = static_cast<std::size_t>(at.patch);
-        nurbs::SidePatch extracted = nurbs::extract_side(parts.patches[p], at.side);
-        SurfacePiece piece{parts.names[p], at.named, std::move(extracted.patch), {}};
-        for (std::size_t a = 0; a < extracted.parent_index.size(); ++a) {
-            const int node = sides.size() == 1 ? static_cast<int>(a)  // one side: its own numbering
-                                               : parts.topology.node[p][static_cast<std::size_t>(extracted.parent_index[a])];
-            piece.surface_index.push_back(
-                surface_of_node.try_emplace(node, static_cast<int>(surface_of_node.size())).first->second);
-        }
-        out.push_back(std::move(piece));
+        parents.push_back(&parts.patches[static_cast<std::size_t>(at.patch)]);
+        which.push_back(at.side);
+        nodes.push_back(parts.topology.node[static_cast<std::size_t>(at.patch)]);
+    }
+    std::vector<int> surface_node;
+    // Numbered as the contact module numbers it, so that the results' pressures read back.
+    const contact::DeformableSide numbered = sides.size() == 1 ? contact::DeformableSide::make(*parents.front(), which.front())
+                                                               : contact::DeformableSide::make(parents, which, nodes, surface_node);
+    std::vector<SurfacePiece> out;
+    for (std::size_t k = 0; k < sides.size(); ++k) {
+        const contact::SidePiece& piece = numbered.pieces[k];
+        out.push_back({parts.names[static_cast<std::size_t>(sides[k].patch)], sides[k].named, piece.side.patch,
+                       piece.surface_index});
     }
     return out;
 }

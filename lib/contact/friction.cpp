@@ -48,7 +48,7 @@ TangentialResponse coulomb_response(const FrictionLaw& law, const FrictionHistor
 
 TangentialResponse coulomb_return_map(const FrictionLaw& law, const VecN& trial, const Matrix& d_trial,
                                       double pressure, const Vector& d_pressure, bool was_slipping,
-                                      double trial_round_off)
+                                      double round_off)
 {
     const Index d = trial.size();
     const Index m = d_trial.cols();
@@ -56,7 +56,7 @@ TangentialResponse coulomb_return_map(const FrictionLaw& law, const VecN& trial,
     TangentialResponse out;
     const double s_norm = trial.norm();
     const double limit = law.coefficient * pressure;
-    const bool on_cone = was_slipping && s_norm >= limit - std::max(cone_band * limit, trial_round_off);
+    const bool on_cone = was_slipping && s_norm >= limit - std::max(cone_band * limit, round_off);
     if (s_norm <= limit && !on_cone) {
         out.status = StickSlip::stick;
         out.traction = trial;

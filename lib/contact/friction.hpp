@@ -82,7 +82,7 @@ struct TangentialResponse {
 /// tangent the next increment's predictor solves with would hold the point fast and drag
 /// the surface along (the ironing die started every increment with half its points stuck).
 /// Within `cone_band` of the cone such a point slips: the traction is the same, the
-/// tangent is the sliding one. `trial_round_off` (absolute, a traction) widens the band
+/// tangent is the sliding one. `round_off` (absolute, a traction) widens the band
 /// to what the trial's round-off can be: eps_T times the round-off of the positions it
 /// is the difference of (trial_round_off below). At a small pressure that is more than
 /// cone_band of mu p: a point of the dragged block (verification/scenes/block_drag_2d.yaml)
@@ -91,7 +91,7 @@ struct TangentialResponse {
 /// state parted by 9 %.
 TangentialResponse coulomb_return_map(const FrictionLaw& law, const VecN& trial, const Matrix& d_trial,
                                       double pressure, const Vector& d_pressure, bool was_slipping = false,
-                                      double trial_round_off = 0.0);
+                                      double round_off = 0.0);
 
 /// Relative band around the Coulomb cone in which a point that slipped keeps slipping.
 inline constexpr double cone_band = 1e-9;
