@@ -379,6 +379,10 @@ private:
     /// Per surface and piece: per side direction k, whether its lower / upper edge
     /// is shared with another piece (an interface inside the surface).
     std::array<std::vector<std::array<std::array<bool, 2>, 2>>, 2> inner_edge_;
+    /// Per surface and piece: per side direction k, the reference length per unit
+    /// parameter across its lower / upper edge where that edge is a free end of the
+    /// surface (a corner of the body); 0 where it is shared with another piece.
+    std::array<std::vector<std::array<std::array<double, 2>, 2>>, 2> end_scale_;
     using Foot = ContactPointState::Foot;
     std::vector<std::vector<ContactPointState>> committed_;  ///< per carrier, n_g
     std::vector<std::vector<ContactPointState>> trial_;      ///< in use: the last adopted evaluation's
@@ -435,6 +439,7 @@ private:
     MasterView master_view(const DeformableSide& master, const RowMatrix& points, double distance) const;
     /// The nearest foot of x over the master's pieces (surface numbering); nullopt when
     /// no piece has a candidate element; `failed` when a projection failed.
+    void set_end_distance(int master_surface, const Projection& projection, MasterFoot& foot) const;
     std::optional<Projection> project_on_master(int master_surface, const MasterView& view, const VecN& x,
                                                 const Foot& warm, PairEvaluation& ev, Timing& timing,
                                                 bool& failed) const;

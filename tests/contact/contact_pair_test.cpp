@@ -232,6 +232,82 @@ TEST(ContactPair, FacesTouchingAtRestTakeThePressingBranchOfTheTangent)
     EXPECT_TRUE(test::at_most((K * direction - slope).norm() / slope.norm(), 1e-6));
 }
 
+/// A block 1 x 0.5 pressed `press` into a wider one (flat on flat, two-half-pass), both
+/// with four spans along the faces; the top moved `slide` along x.
+struct PressedBlocks {
+    nurbs::Patch top = nurbs::insert_knots(nurbs::rectangle(vec2(0.5, 1.0), vec2(1.0, 0.5)), 0, {0.25, 0.5, 0.75});
+    nurbs::Patch base = nurbs::insert_knots(nurbs::rectangle(vec2(0.0, 0.0), vec2(2.0, 1.0)), 0, {0.25, 0.5, 0.75});
+    std::pair<RowMatrix, RowMatrix> moved(const ContactPair& pair, double slide, double press) const
+    {
+        RowMatrix u1 = RowMatrix::Zero(pair.n_control_points(0), 2);
+        u1.col(0).setConstant(slide);
+        u1.col(1).setConstant(-press);
+        return {u1, RowMatrix::Zero(pair.n_control_points(1), 2)};
+    }
+};
+
+TEST(ContactPair, APressedPointsForceFallsToZeroAsItsFootReachesTheMastersEnd)
+{
+    // The top slides 0.2 in steps of 1e-4, pressed 0.01: base Gauss points pass under both
+    // of its ends. Measured to the block near its corner a point's penetration is at most
+    // its foot's distance s from the end, so the law reads min(g_N, s) and the force falls
+    // to zero at the end. Lipschitz: a step changes r by about eps W h per point (eps 1e3,
+    // W < 0.2: 0.02). Cut off at the end as off_end, a point dropped eps g_N W (about 1).
+    const PressedBlocks blocks;
+    const ContactPair pair({.formulation = Formulation::two_half_pass, .law = NormalLaw::penalty(1e3)},
+                           DeformableSide::make(blocks.top, Side::v0), DeformableSide::make(blocks.base, Side::v1));
+    const double h = 1e-4;
+    Vector before;
+    double largest_change = 0.0;
+    for (int k = 0; k <= 2000; ++k) {
+        const auto [u1, u2] = blocks.moved(pair, k * h, 0.01);
+        const PairEvaluation ev = pair.evaluate(u1, u2, false);
+        ASSERT_TRUE(ev.ok) << ev.message;
+        if (before.size() > 0)
+            largest_change = std::max(largest_change, (ev.residual - before).lpNorm<Eigen::Infinity>());
+        before = ev.residual;
+    }
+    EXPECT_TRUE(test::at_most(largest_change, 0.1));
+}
+
+TEST(ContactPair, TangentNearTheMastersEndIsDerivative)
+{
+    // A base Gauss point whose foot lies s = 0.004 inside the top's right end, pressed
+    // g_N = 0.01 > s: its pressure is eps s, with ds/du through the foot's variation.
+    const PressedBlocks blocks;
+    const double press = 0.01, s = 0.004;
+    for (const double mu : {0.0, 0.3}) {
+        SCOPED_TRACE("mu = " + std::to_string(mu));
+        const ContactPair pair({.formulation = Formulation::two_half_pass,
+                                .law = NormalLaw::penalty(1e3),
+                                .friction = {.coefficient = mu, .tangential_penalty = mu > 0.0 ? 1e3 : 0.0}},
+                               DeformableSide::make(blocks.top, Side::v0), DeformableSide::make(blocks.base, Side::v1));
+        const auto [r1, r2] = blocks.moved(pair, 0.0, press);
+        const PairEvaluation at_rest = pair.evaluate(r1, r2, false);
+        ASSERT_TRUE(at_rest.ok) << at_rest.message;
+        const CarrierResult& base = at_rest.carriers[1];
+        ASSERT_EQ(base.surface, 1);
+        double x = -1.0;  // the base Gauss point nearest inside the top's right end (x = 1.5)
+        for (Index g = 0; g < base.coordinates.rows(); ++g)
+            if (base.coordinates(g, 0) < 1.5 - 0.01)
+                x = std::max(x, base.coordinates(g, 0));
+        ASSERT_GT(x, 1.0);
+        auto [u1, u2] = blocks.moved(pair, x + s - 1.5, press);
+        // Shear it a little and deform the top, so that every row is exercised.
+        for (Index a = 0; a < u1.rows(); ++a)
+            u1(a, 1) += 1e-4 * std::sin(3.0 * a);
+        const PairEvaluation ev = pair.evaluate(u1, u2, false);
+        ASSERT_TRUE(ev.ok) << ev.message;
+        Index at = -1;
+        for (Index g = 0; g < ev.carriers[1].pressure.size(); ++g)
+            if (std::abs(ev.carriers[1].coordinates(g, 0) - x) < 1e-12)
+                at = g;
+        ASSERT_GE(at, 0);
+        EXPECT_NEAR(ev.carriers[1].pressure(at), 1e3 * s, 0.05 * 1e3 * s) << "the end distance, not g_N, presses";
+        expect_tangent_is_derivative(pair, u1, u2, "near the end");
+    }
+}
+
 TEST(ContactPair, FarApartDoesNoWork)
 {
     const Scene s = make_scene();
