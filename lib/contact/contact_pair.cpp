@@ -304,7 +304,7 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
             std::array<std::array<double, 2>, 2> scale{};
             for (int k = 0; k < q; ++k)
                 for (int end = 0; end < 2; ++end) {
-                    if (inner[k][end])
+                    if (inner[k][end] || piece.mirror_edge[static_cast<std::size_t>(k)][static_cast<std::size_t>(end)])
                         continue;
                     VecN xi(q);
                     for (int j = 0; j < q; ++j)

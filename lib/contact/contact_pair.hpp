@@ -136,6 +136,10 @@ struct SidePiece {
     nurbs::SidePatch side;           ///< side.parent_index: control points of its parent patch
     int outward_sign = 1;
     std::vector<int> surface_index;  ///< side control point -> surface control point
+    /// Per side direction k, whether its lower / upper edge lies in a symmetry plane of
+    /// the body: the surface continues past it mirrored, so it is no free end
+    /// (MasterFoot::end_distance). Set by whoever knows the constraints.
+    std::array<std::array<bool, 2>, 2> mirror_edge{};
 };
 
 /// A deformable contact surface: one patch side, or several patch sides of one

@@ -308,6 +308,31 @@ TEST(ContactPair, TangentNearTheMastersEndIsDerivative)
     }
 }
 
+TEST(ContactPair, AnEdgeInASymmetryPlaneIsNoFreeEnd)
+{
+    // The top's right end marked as lying in a symmetry plane (SidePiece::mirror_edge): the
+    // surface continues past it, so a point s = 0.004 inside it presses with eps g_N.
+    const PressedBlocks blocks;
+    DeformableSide top = DeformableSide::make(blocks.top, Side::v0);
+    top.pieces.front().mirror_edge[0][1] = true;
+    const ContactPair pair({.formulation = Formulation::two_half_pass, .law = NormalLaw::penalty(1e3)}, top,
+                           DeformableSide::make(blocks.base, Side::v1));
+    const double press = 0.01, s = 0.004;
+    const auto [r1, r2] = blocks.moved(pair, 0.0, press);
+    const CarrierResult base = pair.evaluate(r1, r2, false).carriers[1];
+    double x = -1.0;
+    for (Index g = 0; g < base.coordinates.rows(); ++g)
+        if (base.coordinates(g, 0) < 1.5 - 0.01)
+            x = std::max(x, base.coordinates(g, 0));
+    const auto [u1, u2] = blocks.moved(pair, x + s - 1.5, press);
+    const PairEvaluation ev = pair.evaluate(u1, u2, false);
+    ASSERT_TRUE(ev.ok) << ev.message;
+    for (Index g = 0; g < ev.carriers[1].pressure.size(); ++g)
+        if (std::abs(ev.carriers[1].coordinates(g, 0) - x) < 1e-12) {
+            EXPECT_NEAR(ev.carriers[1].pressure(g), 1e3 * press, 1e-9);
+        }
+}
+
 TEST(ContactPair, FarApartDoesNoWork)
 {
     const Scene s = make_scene();
