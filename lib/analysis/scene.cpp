@@ -8,7 +8,6 @@
 #include "analysis/geometry.hpp"
 #include "analysis/obstacles.hpp"
 #include "analysis/side_facing.hpp"
-#include "analysis/zone_symmetry.hpp"
 #include "core/text.hpp"
 #include "io/deck_names.hpp"
 #include "io/locate.hpp"
@@ -384,30 +383,24 @@ contact::Surface contact_surface(const io::Deck& deck, const Scene& scene, const
     check_not_interface(deck, model, sides, "contact." + c.name + ".between");
     for (const BodySide& bs : sides)
         out.piece_label[k].push_back(body_side_text(model.patch_names(), bs));
-    contact::DeformableSide side;
     if (sides.size() == 1) {
         const PatchModel& patch = model.patches[static_cast<std::size_t>(sides.front().patch)];
-        side = contact::DeformableSide::make(patch.patch, sides.front().side);
+        contact::DeformableSide side = contact::DeformableSide::make(patch.patch, sides.front().side);
         out.parent[k].clear();
         for (const int a : side.pieces.front().side.parent_index)
             out.parent[k].push_back(patch.node[static_cast<std::size_t>(a)]);
-    } else {
-        std::vector<const nurbs::Patch*> parents;
-        std::vector<Side> which;
-        std::vector<std::vector<int>> nodes;
-        for (const BodySide& bs : sides) {
-            const PatchModel& patch = model.patches[static_cast<std::size_t>(bs.patch)];
-            parents.push_back(&patch.patch);
-            which.push_back(bs.side);
-            nodes.push_back(patch.node);
-        }
-        side = contact::DeformableSide::make(parents, which, nodes, out.parent[k]);
+        return side;
     }
-    // A half or quarter model's surface continues past its symmetry planes: no free ends there.
-    const std::vector<SymmetryPlane> planes = symmetry_planes(deck, *deck_body);
-    for (contact::SidePiece& piece : side.pieces)
-        piece.mirror_edge = edges_in_planes(planes, piece.side.patch);
-    return side;
+    std::vector<const nurbs::Patch*> parents;
+    std::vector<Side> which;
+    std::vector<std::vector<int>> nodes;
+    for (const BodySide& bs : sides) {
+        const PatchModel& patch = model.patches[static_cast<std::size_t>(bs.patch)];
+        parents.push_back(&patch.patch);
+        which.push_back(bs.side);
+        nodes.push_back(patch.node);
+    }
+    return contact::DeformableSide::make(parents, which, nodes, out.parent[k]);
 }
 
 /// The contact pair of deck item c, with the penalty (or its auto rule) and friction;

@@ -57,27 +57,6 @@ std::vector<SymmetryPlane> symmetry_planes(const io::Deck& deck, const io::Body&
     return planes;
 }
 
-std::array<std::array<bool, 2>, 2> edges_in_planes(const std::vector<SymmetryPlane>& planes, const nurbs::Patch& side)
-{
-    std::array<std::array<bool, 2>, 2> out{};
-    const RowMatrix& x = side.control_points();
-    const double tolerance = plane_tolerance * size_of(x);
-    const std::array<int, 2> n{side.n_basis(0), side.n_par() > 1 ? side.n_basis(1) : 1};
-    for (int k = 0; k < side.n_par(); ++k)
-        for (int end = 0; end < 2; ++end)
-            for (const SymmetryPlane& plane : planes) {
-                bool in_plane = true;
-                for (Index a = 0; a < x.rows() && in_plane; ++a) {
-                    const int along_k = k == 0 ? static_cast<int>(a) % n[0] : static_cast<int>(a) / n[0];
-                    if (along_k == (end ? n[static_cast<std::size_t>(k)] - 1 : 0))
-                        in_plane = std::abs(x(a, plane.axis) - plane.coordinate) <= tolerance;
-                }
-                out[static_cast<std::size_t>(k)][static_cast<std::size_t>(end)] =
-                    out[static_cast<std::size_t>(k)][static_cast<std::size_t>(end)] || in_plane;
-            }
-    return out;
-}
-
 int zone_mirrors(const std::vector<SymmetryPlane>& planes, const RowMatrix& side_points, const io::GaussPointData& g,
                  const std::vector<Index>& zone)
 {

@@ -13,7 +13,6 @@
 #include "io/results_data.hpp"
 #include "nurbs/patch.hpp"
 
-#include <array>
 #include <vector>
 
 namespace iga::analysis {
@@ -27,10 +26,6 @@ struct SymmetryPlane {
 /// The symmetry planes of a body (above), from the deck's constraints on it (on a
 /// multi-patch body, on its patch sides and named surfaces), each plane once.
 std::vector<SymmetryPlane> symmetry_planes(const io::Deck& deck, const io::Body& body);
-
-/// Per parameter direction k of a side patch, whether its lower / upper edge (its row of
-/// control points there) lies in one of `planes`.
-std::array<std::array<bool, 2>, 2> edges_in_planes(const std::vector<SymmetryPlane>& planes, const nurbs::Patch& side);
 
 /// How many of `planes` cut the zone made of the Gauss points `zone` of a contact side: a
 /// plane cuts it when the side reaches the plane (one of `side_points`, the control points

@@ -300,19 +300,6 @@ ContactPair::ContactPair(PairSettings settings, Surface first, Surface second)
                     inner[k][end] = shared;
                 }
             inner_edge_[i].push_back(inner);
-            // A free end's scale: |dX/dxi_k| at the middle of that edge, in the reference.
-            std::array<std::array<double, 2>, 2> scale{};
-            for (int k = 0; k < q; ++k)
-                for (int end = 0; end < 2; ++end) {
-                    if (inner[k][end] || piece.mirror_edge[static_cast<std::size_t>(k)][static_cast<std::size_t>(end)])
-                        continue;
-                    VecN xi(q);
-                    for (int j = 0; j < q; ++j)
-                        xi(j) = 0.5 * (patch.knots(j).front() + patch.knots(j).back());
-                    xi(k) = end ? patch.knots(k).back() : patch.knots(k).front();
-                    scale[k][end] = nurbs::evaluate(patch, xi, 1).dx.col(k).norm();
-                }
-            end_scale_[i].push_back(scale);
         }
     }
 
@@ -886,8 +873,7 @@ bool ContactPair::evaluate_on_surface(std::size_t ci, CarrierResult& cr,
         }
         if (unsettled)
             return sweep.fail("contact: closest-point projection failed at " + describe_point(c.slave, g, gp.xi, x));
-        MasterFoot foot = master_foot(proj);
-        set_end_distance(c.master, proj, foot);
+        const MasterFoot foot = master_foot(proj);
         Vector dW;
         double W = gp.weight;
         if (c.current_measure)
@@ -972,33 +958,6 @@ ContactPair::MasterView ContactPair::master_view(const DeformableSide& master, c
         view.searches.emplace_back(patch, SearchOptions{.distance = distance});
     view.size = (points.colwise().maxCoeff() - points.colwise().minCoeff()).norm();
     return view;
-}
-
-/// MasterFoot::end_distance: the foot's distance from the nearest free end of its piece,
-/// (end - xi_k) times the end's reference scale along direction k, the smallest over the
-/// free ends.
-void ContactPair::set_end_distance(int master_surface, const Projection& projection, MasterFoot& foot) const
-{
-    const DeformableSide& master = std::get<DeformableSide>(surfaces_[static_cast<std::size_t>(master_surface)]);
-    std::size_t piece = 0;
-    while (piece + 1 < master.pieces.size() && projection.element >= master.first_element(static_cast<int>(piece + 1)))
-        ++piece;
-    const nurbs::Patch& patch = master.pieces[piece].side.patch;
-    const auto& scale = end_scale_[static_cast<std::size_t>(master_surface)][piece];
-    foot.end_slope = Vector::Zero(patch.n_par());
-    for (int k = 0; k < patch.n_par(); ++k)
-        for (int end = 0; end < 2; ++end) {
-            if (!(scale[k][end] > 0.0))
-                continue;
-            const double inward = end ? 1.0 : -1.0;  // s grows as xi_k moves away from the end
-            const double bound = end ? patch.knots(k).back() : patch.knots(k).front();
-            const double s = inward * (bound - projection.xi(k)) * scale[k][end];
-            if (s < foot.end_distance) {
-                foot.end_distance = s;
-                foot.end_slope.setZero();
-                foot.end_slope(k) = -inward * scale[k][end];
-            }
-        }
 }
 
 std::optional<Projection> ContactPair::project_on_master(int master_surface, const MasterView& view, const VecN& x,

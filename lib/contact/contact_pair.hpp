@@ -136,10 +136,6 @@ struct SidePiece {
     nurbs::SidePatch side;           ///< side.parent_index: control points of its parent patch
     int outward_sign = 1;
     std::vector<int> surface_index;  ///< side control point -> surface control point
-    /// Per side direction k, whether its lower / upper edge lies in a symmetry plane of
-    /// the body: the surface continues past it mirrored, so it is no free end
-    /// (MasterFoot::end_distance). Set by whoever knows the constraints.
-    std::array<std::array<bool, 2>, 2> mirror_edge{};
 };
 
 /// A deformable contact surface: one patch side, or several patch sides of one
@@ -383,10 +379,6 @@ private:
     /// Per surface and piece: per side direction k, whether its lower / upper edge
     /// is shared with another piece (an interface inside the surface).
     std::array<std::vector<std::array<std::array<bool, 2>, 2>>, 2> inner_edge_;
-    /// Per surface and piece: per side direction k, the reference length per unit
-    /// parameter across its lower / upper edge where that edge is a free end of the
-    /// surface (a corner of the body); 0 where it is shared with another piece.
-    std::array<std::vector<std::array<std::array<double, 2>, 2>>, 2> end_scale_;
     using Foot = ContactPointState::Foot;
     std::vector<std::vector<ContactPointState>> committed_;  ///< per carrier, n_g
     std::vector<std::vector<ContactPointState>> trial_;      ///< in use: the last adopted evaluation's
@@ -443,7 +435,6 @@ private:
     MasterView master_view(const DeformableSide& master, const RowMatrix& points, double distance) const;
     /// The nearest foot of x over the master's pieces (surface numbering); nullopt when
     /// no piece has a candidate element; `failed` when a projection failed.
-    void set_end_distance(int master_surface, const Projection& projection, MasterFoot& foot) const;
     std::optional<Projection> project_on_master(int master_surface, const MasterView& view, const VecN& x,
                                                 const Foot& warm, PairEvaluation& ev, Timing& timing,
                                                 bool& failed) const;

@@ -138,7 +138,7 @@ TangentialResponse gpts_friction(KernelResult& result, const Vector& N, double W
     const double eps_T = law.tangential_penalty;
     const Trial trial = touching ? touch_trial(master, v, before, committed.open_gap, gap, eps_T)
                                  : anchored_trial(master, reference, v, committed.anchor, multiplier, eps_T, n_s);
-    const Vector d_pressure = result.slope * result.d_gap;  // dp/du = p' dg/du
+    const Vector d_pressure = -result.slope * v.Nn;  // dp/du = p' dg_N/du
 
     if (at_kink) {
         // Touching at rest (KernelSettings::touching): no traction in a cone of zero size,

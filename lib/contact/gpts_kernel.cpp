@@ -49,8 +49,7 @@ KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, co
     out.residual = Vector::Zero(n_dofs);
     if (settings.need_tangent)
         out.tangent = Matrix::Zero(n_dofs, n_dofs);
-    const bool at_end = master.end_distance < master.gap;
-    const std::optional<NormalResponse> law = pressure_at(settings, at_end ? master.end_distance : master.gap);
+    const std::optional<NormalResponse> law = pressure_at(settings, master.gap);
     if (!law)
         return out;
     out.pressure = law->pressure;
@@ -61,10 +60,9 @@ KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, co
         out.ok = false;
         return out;
     }
-    out.d_gap = at_end ? Vector(v.D * master.end_slope) : Vector(-v.Nn);
     const Eigen::LLT<Matrix> m_llt(master.metric);
     const double p = out.pressure;
-    const double slope = out.slope;  // dp/dg
+    const double slope = out.slope;  // dp/dg_N
     const Vector& Nn = v.Nn;
     const Matrix& T = v.T;
     const Matrix& Nd = v.Nd;
@@ -81,7 +79,7 @@ KernelResult gpts_kernel(const Vector& N, double W, const MasterFoot& master, co
     //   D2g = Nd D^T + T m^-1 (Nd + D b)^T   (symmetric: equal to its transpose up to round-off)
     const Matrix T_m = m_llt.solve(T.transpose()).transpose();                      // T m^-1
     const Matrix turn = Nd + D * master.curvature;                                  // Nd + D b (b symmetric)
-    out.tangent.topRows(n_rows) = -slope * W * Nn.head(n_rows) * out.d_gap.transpose();  // dp/du = p' dg/du
+    out.tangent.topRows(n_rows) = slope * W * Nn.head(n_rows) * Nn.transpose();
     out.tangent.topRows(n_rows) += p * W * (Nd.topRows(n_rows) * D.transpose() + T_m.topRows(n_rows) * turn.transpose());
     // W = w_g j(u): the current area element stretches with the slave's control points.
     if (dW.size() > 0)

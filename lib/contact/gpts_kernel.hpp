@@ -12,8 +12,6 @@
 // docs/theory.md "Augmented Lagrangian"); the exponential law presses at gaps down
 // to -c0. The kernel runs where the law says the point is active (p > 0).
 //
-// Near a free end of the master the law's gap is min(g_N, s) (MasterFoot::end_distance).
-//
 //   Pi_c = W P(g_N), P' = p (penalty: P = <lambda + eps g_N>^2 / (2 eps)),
 //   r = dPi_c/du = p W dg_N/du,   K = dr/du,
 //   W = Gauss weight * area element of the slave: held fixed (the reference one), or
@@ -62,11 +60,8 @@ struct KernelSettings {
 
 struct KernelResult {
     bool ok = true;         ///< false: the foot point is not a distance minimum (c <= 0)
-    double pressure = 0.0;  ///< p = p(g - offset, lambda), e.g. <lambda + eps g_N> (g: d_gap below)
-    double slope = 0.0;     ///< p' = dp/dg at the same point (0 where inactive)
-    /// dg/du of the gap g the law was evaluated at: -Nn for g_N, ds/du = D ds/dxi where
-    /// the end distance is the smaller (MasterFoot::end_distance); empty where inactive.
-    Vector d_gap;
+    double pressure = 0.0;  ///< p = p(g_N - s, lambda), e.g. <lambda + eps g_N>
+    double slope = 0.0;     ///< p' = dp/dg_N at the same point (0 where inactive)
     Vector residual;        ///< (n_s + n_m) d
     Matrix tangent;         ///< (n_s + n_m) d square; empty when need_tangent is false
 };
@@ -84,14 +79,6 @@ struct MasterFoot {
     Vector R;          ///< n_m
     Matrix dR;         ///< n_m x q
     Matrix second;     ///< d x q(q+1)/2: x_m,ab packed like BasisValues::d2R (friction only; may be empty)
-    /// s: how far the foot lies inside the master's nearest free end (a corner of the
-    /// body, not an edge shared with another piece), and ds/dxi (q); infinite where the
-    /// side has no free end. Measured to the body near its corner, a penetration is at
-    /// most the distance to the end face, so the law is evaluated at min(g_N, s): the
-    /// pressure falls to zero as the foot reaches the end, where it would otherwise drop
-    /// from eps g_N to nothing once the foot passes it (off_end).
-    double end_distance = std::numeric_limits<double>::infinity();
-    Vector end_slope;
 };
 
 /// The first variation of the foot point at a slave point with basis N, as

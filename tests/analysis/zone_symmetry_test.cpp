@@ -5,7 +5,6 @@
 
 #include "analysis/geometry.hpp"
 #include "analysis/level_estimate.hpp"
-#include "analysis/multipatch.hpp"
 #include "analysis/zone_symmetry.hpp"
 #include "io/deck_reader.hpp"
 #include "nurbs/side_patch.hpp"
@@ -17,7 +16,6 @@
 #include <array>
 #include <cmath>
 #include <numbers>
-#include <tuple>
 
 namespace iga::analysis {
 namespace {
@@ -44,41 +42,6 @@ TEST(ZoneSymmetry, AFaceHeldAlongItsNormalAloneIsASymmetryPlane)
     driven.constraints[0].value = {0.01, 0.0};
     EXPECT_TRUE(symmetry_planes(clamped, *clamped.find_body("cylinder")).empty());
     EXPECT_TRUE(symmetry_planes(driven, *driven.find_body("cylinder")).empty());
-}
-
-/// Whether every control point of edge (k, end) of a side patch lies on x_axis = 0.
-bool edge_on(const nurbs::Patch& side, int k, int end, int axis)
-{
-    const std::array<int, 2> n{side.n_basis(0), side.n_par() > 1 ? side.n_basis(1) : 1};
-    for (Index a = 0; a < side.n_control_points(); ++a) {
-        const int along = k == 0 ? static_cast<int>(a) % n[0] : static_cast<int>(a) / n[0];
-        if (along == (end ? n[static_cast<std::size_t>(k)] - 1 : 0) && std::abs(side.control_points()(a, axis)) > 1e-12)
-            return false;
-    }
-    return true;
-}
-
-TEST(ZoneSymmetry, TheEdgesOfAContactSideInASymmetryPlaneAreMarked)
-{
-    // The contact sides of the quarter disc and of the ball octant: an edge is marked
-    // exactly when it lies on x = 0 or y = 0, the planes their rollers hold.
-    for (const auto& [deck_path, body_name, n_marked] :
-         {std::tuple{hertz_2d, "cylinder", 1}, std::tuple{hertz_3d, "ball", 2}}) {
-        SCOPED_TRACE(body_name);
-        const io::Deck deck = io::read_deck(deck_path);
-        const io::Body& body = *deck.find_body(body_name);
-        const nurbs::Patch side = nurbs::extract_side(build_body_patches(deck, body).patches[0], Side::v0).patch;
-        const std::array<std::array<bool, 2>, 2> marked = edges_in_planes(symmetry_planes(deck, body), side);
-        int count = 0;
-        for (int k = 0; k < side.n_par(); ++k)
-            for (int end = 0; end < 2; ++end) {
-                const bool on_a_plane = edge_on(side, k, end, 0) || edge_on(side, k, end, 1);
-                EXPECT_EQ(marked[static_cast<std::size_t>(k)][static_cast<std::size_t>(end)], on_a_plane)
-                    << "direction " << k << ", end " << end;
-                count += on_a_plane ? 1 : 0;
-            }
-        EXPECT_GE(count, n_marked);
-    }
 }
 
 TEST(ZoneSymmetry, TheWholeZoneIsTheModelledPartMirroredAcrossThePlanesThatCutIt)
